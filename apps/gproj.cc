@@ -1,0 +1,27 @@
+// The gproj command line.
+#include <iostream>
+
+#include "apps/commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "gproj: guided projection for architectural geometry.\n"
+      "Makes freeform meshes buildable by solving systems of quadratic constraints\n"
+      "(planar quads, ...) with Gauss-Newton-style guided projection and sparse Cholesky."};
+  app.require_subcommand(1);
+  int exit_code = gproj::kExitOk;
+  gproj::RegisterPlanarizeCommand(&app, &exit_code);
+  gproj::RegisterGridCommand(&app, &exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // One line, naming the option and the rule broken; --help explains every option.
+    std::cerr << "gproj: " << e.what() << " (see gproj --help)\n";
+    return gproj::kExitInputError;
+  }
+  return exit_code;
+}

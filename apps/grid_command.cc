@@ -1,0 +1,49 @@
+// `gproj grid`: writes a noisy doubly curved quad grid, the test input of the benchmarks.
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "apps/commands.h"
+#include "geometry/quad_grid.h"
+
+namespace gproj {
+
+void RegisterGridCommand(CLI::App* app, int* exit_code) {
+  struct Args {
+    std::string output;
+    QuadGridOptions grid;
+  };
+  auto args = std::make_shared<Args>();
+  args->grid.noise = 0.05;
+  CLI::App* cmd = app->add_subcommand(
+      "grid",
+      "Write a quad grid over [-1,1]^2 on z = a x^2 + b y^2 + c x y with every vertex moved "
+      "by uniform noise (a test input for planarize)");
+  cmd->add_option("-o,--output", args->output, "Mesh to write (.obj, .off or .ply)")->required();
+  cmd->add_option("--nu", args->grid.nu, "Vertices along u")
+      ->check(CLI::Range(2, 100000))
+      ->capture_default_str();
+  cmd->add_option("--nv", args->grid.nv, "Vertices along v")
+      ->check(CLI::Range(2, 100000))
+      ->capture_default_str();
+  cmd->add_option("--a", args->grid.a, "Coefficient of x^2")->capture_default_str();
+  cmd->add_option("--b", args->grid.b, "Coefficient of y^2")->capture_default_str();
+  cmd->add_option("--c", args->grid.c, "Coefficient of x y")->capture_default_str();
+  cmd->add_option("--noise", args->grid.noise, "Noise amplitude as a fraction of the grid spacing")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--seed", args->grid.seed, "Random seed")->capture_default_str();
+  cmd->callback([args, exit_code]() {
+    try {
+      WriteMeshAtomically(MakeQuadGrid(args->grid), args->output);
+      std::cout << "wrote " << args->output << ": " << args->grid.nu << " x " << args->grid.nv
+                << " vertices, noise " << args->grid.noise << " of the spacing\n";
+      *exit_code = kExitOk;
+    } catch (const InputError& e) {
+      std::cerr << "gproj grid: " << e.what() << "\n";
+      *exit_code = kExitInputError;
+    }
+  });
+}
+
+}  // namespace gproj

@@ -1,0 +1,64 @@
+#pragma once
+// Polygon-mesh input and output for gproj: OBJ / OFF / PLY, with validation that names the
+// file, line, vertex or face of every problem, and atomic writes (temporary file + rename).
+
+#include <Eigen/Core>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace gproj {
+
+// Double-precision OpenMesh polygon mesh.
+struct MeshTraits : public OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+};
+using PolyMesh = OpenMesh::PolyMesh_ArrayKernelT<MeshTraits>;
+
+// Bad input at the boundary: the message is one line and names the file and the offending
+// line / vertex / face and the rule broken, e.g.
+//   "grid.obj:12: face 3 references vertex 40, but the file has 36 vertices".
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Faces and vertices as read, before any topology is built. Line numbers are 1-based source
+// lines for text formats and 0 where the format has none (binary PLY).
+struct PolygonSoup {
+  std::vector<Eigen::Vector3d> vertices;  // #V
+  std::vector<std::vector<int>> faces;    // #F, 0-based vertex indices
+  std::vector<int> vertex_lines;          // #V
+  std::vector<int> face_lines;            // #F
+};
+
+struct MeshRequirements {
+  bool quads_only = false;  // every face must have exactly four vertices
+};
+
+// Reads OBJ / OFF (own text reader, to report line numbers) or PLY (through OpenMesh).
+// Throws InputError for: unreadable file, unknown extension, empty file / no faces,
+// malformed numbers, NaN or infinite coordinates, face index out of range.
+PolygonSoup ReadPolygonSoup(const std::string& path);
+
+// Validates and builds the mesh. Throws InputError for: no faces, a face with fewer than 3
+// vertices or a repeated vertex, a degenerate face (zero area), a non-manifold edge (shared
+// by more than two faces, or by two faces with the same orientation), a non-quad face when
+// requirements.quads_only. `path` is used in messages only.
+PolyMesh BuildMesh(const PolygonSoup& soup, const std::string& path,
+                   const MeshRequirements& requirements);
+
+// ReadPolygonSoup + BuildMesh.
+PolyMesh ReadMesh(const std::string& path, const MeshRequirements& requirements = {});
+
+// Writes by extension (.obj/.off/.ply) to a temporary file in the same directory, then renames
+// it over `path`. On any failure the temporary is removed, `path` is untouched, and an
+// InputError naming the path is thrown. Throws if any coordinate is non-finite.
+void WriteMeshAtomically(const PolyMesh& mesh, const std::string& path);
+
+// Writes `contents` to `path` atomically (temporary file + rename); throws InputError.
+void WriteTextFileAtomically(const std::string& path, const std::string& contents);
+
+}  // namespace gproj

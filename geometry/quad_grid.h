@@ -1,0 +1,23 @@
+#pragma once
+// Regular quad grids for examples, tests and benchmarks.
+
+#include <cstdint>
+
+#include "geometry/mesh_io.h"
+
+namespace gproj {
+
+struct QuadGridOptions {
+  int nu = 21;  // vertices along u (≥ 2)
+  int nv = 21;  // vertices along v (≥ 2)
+  // Height field over [−1, 1]²: z = a x² + b y² + c x y (doubly curved for a·b ≠ 0).
+  double a = 0.3, b = 0.2, c = 0.0;
+  // Each vertex is moved by a uniform random vector in [−noise·h, noise·h]³, h the grid spacing.
+  double noise = 0.0;
+  uint32_t seed = 1;
+};
+
+// Vertex (i, j) has index i * nv + j; faces (i, j), (i+1, j), (i+1, j+1), (i, j+1).
+PolyMesh MakeQuadGrid(const QuadGridOptions& options);
+
+}  // namespace gproj

@@ -1,0 +1,232 @@
+#include "problems/pq_planarization.h"
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <vector>
+
+#include "constraints/closeness.h"
+#include "constraints/polyline_fairness.h"
+#include "constraints/quad_planarity.h"
+
+namespace gproj {
+namespace {
+
+Eigen::Vector3d ToEigen(const PolyMesh::Point& p) { return Eigen::Vector3d(p[0], p[1], p[2]); }
+
+// Polylines through regular vertices: at an inner valence-4 vertex the two pairs of opposite
+// neighbours; at a boundary vertex of valence 3 its two boundary neighbours.
+template <typename Visit>
+void ForEachPolylineTriple(const PolyMesh& mesh, Visit visit) {
+  for (auto v : mesh.vertices()) {
+    if (mesh.is_boundary(v)) {
+      if (mesh.valence(v) != 3) continue;
+      const auto out = mesh.halfedge_handle(v);
+      const auto next = mesh.to_vertex_handle(out);
+      const auto prev = mesh.from_vertex_handle(mesh.prev_halfedge_handle(out));
+      visit(prev.idx(), v.idx(), next.idx());
+    } else if (mesh.valence(v) == 4) {
+      int ring[4], k = 0;
+      for (auto w : mesh.vv_range(v)) ring[k++] = w.idx();
+      visit(ring[0], v.idx(), ring[2]);
+      visit(ring[1], v.idx(), ring[3]);
+    }
+  }
+}
+
+}  // namespace
+
+bool PQPlanarizationOptions::IsValid(std::string* why) const {
+  auto fail = [why](const std::string& text) {
+    *why = text;
+    return false;
+  };
+  if (!(planarity_weight > 0.0) || !std::isfinite(planarity_weight))
+    return fail("planarity weight must be finite and > 0");
+  if (!(closeness_weight >= 0.0) || !std::isfinite(closeness_weight))
+    return fail("closeness weight must be finite and ≥ 0");
+  if (!(fairness_weight >= 0.0) || !std::isfinite(fairness_weight))
+    return fail("fairness weight must be finite and ≥ 0");
+  if (!(ceres_soft_scale >= 0.0) || !std::isfinite(ceres_soft_scale))
+    return fail("ceres soft scale must be finite and ≥ 0");
+  if (fairness_order != 2 && fairness_order != 3) return fail("fairness order must be 2 or 3");
+  if (!(tolerance > 0.0) || !std::isfinite(tolerance))
+    return fail("tolerance must be finite and > 0");
+  return ToSolverOptions().IsValid(why);
+}
+
+SolverOptions PQPlanarizationOptions::ToSolverOptions() const {
+  SolverOptions s;
+  s.max_iterations = max_iterations;
+  s.residual_tolerance = 0.0;  // the planarity measure decides, through the callback
+  s.step_tolerance = 1e-15;
+  s.fairness_weight = fairness_weight;
+  s.epsilon = epsilon;
+  s.soft_weight_decay = soft_weight_decay;
+  s.soft_weight_floor = soft_weight_floor;
+  s.linear_solver = linear_solver;
+  s.num_threads = num_threads;
+  return s;
+}
+
+double DiagonalDistance(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
+                        const Eigen::Vector3d& v2, const Eigen::Vector3d& v3) {
+  const Eigen::Vector3d d0 = v2 - v0, d1 = v3 - v1;
+  const Eigen::Vector3d n = d0.cross(d1);
+  const double length = n.norm();
+  if (length <= 1e-300) {
+    // Parallel diagonals: distance of v1 from the line through v0, v2.
+    return (v1 - v0).cross(d0).norm() / std::max(d0.norm(), 1e-300);
+  }
+  return std::abs((v1 - v0).dot(n)) / length;
+}
+
+PlanarityMeasures MeasurePlanarity(const PolyMesh& mesh, const PolyMesh& reference) {
+  PlanarityMeasures m;
+  double edge_sum = 0.0;
+  for (auto e : mesh.edges()) edge_sum += mesh.calc_edge_length(e);
+  m.mean_edge_length = mesh.n_edges() > 0 ? edge_sum / mesh.n_edges() : 0.0;
+  double sum = 0.0;
+  for (auto f : mesh.faces()) {
+    Eigen::Vector3d p[4];
+    int k = 0;
+    for (auto v : mesh.fv_range(f)) p[k++ % 4] = ToEigen(mesh.point(v));
+    const double d = DiagonalDistance(p[0], p[1], p[2], p[3]) / m.mean_edge_length;
+    m.max_planarity = std::max(m.max_planarity, d);
+    sum += d;
+  }
+  m.mean_planarity = mesh.n_faces() > 0 ? sum / mesh.n_faces() : 0.0;
+  Eigen::AlignedBox3d box;
+  for (auto v : reference.vertices()) box.extend(ToEigen(reference.point(v)));
+  const double diagonal = box.diagonal().norm();
+  for (auto v : mesh.vertices()) {
+    const double d = (ToEigen(mesh.point(v)) - ToEigen(reference.point(v))).norm();
+    m.max_displacement = std::max(m.max_displacement, d / diagonal);
+  }
+  return m;
+}
+
+PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOptions& options)
+    : options_(options), input_(mesh) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("invalid planarisation options: " + why);
+  for (auto f : mesh.faces())
+    if (mesh.valence(f) != 4)
+      throw InputError("face " + std::to_string(f.idx()) + " has " +
+                       std::to_string(mesh.valence(f)) + " vertices; a quad mesh is required");
+  if (mesh.n_faces() == 0) throw InputError("the mesh has no faces");
+
+  center_.setZero();
+  for (auto v : mesh.vertices()) center_ += ToEigen(mesh.point(v));
+  center_ /= static_cast<double>(mesh.n_vertices());
+  double edge_sum = 0.0;
+  for (auto e : mesh.edges()) edge_sum += mesh.calc_edge_length(e);
+  scale_ = mesh.n_edges() / edge_sum;
+
+  VariableLayout& layout = problem_.layout();
+  vertex_block_ = layout.AddBlock("vertices", static_cast<int>(mesh.n_vertices()), 3);
+  normal_block_ = layout.AddBlock("face_normals", static_cast<int>(mesh.n_faces()), 3);
+  problem_.ResizeToLayout();
+  Eigen::VectorXd& x = problem_.x();
+  for (auto v : mesh.vertices())
+    x.segment<3>(layout.Index(vertex_block_, v.idx(), 0)) =
+        (ToEigen(mesh.point(v)) - center_) * scale_;
+
+  auto* planarity = problem_.AddFamily<QuadPlanarity>(options.planarity_weight);
+  for (auto f : mesh.faces()) {
+    int v[4], k = 0;
+    for (auto fv : mesh.fv_range(f)) v[k++] = fv.idx();
+    Eigen::Vector3d p[4];
+    for (int j = 0; j < 4; ++j) p[j] = x.segment<3>(layout.Index(vertex_block_, v[j], 0));
+    x.segment<3>(layout.Index(normal_block_, f.idx(), 0)) =
+        QuadPlanarity::InitialNormal(p[0], p[1], p[2], p[3]);
+    planarity->AddQuad(layout.Item(normal_block_, f.idx()), layout.Item(vertex_block_, v[0]),
+                       layout.Item(vertex_block_, v[1]), layout.Item(vertex_block_, v[2]),
+                       layout.Item(vertex_block_, v[3]));
+  }
+  if (options.closeness_weight > 0.0) {
+    auto* closeness = problem_.AddFamily<Closeness>(3, options.closeness_weight);
+    for (auto v : mesh.vertices()) {
+      const int index = layout.Index(vertex_block_, v.idx(), 0);
+      closeness->AddTarget(layout.Item(vertex_block_, v.idx()), x.data() + index);
+    }
+  }
+  if (options.fairness_weight > 0.0) {
+    auto* fairness = problem_.AddFamily<PolylineFairness>(options.fairness_order, 3);
+    if (options.fairness_order == 2) {
+      ForEachPolylineTriple(mesh, [&](int a, int b, int c) {
+        fairness->AddElement({layout.Item(vertex_block_, a), layout.Item(vertex_block_, b),
+                              layout.Item(vertex_block_, c)});
+      });
+    } else {
+      // Third differences: extend each triple (a, b, c) by the next vertex beyond c when c is
+      // itself regular and the polyline continues straight through it.
+      std::vector<std::vector<std::pair<int, int>>> through(mesh.n_vertices());
+      ForEachPolylineTriple(mesh, [&](int a, int b, int c) { through[b].emplace_back(a, c); });
+      for (size_t b = 0; b < through.size(); ++b)
+        for (const auto& [a, c] : through[b])
+          for (const auto& [p, q] : through[c])
+            if (p == static_cast<int>(b) || q == static_cast<int>(b)) {
+              const int d = p == static_cast<int>(b) ? q : p;
+              fairness->AddElement({layout.Item(vertex_block_, a), layout.Item(vertex_block_, b),
+                                    layout.Item(vertex_block_, c), layout.Item(vertex_block_, d)});
+            }
+    }
+  }
+}
+
+PlanarityMeasures PQPlanarization::MeasuresAt(const Eigen::VectorXd& x) const {
+  PolyMesh current = input_;
+  const VariableLayout& layout = problem_.layout();
+  for (auto v : current.vertices()) {
+    const Eigen::Vector3d p =
+        x.segment<3>(layout.Index(vertex_block_, v.idx(), 0)) / scale_ + center_;
+    current.set_point(v, PolyMesh::Point(p[0], p[1], p[2]));
+  }
+  return MeasurePlanarity(current, input_);
+}
+
+PlanarityMeasures PQPlanarization::Measures() const { return MeasuresAt(problem_.x()); }
+
+SolverSummary PQPlanarization::Solve(const Callback& callback) {
+  const double tolerance = options_.tolerance;
+  return gproj::Solve(options_.ToSolverOptions(), &problem_,
+                      [&](const IterationRecord& record, const Eigen::VectorXd& x) {
+                        const PlanarityMeasures m = MeasuresAt(x);
+                        CallbackResult result =
+                            callback ? callback(record, m) : CallbackResult::kContinue;
+                        if (result == CallbackResult::kContinue && m.max_planarity <= tolerance)
+                          result = CallbackResult::kConverged;
+                        return result;
+                      });
+}
+
+ceres::Solver::Summary PQPlanarization::SolveWithCeres(int max_iterations,
+                                                       const CeresCallback& callback) {
+  CeresOptions ceres_options;
+  ceres_options.max_iterations = max_iterations;
+  ceres_options.fairness_weight = options_.fairness_weight;
+  ceres_options.soft_scale = options_.ceres_soft_scale > 0.0
+                                 ? options_.ceres_soft_scale
+                                 : std::min(1.0, options_.tolerance * 1e-2);
+  ceres_options.num_threads = std::max(1, options_.num_threads);
+  const double tolerance = options_.tolerance;
+  return gproj::SolveWithCeres(ceres_options, &problem_,
+                               [&](const ceres::IterationSummary& s, const Eigen::VectorXd& x) {
+                                 const PlanarityMeasures m = MeasuresAt(x);
+                                 if (callback && !callback(s, m)) return false;
+                                 return m.max_planarity > tolerance;
+                               });
+}
+
+PolyMesh PQPlanarization::Result() const {
+  PolyMesh out = input_;
+  const VariableLayout& layout = problem_.layout();
+  for (auto v : out.vertices()) {
+    const Eigen::Vector3d p =
+        problem_.x().segment<3>(layout.Index(vertex_block_, v.idx(), 0)) / scale_ + center_;
+    out.set_point(v, PolyMesh::Point(p[0], p[1], p[2]));
+  }
+  return out;
+}
+
+}  // namespace gproj

@@ -1,0 +1,143 @@
+#include "solver/ceres_adapter.h"
+
+#include <cassert>
+#include <cmath>
+#include <memory>
+#include <vector>
+
+namespace gproj {
+namespace {
+
+// One element of a family as a Ceres residual block: residuals √w φ, Jacobians √w ∇φ.
+class ElementCost : public ceres::CostFunction {
+ public:
+  ElementCost(const ConstraintFamily* family, int element, const std::vector<int>& dims,
+              double sqrt_weight)
+      : family_(family), element_(element), dims_(dims), sqrt_weight_(sqrt_weight) {
+    set_num_residuals(family->rows_per_element());
+    for (int d : dims) mutable_parameter_block_sizes()->push_back(d);
+    local_dim_ = 0;
+    for (int d : dims) local_dim_ += d;
+  }
+
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    const int rows = num_residuals();
+    std::vector<double> x_local(local_dim_), jac(static_cast<size_t>(rows) * local_dim_);
+    for (size_t b = 0, l = 0; b < dims_.size(); ++b)
+      for (int c = 0; c < dims_[b]; ++c) x_local[l++] = parameters[b][c];
+    family_->EvaluateElement(element_, x_local.data(), residuals, jac.data());
+    for (int r = 0; r < rows; ++r) {
+      residuals[r] *= sqrt_weight_;
+      if (!std::isfinite(residuals[r])) return false;
+    }
+    if (jacobians == nullptr) return true;
+    for (size_t b = 0, first = 0; b < dims_.size(); first += dims_[b], ++b) {
+      if (jacobians[b] == nullptr) continue;
+      for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < dims_[b]; ++c)
+          jacobians[b][r * dims_[b] + c] = sqrt_weight_ * jac[r * local_dim_ + first + c];
+    }
+    return true;
+  }
+
+ private:
+  const ConstraintFamily* family_;
+  int element_;
+  std::vector<int> dims_;
+  double sqrt_weight_;
+  int local_dim_;
+};
+
+class UpdateCallback : public ceres::IterationCallback {
+ public:
+  UpdateCallback(Problem* problem, const CeresIterationCallback& user)
+      : problem_(problem), user_(user) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    for (int f = 0; f < problem_->num_families(); ++f)
+      problem_->family(f).Update(problem_->layout(), problem_->x());
+    if (user_ && !user_(summary, problem_->x())) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  Problem* problem_;
+  const CeresIterationCallback& user_;
+};
+
+double FamilyWeight(const ConstraintFamily& f, const CeresOptions& options) {
+  switch (f.role()) {
+    case FamilyRole::kConstraint:
+      return f.weight();
+    case FamilyRole::kSoft:
+      return f.weight() * options.soft_scale;
+    case FamilyRole::kFairness:
+      return f.weight() * options.fairness_weight * options.fairness_weight * options.soft_scale;
+  }
+  return f.weight();
+}
+
+}  // namespace
+
+bool CeresOptions::IsValid(std::string* why) const {
+  if (max_iterations < 0) {
+    *why = "max_iterations must be ≥ 0";
+    return false;
+  }
+  if (!(fairness_weight >= 0.0) || !(soft_scale >= 0.0) || num_threads < 1) {
+    *why = "fairness_weight and soft_scale must be ≥ 0, num_threads ≥ 1";
+    return false;
+  }
+  return true;
+}
+
+ceres::Solver::Summary SolveWithCeres(const CeresOptions& options, Problem* problem,
+                                      const CeresIterationCallback& callback) {
+  ceres::Solver::Summary summary;
+  std::string why;
+  if (!options.IsValid(&why)) {
+    summary.message = "invalid options: " + why;
+    return summary;
+  }
+  const VariableLayout& layout = problem->layout();
+  Eigen::VectorXd& x = problem->x();
+  for (int f = 0; f < problem->num_families(); ++f) problem->family(f).Update(layout, x);
+
+  ceres::Problem ceres_problem;
+  std::vector<int> dims;
+  std::vector<double*> blocks;
+  for (int f = 0; f < problem->num_families(); ++f) {
+    const ConstraintFamily& fam = problem->family(f);
+    const double w = FamilyWeight(fam, options);
+    if (w == 0.0) continue;
+    for (int e = 0; e < fam.num_elements(); ++e) {
+      dims.clear();
+      blocks.clear();
+      const int* items = fam.element_items(e);
+      for (int k = 0; k < fam.element_num_items(e); ++k) {
+        dims.push_back(layout.ItemDim(items[k]));
+        blocks.push_back(x.data() + layout.ItemOffset(items[k]));
+      }
+      ceres_problem.AddResidualBlock(new ElementCost(&fam, e, dims, std::sqrt(w)), nullptr, blocks);
+    }
+  }
+
+  ceres::Solver::Options solver_options;
+  solver_options.minimizer_type = ceres::TRUST_REGION;
+  solver_options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  solver_options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  solver_options.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
+  solver_options.max_num_iterations = options.max_iterations;
+  solver_options.function_tolerance = options.function_tolerance;
+  solver_options.gradient_tolerance = options.gradient_tolerance;
+  solver_options.parameter_tolerance = options.parameter_tolerance;
+  solver_options.num_threads = options.num_threads;
+  solver_options.logging_type = ceres::SILENT;
+  solver_options.update_state_every_iteration = true;
+  UpdateCallback update(problem, callback);
+  solver_options.callbacks.push_back(&update);
+  ceres::Solve(solver_options, &ceres_problem, &summary);
+  return summary;
+}
+
+}  // namespace gproj

@@ -1,0 +1,220 @@
+#include "solver/guided_projection.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "solver/linearized_system.h"
+
+namespace gproj {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+void FillResiduals(const Problem& problem, const LinearizedSystem& system,
+                   IterationRecord* record) {
+  record->families.resize(problem.num_families());
+  record->max_constraint = 0.0;
+  for (int f = 0; f < problem.num_families(); ++f) {
+    const int begin = system.family_row_begin(f);
+    const int rows = problem.family(f).num_rows();
+    FamilyResidual& out = record->families[f];
+    out.name = problem.family(f).name();
+    if (rows == 0) {
+      out.max_abs = out.rms = 0.0;
+      continue;
+    }
+    const auto phi = system.phi().segment(begin, rows);
+    out.max_abs = phi.cwiseAbs().maxCoeff();
+    out.rms = std::sqrt(phi.squaredNorm() / rows);
+    if (problem.family(f).role() == FamilyRole::kConstraint)
+      record->max_constraint = std::max(record->max_constraint, out.max_abs);
+  }
+}
+
+}  // namespace
+
+bool SolverOptions::IsValid(std::string* why) const {
+  auto fail = [why](const std::string& text) {
+    if (why != nullptr) *why = text;
+    return false;
+  };
+  if (max_iterations < 0) return fail("max_iterations must be ≥ 0");
+  if (!(residual_tolerance >= 0.0)) return fail("residual_tolerance must be ≥ 0");
+  if (!(step_tolerance >= 0.0)) return fail("step_tolerance must be ≥ 0");
+  if (!(fairness_weight >= 0.0) || !std::isfinite(fairness_weight))
+    return fail("fairness_weight must be finite and ≥ 0");
+  if (!(epsilon > 0.0) || !std::isfinite(epsilon)) return fail("epsilon must be finite and > 0");
+  if (!(soft_weight_decay > 0.0 && soft_weight_decay <= 1.0))
+    return fail("soft_weight_decay must be in (0, 1]");
+  if (!(soft_weight_floor >= 0.0 && soft_weight_floor <= 1.0))
+    return fail("soft_weight_floor must be in [0, 1]");
+  if (!(epsilon_growth > 1.0) || !std::isfinite(epsilon_growth))
+    return fail("epsilon_growth must be finite and > 1");
+  if (max_retries < 0) return fail("max_retries must be ≥ 0");
+  if (num_threads < 0) return fail("num_threads must be ≥ 0");
+  return true;
+}
+
+const char* TerminationTypeName(TerminationType type) {
+  switch (type) {
+    case TerminationType::kConvergence:
+      return "CONVERGENCE";
+    case TerminationType::kNoConvergence:
+      return "NO_CONVERGENCE";
+    case TerminationType::kFailure:
+      return "FAILURE";
+    case TerminationType::kUserAbort:
+      return "USER_ABORT";
+  }
+  return "UNKNOWN";
+}
+
+std::string SolverSummary::BriefReport() const {
+  std::ostringstream out;
+  const double final_residual = iterations.empty() ? 0.0 : iterations.back().max_constraint;
+  out << "gproj guided projection: " << TerminationTypeName(termination) << ", " << num_steps()
+      << " iterations, max constraint residual " << final_residual << ", " << total_seconds
+      << " s (" << message << ")";
+  return out.str();
+}
+
+std::string SolverSummary::FullReport() const {
+  std::ostringstream out;
+  out << "variables " << num_variables << ", rows " << num_rows << ", nnz(J) " << jacobian_nonzeros
+      << ", nnz(L) " << factor_nonzeros << ", linear solver " << LinearSolverTypeName(linear_solver)
+      << ", analysis " << analysis_seconds << " s\n";
+  char line[256];
+  std::snprintf(line, sizeof(line), "%5s %13s %11s %11s %9s %9s %9s %9s\n", "iter", "energy",
+                "max_constr", "step", "epsilon", "assembly", "factor", "solve");
+  out << line;
+  for (const IterationRecord& r : iterations) {
+    std::snprintf(line, sizeof(line), "%5d %13.6e %11.3e %11.3e %9.1e %9.4f %9.4f %9.4f\n",
+                  r.iteration, r.energy, r.max_constraint, r.step_norm, r.epsilon,
+                  r.assembly_seconds, r.factorization_seconds, r.solve_seconds);
+    out << line;
+  }
+  if (!iterations.empty()) {
+    for (const FamilyResidual& f : iterations.back().families)
+      out << "  " << f.name << ": max " << f.max_abs << ", rms " << f.rms << "\n";
+  }
+  out << BriefReport() << "\n";
+  return out.str();
+}
+
+SolverSummary Solve(const SolverOptions& options, Problem* problem,
+                    const IterationCallback& callback) {
+  const auto start = Clock::now();
+  SolverSummary summary;
+  summary.linear_solver = options.linear_solver;
+  summary.num_variables = problem->layout().num_variables();
+  auto finish = [&](TerminationType type, const std::string& message) {
+    summary.termination = type;
+    summary.message = message;
+    summary.total_seconds = SecondsSince(start);
+    return summary;
+  };
+  std::string why;
+  if (!options.IsValid(&why)) return finish(TerminationType::kFailure, "invalid options: " + why);
+  Eigen::VectorXd& x = problem->x();
+  if (x.size() != summary.num_variables)
+    return finish(TerminationType::kFailure, "x does not match the variable layout");
+  if (!x.allFinite()) return finish(TerminationType::kFailure, "the start x is not finite");
+  summary.usable = true;
+
+  LinearizedSystem system(problem);
+  summary.num_rows = system.num_rows();
+  summary.jacobian_nonzeros = system.a().nnz();
+  auto cholesky = CreateSparseCholesky(options.linear_solver, options.num_threads);
+  auto t = Clock::now();
+  if (!cholesky->Analyze(system.a(), &why)) return finish(TerminationType::kFailure, why);
+  summary.analysis_seconds = SecondsSince(t);
+
+  const int n = summary.num_variables;
+  Eigen::VectorXd rhs(n), step(n), trial(n), check(n);
+  IterationRecord record;
+  double soft_scale = 1.0;
+  for (int k = 0;; ++k) {
+    record.iteration = k;
+    record.soft_scale = soft_scale;
+    t = Clock::now();
+    if (!system.Assemble(x, options.fairness_weight, soft_scale, &why))
+      return finish(TerminationType::kFailure, why);
+    record.energy = system.Energy();
+    FillResiduals(*problem, system, &record);
+    record.assembly_seconds = SecondsSince(t);
+    summary.iterations.push_back(record);
+
+    CallbackResult cb = callback ? callback(record, x) : CallbackResult::kContinue;
+    if (cb == CallbackResult::kAbort)
+      return finish(TerminationType::kUserAbort, "stopped by callback");
+    if (cb == CallbackResult::kConverged)
+      return finish(TerminationType::kConvergence, "the callback's tolerance was met");
+    if (options.residual_tolerance > 0.0 && record.max_constraint <= options.residual_tolerance)
+      return finish(TerminationType::kConvergence, "residual tolerance met");
+    if (k > 0 && options.step_tolerance > 0.0 && record.step_norm <= options.step_tolerance)
+      return finish(TerminationType::kConvergence, "step tolerance met");
+    if (k == options.max_iterations)
+      return finish(TerminationType::kNoConvergence, "maximum number of iterations reached");
+
+    // Step: (A Aᵀ + ε² I) d = −A r.
+    system.MultiplyAr(&rhs);
+    rhs = -rhs;
+    double epsilon = options.epsilon;
+    record = IterationRecord();
+    bool accepted = false;
+    for (int attempt = 0; attempt <= options.max_retries; ++attempt) {
+      if (attempt > 0) epsilon *= options.epsilon_growth;
+      record.retries = attempt;
+      t = Clock::now();
+      const bool factored = cholesky->Factorize(system.a(), epsilon * epsilon, &why);
+      record.factorization_seconds += SecondsSince(t);
+      if (!factored) continue;
+      t = Clock::now();
+      const bool solved = cholesky->Solve(rhs.data(), step.data(), &why);
+      record.solve_seconds += SecondsSince(t);
+      if (!solved) continue;
+      // Check the solve: ‖(A Aᵀ + ε² I) d − rhs‖ small against the terms' sizes. Catches
+      // factorisations that "succeed" on overflowing or non-finite values.
+      system.MultiplyNormal(step, epsilon * epsilon, &check);
+      const double scale = check.norm() + rhs.norm();
+      const double residual = (check - rhs).norm();
+      if (!(residual <= 1e-6 * scale) || !std::isfinite(scale)) {
+        why = "the linear solve is inaccurate (residual " + std::to_string(residual) + " against " +
+              std::to_string(scale) + ")";
+        continue;
+      }
+      trial = x + step;
+      if (!trial.allFinite()) {
+        why = "the step is not finite";
+        continue;
+      }
+      accepted = true;
+      break;
+    }
+    if (!accepted)
+      return finish(TerminationType::kFailure,
+                    why + " (after " + std::to_string(options.max_retries) +
+                        " increases of epsilon to " + std::to_string(epsilon) + ")");
+    summary.factor_nonzeros = cholesky->FactorNonZeros();
+    record.epsilon = epsilon;
+    record.step_norm = step.lpNorm<Eigen::Infinity>();
+    x.swap(trial);
+    soft_scale = std::max(soft_scale * options.soft_weight_decay, options.soft_weight_floor);
+  }
+}
+
+double EvaluateObjective(Problem* problem, double fairness_weight, const Eigen::VectorXd& x) {
+  LinearizedSystem system(problem);
+  std::string why;
+  if (!system.Assemble(x, fairness_weight, 1.0, &why)) return NAN;
+  return system.Energy();
+}
+
+}  // namespace gproj

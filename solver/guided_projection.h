@@ -1,0 +1,105 @@
+#pragma once
+// The guided-projection solver (003 §3.3, eq. 11; Tang et al. 2014). Each iteration
+// linearises every row at x^k and solves
+//   ‖C x − r‖² + ω_f² ‖P x‖² + ε² ‖x − x^k‖² → min
+// by sparse Cholesky of CᵀC + ω_f² PᵀP + ε² I (pattern analysed once per problem).
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "solver/problem.h"
+#include "solver/sparse_cholesky.h"
+
+namespace gproj {
+
+struct SolverOptions {
+  // Iterations (linear solves) at most.
+  int max_iterations = 50;
+  // Converged when every kConstraint row has |φ| ≤ this (0 disables the test).
+  double residual_tolerance = 1e-10;
+  // Converged when the step ‖x^{k+1} − x^k‖∞ ≤ this (a stationary point; 0 disables).
+  double step_tolerance = 1e-14;
+  // ω_f: kFairness families get row weight ω_f² × their own weight.
+  double fairness_weight = 0.1;
+  // ε: the proximal term ε²‖x − x^k‖² that keeps every normal matrix positive definite.
+  double epsilon = 1e-3;
+  // Soft schedule: kSoft and kFairness weights are multiplied by max(decay^k, floor) at
+  // iteration k (decay 1: fixed weights, a fixed point minimises the weighted objective).
+  double soft_weight_decay = 1.0;
+  double soft_weight_floor = 0.0;
+  // On a failed factorisation or a non-finite step ε is multiplied by this and the iteration
+  // retried, at most max_retries times, before the solver stops with kFailure.
+  double epsilon_growth = 10.0;
+  int max_retries = 4;
+  LinearSolverType linear_solver = LinearSolverType::kCholmod;
+  // Threads for the BLAS under CHOLMOD (0: leave the library default).
+  int num_threads = 0;
+
+  bool IsValid(std::string* why) const;
+};
+
+struct FamilyResidual {
+  std::string name;
+  double max_abs = 0.0;  // max |φ| over the family's rows (unweighted)
+  double rms = 0.0;
+};
+
+struct IterationRecord {
+  int iteration = 0;    // 0: the start, before any step
+  double energy = 0.0;  // ½ Σ w φ² + ½ ω_f² ‖P x‖² with this iteration's weights
+  double max_constraint = 0.0;  // max |φ| over kConstraint families
+  std::vector<FamilyResidual> families;
+  double step_norm = 0.0;              // ‖x^k − x^{k−1}‖∞ (0 at the start)
+  double epsilon = 0.0;                // ε used for the step that led here
+  double soft_scale = 1.0;             // soft-weight factor in effect for this iteration's energy
+  int retries = 0;                     // ε increases needed for that step
+  double assembly_seconds = 0.0;       // family updates + evaluation + assembly
+  double factorization_seconds = 0.0;  // numeric factorisation (of the step that led here)
+  double solve_seconds = 0.0;          // triangular solves (of the step that led here)
+};
+
+enum class TerminationType {
+  kConvergence,    // residual or step tolerance met, or the callback said so
+  kNoConvergence,  // max_iterations reached
+  kFailure,        // numerical failure (non-finite values, factorisation failed after retries)
+  kUserAbort,      // the callback asked to stop
+};
+const char* TerminationTypeName(TerminationType type);
+
+struct SolverSummary {
+  TerminationType termination = TerminationType::kFailure;
+  std::string message;
+  std::vector<IterationRecord> iterations;  // iterations[0] is the start
+  int num_variables = 0;
+  int num_rows = 0;
+  int64_t jacobian_nonzeros = 0;
+  int64_t factor_nonzeros = 0;
+  double analysis_seconds = 0.0;
+  double total_seconds = 0.0;
+  LinearSolverType linear_solver = LinearSolverType::kCholmod;
+
+  int num_steps() const { return static_cast<int>(iterations.size()) - 1; }
+  bool converged() const { return termination == TerminationType::kConvergence; }
+  // x holds finite values (every outcome but kFailure at the start).
+  bool usable = false;
+  std::string BriefReport() const;
+  std::string FullReport() const;
+};
+
+enum class CallbackResult { kContinue, kConverged, kAbort };
+// Called after every evaluation (the start and each step) with the record and the iterate.
+using IterationCallback =
+    std::function<CallbackResult(const IterationRecord&, const Eigen::VectorXd&)>;
+
+// Runs guided projection on problem->x() in place. Never leaves non-finite values in x: a
+// step that would is rejected (and retried with a larger ε).
+SolverSummary Solve(const SolverOptions& options, Problem* problem,
+                    const IterationCallback& callback = nullptr);
+
+// Weighted objective ½ Σ w φ² + ½ ω_f² ‖P x‖² at x with fixed weights (soft scale 1).
+double EvaluateObjective(Problem* problem, double fairness_weight, const Eigen::VectorXd& x);
+
+}  // namespace gproj

@@ -1,0 +1,48 @@
+#pragma once
+// A gproj problem: the variable layout, the current iterate x and the constraint families.
+
+#include <Eigen/Core>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "solver/constraint_family.h"
+#include "solver/variable_layout.h"
+
+namespace gproj {
+
+class Problem {
+ public:
+  VariableLayout& layout() { return layout_; }
+  const VariableLayout& layout() const { return layout_; }
+
+  // Sizes x to the layout (new entries zero). Call after the last AddBlock.
+  void ResizeToLayout() { x_.conservativeResize(layout_.num_variables()); }
+  Eigen::VectorXd& x() { return x_; }
+  const Eigen::VectorXd& x() const { return x_; }
+
+  // Takes ownership; returns a pointer for adding elements.
+  template <typename Family, typename... Args>
+  Family* AddFamily(Args&&... args) {
+    auto family = std::make_unique<Family>(std::forward<Args>(args)...);
+    Family* raw = family.get();
+    families_.push_back(std::move(family));
+    return raw;
+  }
+  int num_families() const { return static_cast<int>(families_.size()); }
+  ConstraintFamily& family(int i) { return *families_[i]; }
+  const ConstraintFamily& family(int i) const { return *families_[i]; }
+  // Family by name, or nullptr.
+  ConstraintFamily* FindFamily(const std::string& name) {
+    for (auto& f : families_)
+      if (f->name() == name) return f.get();
+    return nullptr;
+  }
+
+ private:
+  VariableLayout layout_;
+  Eigen::VectorXd x_;
+  std::vector<std::unique_ptr<ConstraintFamily>> families_;
+};
+
+}  // namespace gproj

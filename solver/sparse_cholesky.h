@@ -1,0 +1,48 @@
+#pragma once
+// Sparse Cholesky behind an interface: factors  N = A Aᵀ + β I  given A (n × m, CSC), the
+// transposed, weighted Jacobian of guided projection. The pattern of A is fixed per problem:
+// Analyze once (ordering + symbolic factorisation), then Factorize per iteration.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace gproj {
+
+// Compressed sparse columns, 0-based, row indices sorted and unique within each column.
+struct CscMatrix {
+  int num_rows = 0;
+  int num_cols = 0;
+  std::vector<int> col_begin;  // num_cols + 1
+  std::vector<int> row_index;  // nnz
+  std::vector<double> values;  // nnz
+  int nnz() const { return static_cast<int>(row_index.size()); }
+};
+
+enum class LinearSolverType {
+  kCholmod,  // CHOLMOD supernodal (default)
+  kEigen,    // Eigen SimplicialLLT on the explicitly formed A Aᵀ + β I (fallback, test oracle)
+};
+
+const char* LinearSolverTypeName(LinearSolverType type);
+// Parses "cholmod" / "eigen"; returns false for anything else.
+bool ParseLinearSolverType(const std::string& name, LinearSolverType* type);
+
+class SparseCholesky {
+ public:
+  virtual ~SparseCholesky() = default;
+  // Symbolic analysis of A Aᵀ for the pattern of `a`. False (and `message`) on failure.
+  virtual bool Analyze(const CscMatrix& a, std::string* message) = 0;
+  // Numeric factorisation of A Aᵀ + β I; `a` must have the analysed pattern. False when the
+  // matrix is not numerically positive definite or values are non-finite.
+  virtual bool Factorize(const CscMatrix& a, double beta, std::string* message) = 0;
+  // x = N⁻¹ rhs, both of length n. False on failure.
+  virtual bool Solve(const double* rhs, double* x, std::string* message) = 0;
+  // Stored entries of the factor L (0 before the first factorisation).
+  virtual int64_t FactorNonZeros() const = 0;
+};
+
+std::unique_ptr<SparseCholesky> CreateSparseCholesky(LinearSolverType type, int num_threads);
+
+}  // namespace gproj

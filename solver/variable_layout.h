@@ -1,0 +1,45 @@
+#pragma once
+// The unknowns of a gproj problem: one flat vector x, laid out in named blocks of items.
+// An item is a small group of scalars that belong together (a vertex: 3, a face normal: 3);
+// constraint elements name the items they touch, and the Ceres adapter makes each item one
+// parameter block.
+
+#include <string>
+#include <vector>
+
+namespace gproj {
+
+struct VariableBlock {
+  std::string name;
+  int num_items = 0;   // e.g. #V
+  int item_dim = 0;    // e.g. 3
+  int first_item = 0;  // global item id of item 0
+  int offset = 0;      // index in x of the block's first scalar
+  int size() const { return num_items * item_dim; }
+};
+
+class VariableLayout {
+ public:
+  // Appends a block of `num_items` items of `item_dim` scalars; returns the block id.
+  int AddBlock(const std::string& name, int num_items, int item_dim);
+
+  int num_blocks() const { return static_cast<int>(blocks_.size()); }
+  int num_items() const { return static_cast<int>(item_offsets_.size()) - 1; }
+  int num_variables() const { return item_offsets_.back(); }
+  const VariableBlock& block(int id) const { return blocks_[id]; }
+  // Block id by name, or -1.
+  int FindBlock(const std::string& name) const;
+
+  // Global item id of item i of block b.
+  int Item(int b, int i) const { return blocks_[b].first_item + i; }
+  int ItemOffset(int item) const { return item_offsets_[item]; }
+  int ItemDim(int item) const { return item_offsets_[item + 1] - item_offsets_[item]; }
+  // Index in x of component c of item i of block b.
+  int Index(int b, int i, int c) const { return blocks_[b].offset + i * blocks_[b].item_dim + c; }
+
+ private:
+  std::vector<VariableBlock> blocks_;
+  std::vector<int> item_offsets_ = {0};  // #items + 1
+};
+
+}  // namespace gproj

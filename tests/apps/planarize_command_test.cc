@@ -1,0 +1,160 @@
+// The command line as a user runs it: bad input gives a one-line error naming the file and
+// the offending line / face / vertex, exit code 1, and no output file.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace gproj {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CommandRun {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+class PlanarizeCommandTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::path(::testing::TempDir()) /
+           ("gproj_cli_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string Write(const std::string& name, const std::string& text) {
+    const fs::path p = dir_ / name;
+    std::ofstream(p) << text;
+    return p.string();
+  }
+  static std::string Slurp(const fs::path& p) {
+    std::ifstream in(p);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+  CommandRun Gproj(const std::string& args) {
+    const std::string cmd = std::string(GPROJ_BINARY) + " " + args + " >" +
+                            (dir_ / "stdout").string() + " 2>" + (dir_ / "stderr").string();
+    const int status = std::system(cmd.c_str());
+    CommandRun r;
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = Slurp(dir_ / "stdout");
+    r.err = Slurp(dir_ / "stderr");
+    return r;
+  }
+  // Runs planarize on `input`; expects exit 1, an error containing every `parts`, and no output.
+  void ExpectRefused(const std::string& input, const std::vector<std::string>& parts,
+                     const std::string& extra = "") {
+    const fs::path out = dir_ / "out.obj";
+    const CommandRun r = Gproj("planarize " + input + " -o " + out.string() + " --report " +
+                               (dir_ / "r.json").string() + " " + extra);
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    for (const std::string& part : parts) EXPECT_NE(r.err.find(part), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+    EXPECT_FALSE(fs::exists(dir_ / "r.json"));
+    // One line of error.
+    EXPECT_LE(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+
+  fs::path dir_;
+};
+
+const char* kQuad2x1 =
+    "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0.1\nv 2 1 0\n"
+    "f 1 2 5 4\nf 2 3 6 5\n";
+
+TEST_F(PlanarizeCommandTest, PlanarizesAValidMeshAndWritesReport) {
+  const std::string in = Write("in.obj", kQuad2x1);
+  const CommandRun r = Gproj("planarize " + in + " -o " + (dir_ / "out.obj").string() +
+                             " --report " + (dir_ / "r.json").string());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "out.obj"));
+  const std::string report = Slurp(dir_ / "r.json");
+  for (const char* key : {"\"converged\": true", "\"iterations\"", "\"seconds\"",
+                          "\"variables\": 24", "\"history\"", "\"max_planarity\""})
+    EXPECT_NE(report.find(key), std::string::npos) << key;
+  EXPECT_NE(r.out.find("max planarity"), std::string::npos);
+  EXPECT_NE(r.out.find("wrote"), std::string::npos);
+}
+
+TEST_F(PlanarizeCommandTest, CeresSolverPathWorks) {
+  const std::string in = Write("in.obj", kQuad2x1);
+  const CommandRun r =
+      Gproj("planarize " + in + " -o " + (dir_ / "out.off").string() + " --solver ceres");
+  EXPECT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_TRUE(fs::exists(dir_ / "out.off"));
+}
+
+TEST_F(PlanarizeCommandTest, RefusesEmptyFile) {
+  const std::string in = Write("empty.obj", "");
+  ExpectRefused(in, {"empty.obj", "empty"});
+}
+
+TEST_F(PlanarizeCommandTest, RefusesUnreadableFile) {
+  ExpectRefused((dir_ / "missing.obj").string(), {"missing.obj"});
+  fs::create_directories(dir_ / "folder.obj");
+  ExpectRefused((dir_ / "folder.obj").string(), {"folder.obj"});
+}
+
+TEST_F(PlanarizeCommandTest, RefusesNonFiniteCoordinates) {
+  const std::string in = Write("nan.obj", "v 0 0 0\nv 1 0 nan\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+  ExpectRefused(in, {"nan.obj:2", "vertex 1", "non-finite"});
+  const std::string inf = Write("inf.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n1 inf 0\n0 1 0\n4 0 1 2 3\n");
+  ExpectRefused(inf, {"inf.off:5", "non-finite"});
+}
+
+TEST_F(PlanarizeCommandTest, RefusesFaceIndexOutOfRange) {
+  const std::string in = Write("range.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 9\n");
+  ExpectRefused(in, {"range.obj:5", "face 0", "vertex 8"});
+}
+
+TEST_F(PlanarizeCommandTest, RefusesNonQuadFaces) {
+  const std::string in =
+      Write("tri.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf 1 3 2\n");
+  ExpectRefused(in, {"tri.obj:6", "face 1", "3 vertices"});
+}
+
+TEST_F(PlanarizeCommandTest, RefusesDegenerateFaces) {
+  const std::string repeated = Write("rep.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3 2\n");
+  ExpectRefused(repeated, {"rep.obj:4", "face 0"});
+  const std::string collinear =
+      Write("line.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\nf 1 2 3 4\n");
+  ExpectRefused(collinear, {"line.obj:5", "face 0", "degenerate"});
+}
+
+TEST_F(PlanarizeCommandTest, RefusesNonManifoldEdges) {
+  // Three quads share the edge 1-2.
+  const std::string in =
+      Write("nm.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 -1 0\nv 1 -1 0\nv 0 0 1\nv 1 0 1\n"
+            "f 1 2 4 3\nf 2 1 5 6\nf 1 2 8 7\n");
+  ExpectRefused(in, {"nm.obj:11", "face 2", "non-manifold"});
+}
+
+TEST_F(PlanarizeCommandTest, RefusesInvalidOptionValues) {
+  const std::string in = Write("in.obj", kQuad2x1);
+  ExpectRefused(in, {"--tolerance"}, "--tolerance -1");
+  ExpectRefused(in, {"--solver"}, "--solver newton");
+  ExpectRefused(in, {"--max-iterations"}, "--max-iterations many");
+  ExpectRefused(in, {"closeness"}, "--closeness nan");
+}
+
+TEST_F(PlanarizeCommandTest, HelpExplainsEveryOption) {
+  const CommandRun r = Gproj("planarize --help");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* option : {"--output", "--report", "--solver", "--max-iterations", "--tolerance",
+                             "--closeness", "--fairness", "--linear-solver"})
+    EXPECT_NE(r.out.find(option), std::string::npos) << option;
+}
+
+}  // namespace
+}  // namespace gproj

@@ -1,0 +1,540 @@
+#include "geometry/mesh_io.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace gproj {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+// A (nu × nv)-quad grid on a curved, non-round surface; faces consistently oriented.
+PolygonSoup GridSoup(int nu, int nv) {
+  PolygonSoup soup;
+  for (int j = 0; j <= nv; ++j) {
+    for (int i = 0; i <= nu; ++i) {
+      soup.vertices.emplace_back(i / 3.0 + 0.1, j * std::sqrt(2.0) / 7.0,
+                                 std::sin(0.7 * i) * std::cos(0.3 * j) / 9.0 + 1e-7 / 3.0);
+    }
+  }
+  const auto id = [nu](int i, int j) { return j * (nu + 1) + i; };
+  for (int j = 0; j < nv; ++j) {
+    for (int i = 0; i < nu; ++i) {
+      soup.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  }
+  return soup;
+}
+
+std::string ObjText(const PolygonSoup& soup) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "# quad grid\n";
+  for (const Eigen::Vector3d& p : soup.vertices) {
+    out << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+  }
+  for (const std::vector<int>& face : soup.faces) {
+    out << 'f';
+    for (int v : face) out << ' ' << v + 1;
+    out << '\n';
+  }
+  return out.str();
+}
+
+std::string OffText(const PolygonSoup& soup) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "OFF\n# quad grid\n" << soup.vertices.size() << ' ' << soup.faces.size() << " 0\n";
+  for (const Eigen::Vector3d& p : soup.vertices) {
+    out << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+  }
+  for (const std::vector<int>& face : soup.faces) {
+    out << face.size();
+    for (int v : face) out << ' ' << v;
+    out << '\n';
+  }
+  return out.str();
+}
+
+// The InputError message thrown by `f`; a failure if nothing is thrown.
+template <class F>
+std::string InputErrorMessage(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.find('\n'), std::string::npos) << "not one line: " << message;
+    return message;
+  }
+  ADD_FAILURE() << "no InputError was thrown";
+  return "";
+}
+
+void ExpectSameMesh(const PolygonSoup& expected, const PolyMesh& mesh) {
+  ASSERT_EQ(mesh.n_vertices(), expected.vertices.size());
+  ASSERT_EQ(mesh.n_faces(), expected.faces.size());
+  for (const auto vh : mesh.vertices()) {
+    const Eigen::Vector3d& want = expected.vertices[vh.idx()];
+    const PolyMesh::Point& got = mesh.point(vh);
+    const Eigen::Vector3d got_eigen(got[0], got[1], got[2]);
+    EXPECT_LE((got_eigen - want).norm(), 1e-15 * want.norm()) << "vertex " << vh.idx();
+  }
+  for (const auto fh : mesh.faces()) {
+    std::vector<int> face;
+    for (const auto vh : mesh.fv_range(fh)) face.push_back(vh.idx());
+    // OpenMesh may start a face's cycle at another vertex; compare as cycles.
+    std::vector<int> want = expected.faces[fh.idx()];
+    ASSERT_EQ(face.size(), want.size());
+    const auto start = std::find(want.begin(), want.end(), face[0]);
+    ASSERT_NE(start, want.end()) << "face " << fh.idx();
+    std::rotate(want.begin(), start, want.end());
+    EXPECT_EQ(face, want) << "face " << fh.idx();
+  }
+}
+
+class MeshIoTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    dir_ = fs::path(::testing::TempDir()) /
+           ("gproj_mesh_io_" + name + "_" + std::to_string(std::random_device{}()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ignored;
+    fs::remove_all(dir_, ignored);
+  }
+
+  std::string Path(const std::string& name) const { return (dir_ / name).string(); }
+
+  std::string Write(const std::string& name, const std::string& text) const {
+    const std::string path = Path(name);
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+  }
+
+  std::vector<std::string> DirectoryEntries() const {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir_)) {
+      names.push_back(entry.path().filename().string());
+    }
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+
+  static std::string ReadText(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+
+  fs::path dir_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Round trips.
+
+TEST_F(MeshIoTest, ObjQuadGridRoundTrip) {
+  const PolygonSoup grid = GridSoup(5, 4);
+  const std::string in = Write("grid.obj", ObjText(grid));
+
+  const PolygonSoup soup = ReadPolygonSoup(in);
+  ASSERT_EQ(soup.vertices.size(), 30u);
+  ASSERT_EQ(soup.faces.size(), 20u);
+  EXPECT_EQ(soup.vertex_lines.front(), 2);  // after the comment line
+  EXPECT_EQ(soup.face_lines.front(), 32);   // 1 comment + 30 vertices + 1
+  EXPECT_EQ(soup.faces[0], grid.faces[0]);
+  const PolyMesh mesh = BuildMesh(soup, in, {/*quads_only=*/true});
+  ExpectSameMesh(grid, mesh);
+
+  const std::string out = Path("out.obj");
+  WriteMeshAtomically(mesh, out);
+  ExpectSameMesh(grid, ReadMesh(out, {/*quads_only=*/true}));
+  EXPECT_EQ(DirectoryEntries(), (std::vector<std::string>{"grid.obj", "out.obj"}));
+}
+
+TEST_F(MeshIoTest, OffQuadGridRoundTrip) {
+  const PolygonSoup grid = GridSoup(3, 6);
+  const std::string in = Write("grid.off", OffText(grid));
+
+  const PolygonSoup soup = ReadPolygonSoup(in);
+  ASSERT_EQ(soup.vertices.size(), 28u);
+  ASSERT_EQ(soup.faces.size(), 18u);
+  EXPECT_EQ(soup.vertex_lines.front(), 4);  // "OFF", comment, counts
+  EXPECT_EQ(soup.face_lines.back(), 3 + 28 + 18);
+  const PolyMesh mesh = BuildMesh(soup, in, {/*quads_only=*/true});
+  ExpectSameMesh(grid, mesh);
+
+  const std::string out = Path("out.off");
+  WriteMeshAtomically(mesh, out);
+  ExpectSameMesh(grid, ReadMesh(out, {/*quads_only=*/true}));
+  EXPECT_EQ(DirectoryEntries(), (std::vector<std::string>{"grid.off", "out.off"}));
+}
+
+TEST_F(MeshIoTest, PlyRoundTripThroughWriteMeshAtomically) {
+  const PolygonSoup grid = GridSoup(4, 4);
+  const PolyMesh mesh = BuildMesh(grid, "grid", {});
+  const std::string out = Path("out.ply");
+  WriteMeshAtomically(mesh, out);
+
+  // The file itself is exact: doubles in shortest round-trip form.
+  const std::string text = ReadText(out);
+  EXPECT_THAT(text, HasSubstr("property double x\n"));
+  std::istringstream body(text.substr(text.find("end_header\n") + 11));
+  for (const Eigen::Vector3d& want : grid.vertices) {
+    Eigen::Vector3d got;
+    body >> got.x() >> got.y() >> got.z();
+    EXPECT_EQ(got, want);
+  }
+
+  const PolygonSoup soup = ReadPolygonSoup(out);
+  EXPECT_EQ(soup.vertex_lines, std::vector<int>(25, 0));
+  EXPECT_EQ(soup.face_lines, std::vector<int>(16, 0));
+  EXPECT_EQ(soup.faces, grid.faces);
+  // OpenMesh 9's PLY reader passes points through float: exact only to float precision.
+  for (std::size_t v = 0; v < grid.vertices.size(); ++v) {
+    EXPECT_LE((soup.vertices[v] - grid.vertices[v]).norm(), 1e-7 * grid.vertices[v].norm());
+  }
+  EXPECT_EQ(ReadMesh(out, {/*quads_only=*/true}).n_faces(), 16u);
+  EXPECT_EQ(DirectoryEntries(), std::vector<std::string>{"out.ply"});
+}
+
+TEST_F(MeshIoTest, WriteMeshReplacesAnExistingFile) {
+  const std::string out = Write("out.obj", "old contents\n");
+  const PolygonSoup grid = GridSoup(2, 2);
+  WriteMeshAtomically(BuildMesh(grid, "grid", {}), out);
+  ExpectSameMesh(grid, ReadMesh(out));
+  EXPECT_EQ(DirectoryEntries(), std::vector<std::string>{"out.obj"});
+}
+
+TEST_F(MeshIoTest, ObjAcceptsIndexFormsAndIgnoresOtherKeywords) {
+  const std::string path = Write("forms.obj",
+                                 "mtllib grid.mtl\r\n"
+                                 "o patch\n"
+                                 "v 0 0 0\n"
+                                 "v 1 0 0  # trailing comment\n"
+                                 "v 1 1 0 1.0\n"
+                                 "v 0 1 0\n"
+                                 "vt 0 0\n"
+                                 "vn 0 0 1\n"
+                                 "s off\n"
+                                 "usemtl steel\n"
+                                 "f 1/1/1 2//1 3/1 4\n"
+                                 "v 2 0 +0\n"
+                                 "v 2 1 0\n"
+                                 "f -5 -2 -1 -4\n"
+                                 "l 1 2\n");
+  const PolygonSoup soup = ReadPolygonSoup(path);
+  ASSERT_EQ(soup.vertices.size(), 6u);
+  EXPECT_EQ(soup.faces, (std::vector<std::vector<int>>{{0, 1, 2, 3}, {1, 4, 5, 2}}));
+  EXPECT_EQ(soup.face_lines, (std::vector<int>{11, 14}));
+  EXPECT_EQ(soup.vertex_lines, (std::vector<int>{3, 4, 5, 6, 12, 13}));
+  EXPECT_EQ(BuildMesh(soup, path, {/*quads_only=*/true}).n_faces(), 2u);
+}
+
+TEST_F(MeshIoTest, OffAcceptsCountsOnTheHeaderLineAndFaceColours) {
+  const std::string path = Write("colour.off",
+                                 "COFF 4 1 0\n"
+                                 "0 0 0 255 0 0 255\n"
+                                 "1 0 0 255 0 0 255\n"
+                                 "\n"
+                                 "1 1 0 255 0 0 255\n"
+                                 "0 1 0 255 0 0 255\n"
+                                 "4 0 1 2 3 0.5 0.5 0.5\n");
+  const PolygonSoup soup = ReadPolygonSoup(path);
+  EXPECT_EQ(soup.vertex_lines, (std::vector<int>{2, 3, 5, 6}));
+  EXPECT_EQ(soup.faces, (std::vector<std::vector<int>>{{0, 1, 2, 3}}));
+  EXPECT_EQ(soup.face_lines, std::vector<int>{7});
+}
+
+TEST_F(MeshIoTest, IsolatedVerticesAreAllowed) {
+  PolygonSoup soup = GridSoup(1, 1);
+  soup.vertices.emplace_back(5.0, 5.0, 5.0);
+  const PolyMesh mesh = BuildMesh(soup, "soup", {/*quads_only=*/true});
+  EXPECT_EQ(mesh.n_vertices(), 5u);
+  EXPECT_EQ(mesh.n_faces(), 1u);
+}
+
+TEST_F(MeshIoTest, WriteTextFileAtomicallyWritesAndReplaces) {
+  const std::string path = Path("report.json");
+  WriteTextFileAtomically(path, "{\"a\": 1}\n");
+  EXPECT_EQ(ReadText(path), "{\"a\": 1}\n");
+  WriteTextFileAtomically(path, "");
+  EXPECT_EQ(ReadText(path), "");
+  EXPECT_EQ(DirectoryEntries(), std::vector<std::string>{"report.json"});
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading errors.
+
+TEST_F(MeshIoTest, MissingFile) {
+  const std::string path = Path("missing.obj");
+  const std::string message = InputErrorMessage([&] { ReadPolygonSoup(path); });
+  EXPECT_THAT(message, StartsWith(path + ": "));
+  EXPECT_THAT(message, HasSubstr("cannot open the file"));
+  EXPECT_THAT(message, HasSubstr("No such file"));
+
+  const std::string ply = Path("missing.ply");
+  EXPECT_THAT(InputErrorMessage([&] { ReadMesh(ply); }), StartsWith(ply + ": cannot open"));
+}
+
+TEST_F(MeshIoTest, EmptyFile) {
+  for (const std::string name : {"empty.obj", "empty.off", "empty.ply"}) {
+    const std::string path = Write(name, "");
+    EXPECT_EQ(InputErrorMessage([&] { ReadMesh(path); }), path + ": the file is empty");
+  }
+  const std::string blank = Write("blank.obj", "\n  \n");
+  EXPECT_EQ(InputErrorMessage([&] { ReadMesh(blank); }), blank + ": the file is empty");
+}
+
+TEST_F(MeshIoTest, FileWithoutFaces) {
+  const std::string obj = Write("points.obj", "# points only\nv 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  EXPECT_EQ(InputErrorMessage([&] { ReadMesh(obj); }), obj + ": the file has no faces");
+  const std::string off = Write("points.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n");
+  EXPECT_EQ(InputErrorMessage([&] { ReadMesh(off); }), off + ":2: the file has no faces");
+}
+
+TEST_F(MeshIoTest, UnknownExtension) {
+  const std::string path = Write("grid.stl", ObjText(GridSoup(1, 1)));
+  const std::string message = InputErrorMessage([&] { ReadPolygonSoup(path); });
+  EXPECT_EQ(message, path + ": unknown mesh file extension \".stl\"; expected .obj, .off or .ply");
+
+  const PolyMesh mesh = BuildMesh(GridSoup(1, 1), "grid", {});
+  const std::string out = Path("out.stl");
+  EXPECT_THAT(InputErrorMessage([&] { WriteMeshAtomically(mesh, out); }),
+              StartsWith(out + ": unknown mesh file extension"));
+  EXPECT_EQ(DirectoryEntries(), std::vector<std::string>{"grid.stl"});
+}
+
+TEST_F(MeshIoTest, NanCoordinate) {
+  const std::string path = Write("nan.obj",
+                                 "v 0 0 0\n"
+                                 "v 1 0 0\n"
+                                 "# comment\n"
+                                 "v 1 1 0\n"
+                                 "v 0 nan 0\n"
+                                 "f 1 2 3 4\n");
+  const std::string message = InputErrorMessage([&] { ReadMesh(path); });
+  EXPECT_EQ(message, path + ":5: vertex 3 has a non-finite coordinate \"nan\"");
+
+  const std::string off =
+      Write("inf.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 1e999\n4 0 1 2 3\n");
+  EXPECT_THAT(InputErrorMessage([&] { ReadMesh(off); }),
+              StartsWith(off + ":6: vertex 3 has a non-finite coordinate"));
+}
+
+TEST_F(MeshIoTest, MalformedNumbers) {
+  const std::string obj = Write("bad.obj", "v 0 0 0\nv 1 0 0\nv 1 1.2.3 0\nf 1 2 3\n");
+  EXPECT_EQ(InputErrorMessage([&] { ReadMesh(obj); }),
+            obj + ":3: vertex 2 has a malformed coordinate \"1.2.3\"");
+  const std::string short_vertex = Write("short.obj", "v 0 0\nf 1 1 1\n");
+  EXPECT_EQ(InputErrorMessage([&] { ReadMesh(short_vertex); }),
+            short_vertex + ":1: vertex 0 has 2 coordinates; 3 are required");
+  const std::string index = Write("index.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 x3\n");
+  EXPECT_EQ(InputErrorMessage([&] { ReadMesh(index); }),
+            index + ":4: face 0 has a malformed vertex index \"x3\"");
+  const std::string counts = Write("counts.off", "OFF\n4 one 0\n");
+  EXPECT_EQ(InputErrorMessage([&] { ReadMesh(counts); }),
+            counts + ":2: malformed face count \"one\"");
+}
+
+TEST_F(MeshIoTest, ObjIndexOutOfRange) {
+  std::string text = ObjText(GridSoup(5, 5));  // 36 vertices, 25 faces
+  text += "f 1 2 41 3\n";                      // line 1 + 36 + 25 + 1
+  const std::string path = Write("range.obj", text);
+  EXPECT_EQ(
+      InputErrorMessage([&] { ReadMesh(path); }),
+      path + ":63: face 25 references vertex 40 (written as 41), but the file has 36 vertices");
+
+  const std::string zero = Write("zero.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 0 1 2\n");
+  EXPECT_EQ(InputErrorMessage([&] { ReadMesh(zero); }),
+            zero + ":4: face 0 uses vertex index 0; OBJ indices start at 1");
+  const std::string relative = Write("relative.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf -1 -2 -4\n");
+  EXPECT_EQ(InputErrorMessage([&] { ReadMesh(relative); }),
+            relative + ":4: face 0 uses relative vertex index -4, but only 3 vertices precede it");
+}
+
+TEST_F(MeshIoTest, OffIndexOutOfRange) {
+  const std::string path = Write("range.off",
+                                 "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
+                                 "4 0 1 2 3\n"
+                                 "3 0 2 4\n");
+  EXPECT_EQ(InputErrorMessage([&] { ReadMesh(path); }),
+            path + ":8: face 1 references vertex 4, but the file has 4 vertices");
+}
+
+TEST_F(MeshIoTest, OffTruncatedOrInconsistent) {
+  const std::string truncated = Write("truncated.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n");
+  EXPECT_EQ(InputErrorMessage([&] { ReadMesh(truncated); }),
+            truncated + ": the file ends after 2 of 4 vertices");
+  const std::string short_face =
+      Write("short_face.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n");
+  EXPECT_EQ(InputErrorMessage([&] { ReadMesh(short_face); }),
+            short_face + ":6: face 0 declares 4 vertices but lists 3");
+  const std::string header = Write("header.off", "OF\n3 1 0\n");
+  EXPECT_THAT(InputErrorMessage([&] { ReadMesh(header); }),
+              StartsWith(header + ":1: expected the header \"OFF\""));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Mesh validation.
+
+TEST_F(MeshIoTest, NonQuadFaceWhenQuadsOnly) {
+  const std::string path = Write("mixed.obj",
+                                 "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\n"
+                                 "f 1 2 3 4\n"
+                                 "f 2 5 3\n");
+  EXPECT_EQ(InputErrorMessage([&] { ReadMesh(path, {/*quads_only=*/true}); }),
+            path + ":7: face 1 has 3 vertices; a quad mesh is required");
+  EXPECT_EQ(ReadMesh(path).n_faces(), 2u);
+}
+
+TEST_F(MeshIoTest, DegenerateFaces) {
+  const std::string collinear = Write("collinear.obj",
+                                      "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\n"
+                                      "f 1 2 3 4\n");
+  EXPECT_EQ(InputErrorMessage([&] { ReadMesh(collinear); }),
+            collinear + ":5: face 0 is degenerate: its area is zero relative to its edge lengths");
+
+  const std::string repeated = Write("repeated.off",
+                                     "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
+                                     "3 0 1 2\n"
+                                     "4 0 2 3 2\n");
+  EXPECT_EQ(InputErrorMessage([&] { ReadMesh(repeated); }),
+            repeated + ":8: face 1 uses vertex 2 more than once (degenerate face)");
+
+  const std::string two = Write("two.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\nf 1 2\n");
+  EXPECT_EQ(InputErrorMessage([&] { ReadMesh(two); }),
+            two + ":5: face 1 has 2 vertices; at least 3 are required");
+}
+
+TEST_F(MeshIoTest, TinyButWellShapedFaceIsNotDegenerate) {
+  PolygonSoup soup = GridSoup(1, 1);
+  for (Eigen::Vector3d& p : soup.vertices) p *= 1e-9;
+  EXPECT_EQ(BuildMesh(soup, "tiny", {}).n_faces(), 1u);
+}
+
+TEST_F(MeshIoTest, NonManifoldEdge) {
+  // Three quads hang off the edge between vertices 0 and 1.
+  const std::string path = Write("fin.obj",
+                                 "v 0 0 0\nv 1 0 0\n"
+                                 "v 1 1 0\nv 0 1 0\n"
+                                 "v 1 -1 0\nv 0 -1 0\n"
+                                 "v 1 0 1\nv 0 0 1\n"
+                                 "f 1 2 3 4\n"
+                                 "f 2 1 6 5\n"
+                                 "f 1 2 7 8\n");
+  EXPECT_EQ(InputErrorMessage([&] { ReadMesh(path); }),
+            path +
+                ":11: face 2 uses the edge between vertices 0 and 1, which faces 0 and 1 "
+                "already share (non-manifold edge)");
+}
+
+TEST_F(MeshIoTest, InconsistentOrientation) {
+  const std::string path = Write("flipped.obj",
+                                 "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n"
+                                 "f 1 2 3 4\n"
+                                 "f 2 3 6 5\n");
+  EXPECT_EQ(InputErrorMessage([&] { ReadMesh(path); }),
+            path +
+                ":8: face 1 traverses the edge from vertex 1 to vertex 2 in the same direction "
+                "as face 0 (inconsistent orientation)");
+}
+
+TEST_F(MeshIoTest, NonManifoldVertexRejectedByOpenMesh) {
+  // The centre vertex 4 of a 2 × 2 grid is interior; a triangle touching only it cannot join.
+  PolygonSoup soup = GridSoup(2, 2);
+  soup.vertices.emplace_back(1.0, 1.0, 1.0);
+  soup.vertices.emplace_back(1.0, 1.5, 1.0);
+  soup.faces.push_back({4, 9, 10});
+  soup.face_lines = {10, 11, 12, 13, 14};
+  EXPECT_EQ(InputErrorMessage([&] { BuildMesh(soup, "fan.obj", {}); }),
+            "fan.obj:14: face 4 cannot join the mesh: one of its vertices would become "
+            "non-manifold");
+}
+
+TEST_F(MeshIoTest, SoupWithoutLineNumbersOrFaces) {
+  PolygonSoup soup = GridSoup(1, 1);
+  soup.faces[0][2] = 7;
+  EXPECT_EQ(InputErrorMessage([&] { BuildMesh(soup, "soup", {}); }),
+            "soup: face 0 references vertex 7, but the mesh has 4 vertices");
+  soup.faces.clear();
+  EXPECT_EQ(InputErrorMessage([&] { BuildMesh(soup, "soup", {}); }), "soup: the mesh has no faces");
+}
+
+TEST_F(MeshIoTest, PlyNonManifoldEdgeIsNotHiddenByOpenMesh) {
+  const std::string path = Write("fin.ply",
+                                 "ply\nformat ascii 1.0\n"
+                                 "element vertex 8\n"
+                                 "property double x\nproperty double y\nproperty double z\n"
+                                 "element face 3\nproperty list uchar int vertex_indices\n"
+                                 "end_header\n"
+                                 "0 0 0\n1 0 0\n1 1 0\n0 1 0\n1 -1 0\n0 -1 0\n1 0 1\n0 0 1\n"
+                                 "4 0 1 2 3\n4 1 0 5 4\n4 0 1 6 7\n");
+  EXPECT_THAT(InputErrorMessage([&] { ReadMesh(path); }),
+              StartsWith(path + ": face 2 cannot join the mesh"));
+
+  const std::string repeated = Write("repeated.ply",
+                                     "ply\nformat ascii 1.0\n"
+                                     "element vertex 3\n"
+                                     "property double x\nproperty double y\nproperty double z\n"
+                                     "element face 2\nproperty list uchar int vertex_indices\n"
+                                     "end_header\n"
+                                     "0 0 0\n1 0 0\n0 1 0\n"
+                                     "3 0 1 2\n3 0 1 1\n");
+  EXPECT_THAT(InputErrorMessage([&] { ReadMesh(repeated); }),
+              StartsWith(repeated + ": OpenMesh dropped 1 of 2 faces"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Writing errors.
+
+TEST_F(MeshIoTest, WriteIntoMissingDirectoryLeavesNothingBehind) {
+  const PolyMesh mesh = BuildMesh(GridSoup(2, 2), "grid", {});
+  const std::string path = Path("no/such/dir/out.obj");
+  const std::string message = InputErrorMessage([&] { WriteMeshAtomically(mesh, path); });
+  EXPECT_THAT(message, StartsWith(path + ": cannot create the temporary file"));
+  EXPECT_THAT(message, HasSubstr("No such file or directory"));
+  EXPECT_TRUE(DirectoryEntries().empty());
+
+  const std::string text = Path("no/report.txt");
+  EXPECT_THAT(InputErrorMessage([&] { WriteTextFileAtomically(text, "x"); }),
+              StartsWith(text + ": cannot create the temporary file"));
+  EXPECT_TRUE(DirectoryEntries().empty());
+}
+
+TEST_F(MeshIoTest, FailedRenameRemovesTheTemporary) {
+  // The target is a directory, so the final rename fails after the temporary was written.
+  fs::create_directory(Path("out.obj"));
+  const PolyMesh mesh = BuildMesh(GridSoup(2, 2), "grid", {});
+  const std::string message =
+      InputErrorMessage([&] { WriteMeshAtomically(mesh, Path("out.obj")); });
+  EXPECT_THAT(message, StartsWith(Path("out.obj") + ": cannot move the temporary file"));
+  EXPECT_EQ(DirectoryEntries(), std::vector<std::string>{"out.obj"});
+  EXPECT_TRUE(fs::is_empty(Path("out.obj")));
+}
+
+TEST_F(MeshIoTest, NonFiniteCoordinateIsRefusedBeforeWriting) {
+  const std::string path = Write("out.off", "previous\n");
+  PolyMesh mesh = BuildMesh(GridSoup(2, 2), "grid", {});
+  mesh.point(mesh.vertex_handle(3))[1] = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(InputErrorMessage([&] { WriteMeshAtomically(mesh, path); }),
+            path + ": vertex 3 has a non-finite coordinate; nothing written");
+  EXPECT_EQ(ReadText(path), "previous\n");
+  EXPECT_EQ(DirectoryEntries(), std::vector<std::string>{"out.off"});
+}
+
+}  // namespace
+}  // namespace gproj

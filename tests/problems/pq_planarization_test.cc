@@ -1,0 +1,105 @@
+#include "problems/pq_planarization.h"
+
+#include <gtest/gtest.h>
+
+#include "geometry/quad_grid.h"
+#include "solver/linearized_system.h"
+
+namespace gproj {
+namespace {
+
+const std::string kShippedGrid =
+    std::string(GPROJ_SOURCE_DIR) + "/examples/data/noisy_grid_21x21.obj";
+
+TEST(PQPlanarizationTest, ShippedNoisyGridReachesPlanarity1e9) {
+  const PolyMesh mesh = ReadMesh(kShippedGrid, MeshRequirements{true});
+  ASSERT_EQ(mesh.n_faces(), 400u);
+  PQPlanarizationOptions options;
+  options.tolerance = 1e-9;
+  PQPlanarization pq(mesh, options);
+  const PlanarityMeasures before = pq.Measures();
+  EXPECT_GT(before.max_planarity, 1e-2);  // the input really is far from planar
+  const SolverSummary summary = pq.Solve();
+  ASSERT_TRUE(summary.converged()) << summary.FullReport();
+  const PlanarityMeasures after = MeasurePlanarity(pq.Result(), mesh);
+  EXPECT_LE(after.max_planarity, 1e-9);
+  EXPECT_LE(after.max_displacement, 0.02);
+  EXPECT_LE(summary.num_steps(), 30);
+}
+
+TEST(PQPlanarizationTest, CholmodAndEigenBackendsAgree) {
+  QuadGridOptions grid;
+  grid.nu = grid.nv = 8;
+  grid.noise = 0.1;
+  const PolyMesh mesh = MakeQuadGrid(grid);
+  PQPlanarizationOptions options;
+  options.max_iterations = 5;
+  options.tolerance = 1e-300;
+  PQPlanarization a(mesh, options);
+  options.linear_solver = LinearSolverType::kEigen;
+  PQPlanarization b(mesh, options);
+  a.Solve();
+  b.Solve();
+  EXPECT_LT((a.problem().x() - b.problem().x()).lpNorm<Eigen::Infinity>(), 1e-10);
+}
+
+// Fixed weights (no schedule): both solvers minimise ½ Σ w φ² + ½ ω_f² ‖P x‖² from the same
+// start and must agree on the objective; small soft weights leave planarity residuals ≤ 1e-8.
+TEST(PQPlanarizationTest, GuidedProjectionAndCeresReachTheSameObjective) {
+  QuadGridOptions grid;
+  grid.nu = 6;
+  grid.nv = 5;
+  grid.noise = 0.05;
+  grid.seed = 7;
+  const PolyMesh mesh = MakeQuadGrid(grid);
+  PQPlanarizationOptions options;
+  options.closeness_weight = 1e-7;
+  options.fairness_weight = 3e-4;
+  options.soft_weight_decay = 1.0;
+  options.epsilon = 1e-7;
+  options.max_iterations = 500;
+  options.tolerance = 1e-300;      // run both to their own convergence
+  options.ceres_soft_scale = 1.0;  // the same fixed weights as guided projection
+  PQPlanarization gp(mesh, options);
+  PQPlanarization ceres(mesh, options);
+  const SolverSummary summary = gp.Solve();
+  ASSERT_TRUE(summary.converged()) << summary.FullReport();
+  const ceres::Solver::Summary cs = ceres.SolveWithCeres(500);
+  ASSERT_TRUE(cs.IsSolutionUsable()) << cs.FullReport();
+
+  const double e_gp = EvaluateObjective(&gp.problem(), options.fairness_weight, gp.problem().x());
+  const double e_ceres =
+      EvaluateObjective(&ceres.problem(), options.fairness_weight, ceres.problem().x());
+  EXPECT_GT(e_gp, 0.0);
+  EXPECT_NEAR(e_gp, e_ceres, 1e-6 * e_ceres);
+  for (PQPlanarization* pq : {&gp, &ceres}) {
+    LinearizedSystem system(&pq->problem());
+    std::string why;
+    ASSERT_TRUE(system.Assemble(pq->problem().x(), options.fairness_weight, 1.0, &why));
+    const int rows = pq->problem().family(0).num_rows();
+    ASSERT_EQ(pq->problem().family(0).name(), "planarity");
+    EXPECT_LT(system.phi().head(rows).cwiseAbs().maxCoeff(), 1e-8);
+  }
+}
+
+TEST(PQPlanarizationTest, RefusesNonQuadFaces) {
+  PolyMesh mesh;
+  auto a = mesh.add_vertex({0, 0, 0}), b = mesh.add_vertex({1, 0, 0}),
+       c = mesh.add_vertex({0, 1, 0});
+  mesh.add_face(a, b, c);
+  try {
+    PQPlanarization pq(mesh, PQPlanarizationOptions());
+    FAIL() << "a triangle was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("face 0 has 3 vertices"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PQPlanarizationTest, DiagonalDistanceOfKnownQuad) {
+  // Diagonals (0,0,0)-(1,1,0) and (1,0,h)-(0,1,h) are skew at distance h.
+  EXPECT_NEAR(DiagonalDistance({0, 0, 0}, {1, 0, 0.3}, {1, 1, 0}, {0, 1, 0.3}), 0.3, 1e-15);
+  EXPECT_NEAR(DiagonalDistance({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}), 0.0, 1e-15);
+}
+
+}  // namespace
+}  // namespace gproj

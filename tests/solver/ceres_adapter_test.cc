@@ -1,0 +1,47 @@
+#include "solver/ceres_adapter.h"
+
+#include <gtest/gtest.h>
+
+#include "solver/guided_projection.h"
+#include "test_problems.h"
+
+namespace gproj {
+namespace {
+
+TEST(CeresAdapterTest, SameObjectiveAsGuidedProjectionFromTheSameStart) {
+  Problem gp = MakeCircleProblem(15, 0.05);
+  Problem ceres = MakeCircleProblem(15, 0.05);
+  SolverOptions options;
+  options.fairness_weight = 0.2;
+  options.residual_tolerance = 0.0;
+  options.step_tolerance = 1e-14;
+  options.max_iterations = 500;
+  const SolverSummary summary = Solve(options, &gp);
+  ASSERT_TRUE(summary.converged()) << summary.FullReport();
+  CeresOptions ceres_options;
+  ceres_options.fairness_weight = 0.2;
+  const ceres::Solver::Summary cs = SolveWithCeres(ceres_options, &ceres);
+  ASSERT_TRUE(cs.IsSolutionUsable()) << cs.FullReport();
+  const double e_gp = EvaluateObjective(&gp, 0.2, gp.x());
+  const double e_ceres = EvaluateObjective(&ceres, 0.2, ceres.x());
+  EXPECT_NEAR(e_gp, e_ceres, 1e-9 * e_ceres);
+  // Ceres' cost is the same objective.
+  EXPECT_NEAR(cs.final_cost, e_ceres, 1e-9 * e_ceres);
+  EXPECT_LT((gp.x() - ceres.x()).lpNorm<Eigen::Infinity>(), 1e-6);
+}
+
+TEST(CeresAdapterTest, ResidualBlocksMirrorFamilies) {
+  Problem problem = MakeCircleProblem(6, 0.05);
+  CeresOptions options;
+  options.max_iterations = 0;
+  const ceres::Solver::Summary cs = SolveWithCeres(options, &problem);
+  // 6 circle + 6 anchor + 4 smooth elements; 6 points of dimension 2.
+  EXPECT_EQ(cs.num_residual_blocks, 16);
+  EXPECT_EQ(cs.num_residuals, 6 + 12 + 8);
+  EXPECT_EQ(cs.num_parameters, 12);
+  EXPECT_NEAR(cs.initial_cost, EvaluateObjective(&problem, options.fairness_weight, problem.x()),
+              1e-12);
+}
+
+}  // namespace
+}  // namespace gproj

@@ -1,0 +1,199 @@
+#include "solver/guided_projection.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include "solver/linearized_system.h"
+#include "test_problems.h"
+
+namespace gproj {
+namespace {
+
+// Dense J (m × n), φ (m) and row weights (m) by evaluating the families directly.
+void DenseLinearization(Problem& problem, double fairness_weight, Eigen::MatrixXd* j,
+                        Eigen::VectorXd* phi, Eigen::VectorXd* w) {
+  const VariableLayout& layout = problem.layout();
+  const int n = layout.num_variables();
+  std::vector<Eigen::VectorXd> rows;
+  std::vector<double> values, weights;
+  for (int f = 0; f < problem.num_families(); ++f) {
+    const ConstraintFamily& fam = problem.family(f);
+    double weight = fam.weight();
+    if (fam.role() == FamilyRole::kFairness) weight *= fairness_weight * fairness_weight;
+    for (int e = 0; e < fam.num_elements(); ++e) {
+      std::vector<int> index;
+      for (int k = 0; k < fam.element_num_items(e); ++k)
+        for (int c = 0; c < layout.ItemDim(fam.element_items(e)[k]); ++c)
+          index.push_back(layout.ItemOffset(fam.element_items(e)[k]) + c);
+      std::vector<double> xl(index.size()), p(fam.rows_per_element()),
+          jl(fam.rows_per_element() * index.size());
+      for (size_t l = 0; l < index.size(); ++l) xl[l] = problem.x()[index[l]];
+      fam.EvaluateElement(e, xl.data(), p.data(), jl.data());
+      for (int r = 0; r < fam.rows_per_element(); ++r) {
+        Eigen::VectorXd row = Eigen::VectorXd::Zero(n);
+        for (size_t l = 0; l < index.size(); ++l) row[index[l]] += jl[r * index.size() + l];
+        rows.push_back(row);
+        values.push_back(p[r]);
+        weights.push_back(weight);
+      }
+    }
+  }
+  j->resize(rows.size(), n);
+  for (size_t r = 0; r < rows.size(); ++r) j->row(r) = rows[r];
+  *phi = Eigen::Map<Eigen::VectorXd>(values.data(), values.size());
+  *w = Eigen::Map<Eigen::VectorXd>(weights.data(), weights.size());
+}
+
+class GuidedProjectionTest : public ::testing::TestWithParam<LinearSolverType> {};
+
+TEST_P(GuidedProjectionTest, OneStepEqualsDenseReferenceSolve) {
+  Problem problem = MakeCircleProblem(12, 0.05);
+  Eigen::MatrixXd j;
+  Eigen::VectorXd phi, w;
+  const double omega_f = 0.3, epsilon = 0.01;
+  DenseLinearization(problem, omega_f, &j, &phi, &w);
+  const int n = problem.layout().num_variables();
+  const Eigen::MatrixXd normal =
+      j.transpose() * w.asDiagonal() * j + epsilon * epsilon * Eigen::MatrixXd::Identity(n, n);
+  const Eigen::VectorXd expected =
+      problem.x() + normal.ldlt().solve(-(j.transpose() * w.asDiagonal() * phi));
+
+  SolverOptions options;
+  options.max_iterations = 1;
+  options.fairness_weight = omega_f;
+  options.epsilon = epsilon;
+  options.linear_solver = GetParam();
+  const SolverSummary summary = Solve(options, &problem);
+  EXPECT_EQ(summary.termination, TerminationType::kNoConvergence);
+  ASSERT_EQ(summary.num_steps(), 1);
+  EXPECT_LT((problem.x() - expected).norm() / expected.norm(), 1e-12);
+  EXPECT_NEAR(summary.iterations[0].energy, 0.5 * phi.dot(w.asDiagonal() * phi),
+              1e-12 * summary.iterations[0].energy);
+}
+
+TEST_P(GuidedProjectionTest, FixedPointIsStationaryForTheWeightedObjective) {
+  Problem problem = MakeCircleProblem(20, 0.1);
+  SolverOptions options;
+  options.max_iterations = 200;
+  options.residual_tolerance = 0.0;
+  options.step_tolerance = 1e-14;
+  options.linear_solver = GetParam();
+  const SolverSummary summary = Solve(options, &problem);
+  ASSERT_TRUE(summary.converged()) << summary.FullReport();
+  Eigen::MatrixXd j;
+  Eigen::VectorXd phi, w;
+  DenseLinearization(problem, options.fairness_weight, &j, &phi, &w);
+  const Eigen::VectorXd gradient = j.transpose() * w.asDiagonal() * phi;
+  EXPECT_LT(gradient.lpNorm<Eigen::Infinity>(), 1e-10);
+  // Energy never increased along the way (small steps of a well-posed problem).
+  for (int k = 1; k <= summary.num_steps(); ++k)
+    EXPECT_LE(summary.iterations[k].energy, summary.iterations[k - 1].energy * (1 + 1e-12));
+}
+
+TEST_P(GuidedProjectionTest, FadingSoftWeightsDriveConstraintsToZero) {
+  Problem problem = MakeCircleProblem(20, 1.0);
+  SolverOptions options;
+  options.soft_weight_decay = 0.1;
+  options.soft_weight_floor = 1e-14;
+  options.residual_tolerance = 1e-12;
+  options.linear_solver = GetParam();
+  const SolverSummary summary = Solve(options, &problem);
+  ASSERT_TRUE(summary.converged()) << summary.FullReport();
+  EXPECT_LE(summary.iterations.back().max_constraint, 1e-12);
+  EXPECT_LT(summary.num_steps(), 15);
+  EXPECT_NEAR(summary.iterations.back().soft_scale,
+              std::max(std::pow(0.1, summary.num_steps()), 1e-14), 1e-20);
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, GuidedProjectionTest,
+                         ::testing::Values(LinearSolverType::kCholmod, LinearSolverType::kEigen),
+                         [](const ::testing::TestParamInfo<LinearSolverType>& info) {
+                           return std::string(info.param == LinearSolverType::kCholmod ? "Cholmod"
+                                                                                       : "Eigen");
+                         });
+
+// A row that becomes NaN once x leaves the start.
+class NanAwayFromStart : public ConstraintFamily {
+ public:
+  NanAwayFromStart() : ConstraintFamily("fragile", 1) {}
+  void EvaluateElement(int, const double* p, double* phi, double* jac) const override {
+    phi[0] = p[0] > 0.5 ? std::sqrt(-1.0) : p[0] - 1.0;
+    jac[0] = 1.0;
+    jac[1] = 0.0;
+  }
+};
+
+TEST(GuidedProjectionFailureTest, NonFiniteValueIsReportedWithFamilyAndElement) {
+  Problem problem = MakeCircleProblem(4, 0.1);
+  problem.AddFamily<NanAwayFromStart>()->AddElement({2});
+  problem.x()[4] = 0.6;  // item 2, x coordinate: NaN already at the start
+  const SolverSummary summary = Solve(SolverOptions(), &problem);
+  EXPECT_EQ(summary.termination, TerminationType::kFailure);
+  EXPECT_NE(summary.message.find("'fragile', element 0"), std::string::npos) << summary.message;
+  EXPECT_TRUE(problem.x().allFinite());
+}
+
+// Gradients so large that the normal matrix overflows: every factorisation fails.
+class Overflowing : public ConstraintFamily {
+ public:
+  Overflowing() : ConstraintFamily("overflowing", 1) {}
+  void EvaluateElement(int, const double* p, double* phi, double* jac) const override {
+    phi[0] = 1.0;
+    jac[0] = 1e200;
+    jac[1] = 1e200;
+  }
+};
+
+TEST(GuidedProjectionFailureTest, FailedFactorisationRaisesEpsilonThenStops) {
+  Problem problem = MakeCircleProblem(4, 0.1);
+  problem.AddFamily<Overflowing>()->AddElement({1});
+  const Eigen::VectorXd start = problem.x();
+  SolverOptions options;
+  options.max_retries = 3;
+  const SolverSummary summary = Solve(options, &problem);
+  EXPECT_EQ(summary.termination, TerminationType::kFailure);
+  EXPECT_NE(summary.message.find("after 3 increases of epsilon"), std::string::npos)
+      << summary.message;
+  EXPECT_EQ(problem.x(), start);  // nothing non-finite was accepted
+}
+
+TEST(GuidedProjectionFailureTest, InvalidOptionsAreRejected) {
+  Problem problem = MakeCircleProblem(4, 0.1);
+  SolverOptions options;
+  options.epsilon = 0.0;
+  std::string why;
+  EXPECT_FALSE(options.IsValid(&why));
+  EXPECT_NE(why.find("epsilon"), std::string::npos);
+  const SolverSummary summary = Solve(options, &problem);
+  EXPECT_EQ(summary.termination, TerminationType::kFailure);
+  EXPECT_NE(summary.message.find("invalid options"), std::string::npos);
+}
+
+TEST(GuidedProjectionCallbackTest, CallbackSeesEveryIterationAndCanStop) {
+  Problem problem = MakeCircleProblem(10, 0.1);
+  int calls = 0;
+  const SolverSummary summary =
+      Solve(SolverOptions(), &problem, [&](const IterationRecord& r, const Eigen::VectorXd&) {
+        EXPECT_EQ(r.iteration, calls);
+        ++calls;
+        return r.iteration == 2 ? CallbackResult::kAbort : CallbackResult::kContinue;
+      });
+  EXPECT_EQ(calls, 3);
+  EXPECT_EQ(summary.termination, TerminationType::kUserAbort);
+  ASSERT_EQ(summary.iterations.size(), 3u);
+  EXPECT_EQ(summary.iterations[2].families.size(), 3u);
+  EXPECT_EQ(summary.iterations[2].families[0].name, "on_circle");
+}
+
+TEST(LinearizedSystemTest, PatternHonoursRowTouches) {
+  Problem problem = MakeCircleProblem(5, 0.1);
+  LinearizedSystem system(&problem);
+  // on_circle: 5 rows × 2 entries; anchor (declares one entry per row): 10 rows × 1;
+  // smooth (keeps the default, every row touches all 6 locals): 3 elements × 2 rows × 6.
+  EXPECT_EQ(system.a().nnz(), 5 * 2 + 10 * 1 + 3 * 2 * 6);
+  EXPECT_EQ(system.num_rows(), 5 + 10 + 6);
+}
+
+}  // namespace
+}  // namespace gproj
