@@ -124,7 +124,8 @@ PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOpti
 
   VariableLayout& layout = problem_.layout();
   vertex_block_ = layout.AddBlock("vertices", static_cast<int>(mesh.n_vertices()), 3);
-  normal_block_ = layout.AddBlock("face_normals", static_cast<int>(mesh.n_faces()), 3);
+  normal_block_ =
+      layout.AddBlock("face_normals", static_cast<int>(mesh.n_faces()), 3, /*eliminable=*/true);
   problem_.ResizeToLayout();
   Eigen::VectorXd& x = problem_.x();
   for (auto v : mesh.vertices())

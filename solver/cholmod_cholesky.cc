@@ -37,7 +37,8 @@ class CholmodCholesky : public SparseCholesky {
     cholmod_finish(&common_);
   }
 
-  bool Analyze(const CscMatrix& a, std::string* message) override {
+  bool Analyze(const CscMatrix& a, MatrixForm form, std::string* message) override {
+    stype_ = form == MatrixForm::kSymmetric ? 1 : 0;
     cholmod_sparse view = View(a);
     if (factor_ != nullptr) cholmod_free_factor(&factor_, &common_);
     factor_ = cholmod_analyze(&view, &common_);
@@ -86,7 +87,7 @@ class CholmodCholesky : public SparseCholesky {
 
  private:
   // A non-owning CHOLMOD header over our arrays.
-  static cholmod_sparse View(const CscMatrix& a) {
+  cholmod_sparse View(const CscMatrix& a) const {
     cholmod_sparse s;
     std::memset(&s, 0, sizeof(s));
     s.nrow = a.num_rows;
@@ -95,7 +96,7 @@ class CholmodCholesky : public SparseCholesky {
     s.p = const_cast<int*>(a.col_begin.data());
     s.i = const_cast<int*>(a.row_index.data());
     s.x = const_cast<double*>(a.values.data());
-    s.stype = 0;
+    s.stype = stype_;  // 0: A (factor A Aᵀ + βI); 1: upper triangle of S (factor S + βI)
     s.itype = CHOLMOD_INT;
     s.xtype = CHOLMOD_REAL;
     s.dtype = CHOLMOD_DOUBLE;
@@ -111,6 +112,7 @@ class CholmodCholesky : public SparseCholesky {
   cholmod_dense* y_ = nullptr;
   cholmod_dense* e_ = nullptr;
   int n_ = 0;
+  int stype_ = 0;
 };
 
 }  // namespace

@@ -12,7 +12,8 @@ using SpMat = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
 class EigenCholesky : public SparseCholesky {
  public:
-  bool Analyze(const CscMatrix& a, std::string* message) override {
+  bool Analyze(const CscMatrix& a, MatrixForm form, std::string* message) override {
+    form_ = form;
     Form(a, 1.0);
     llt_.analyzePattern(normal_);
     if (llt_.info() != Eigen::Success) {
@@ -50,9 +51,14 @@ class EigenCholesky : public SparseCholesky {
                                a.row_index.data(), a.values.data());
     SpMat identity(a.num_rows, a.num_rows);
     identity.setIdentity();
-    normal_ = am * am.transpose() + beta * identity;
+    if (form_ == MatrixForm::kAAt) {
+      normal_ = am * am.transpose() + beta * identity;
+    } else {
+      normal_ = SpMat(am.selfadjointView<Eigen::Upper>()) + beta * identity;
+    }
   }
 
+  MatrixForm form_ = MatrixForm::kAAt;
   SpMat normal_;
   Eigen::SimplicialLLT<SpMat, Eigen::Lower, Eigen::AMDOrdering<int>> llt_;
 };

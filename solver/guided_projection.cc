@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "solver/linearized_system.h"
+#include "solver/schur_complement.h"
 
 namespace gproj {
 namespace {
@@ -133,13 +134,25 @@ SolverSummary Solve(const SolverOptions& options, Problem* problem,
   summary.jacobian_nonzeros = system.a().nnz();
   auto cholesky = CreateSparseCholesky(options.linear_solver, options.num_threads);
   auto t = Clock::now();
-  if (!cholesky->Analyze(system.a(), &why)) return finish(TerminationType::kFailure, why);
+  SchurComplement schur;
+  bool eliminate = false;
+  if (options.eliminate_auxiliaries) {
+    eliminate = schur.Init(problem->layout(), system.a(), &summary.elimination_note);
+    if (eliminate) summary.eliminated_variables = schur.num_eliminated();
+  } else {
+    summary.elimination_note = "disabled by options";
+  }
+  const bool analysed = eliminate ? cholesky->Analyze(schur.s(), MatrixForm::kSymmetric, &why)
+                                  : cholesky->Analyze(system.a(), MatrixForm::kAAt, &why);
+  if (!analysed) return finish(TerminationType::kFailure, why);
   summary.analysis_seconds = SecondsSince(t);
 
   const int n = summary.num_variables;
-  Eigen::VectorXd rhs(n), step(n), trial(n), check(n);
+  const int n_kept = eliminate ? schur.num_kept() : n;
+  Eigen::VectorXd rhs(n), step(n), trial(n), check(n), reduced(n_kept), step_kept(n_kept);
   IterationRecord record;
   double soft_scale = 1.0;
+  double schur_seconds = 0.0;
   for (int k = 0;; ++k) {
     record.iteration = k;
     record.soft_scale = soft_scale;
@@ -148,7 +161,9 @@ SolverSummary Solve(const SolverOptions& options, Problem* problem,
       return finish(TerminationType::kFailure, why);
     record.energy = system.Energy();
     FillResiduals(*problem, system, &record);
-    record.assembly_seconds = SecondsSince(t);
+    // The step's Schur complement counts as assembly of the iterate it led to.
+    record.assembly_seconds = SecondsSince(t) + schur_seconds;
+    schur_seconds = 0.0;
     summary.iterations.push_back(record);
 
     CallbackResult cb = callback ? callback(record, x) : CallbackResult::kContinue;
@@ -172,12 +187,23 @@ SolverSummary Solve(const SolverOptions& options, Problem* problem,
     for (int attempt = 0; attempt <= options.max_retries; ++attempt) {
       if (attempt > 0) epsilon *= options.epsilon_growth;
       record.retries = attempt;
+      const double beta = epsilon * epsilon;
+      if (eliminate) {
+        t = Clock::now();
+        const bool formed = schur.Form(system.a(), beta, &why);
+        if (formed) schur.ReduceRhs(rhs, &reduced);
+        schur_seconds += SecondsSince(t);
+        if (!formed) continue;
+      }
       t = Clock::now();
-      const bool factored = cholesky->Factorize(system.a(), epsilon * epsilon, &why);
+      const bool factored = eliminate ? cholesky->Factorize(schur.s(), beta, &why)
+                                      : cholesky->Factorize(system.a(), beta, &why);
       record.factorization_seconds += SecondsSince(t);
       if (!factored) continue;
       t = Clock::now();
-      const bool solved = cholesky->Solve(rhs.data(), step.data(), &why);
+      const bool solved = eliminate ? cholesky->Solve(reduced.data(), step_kept.data(), &why)
+                                    : cholesky->Solve(rhs.data(), step.data(), &why);
+      if (solved && eliminate) schur.BackSubstitute(step_kept, rhs, &step);
       record.solve_seconds += SecondsSince(t);
       if (!solved) continue;
       // Check the solve: ‖(A Aᵀ + ε² I) d − rhs‖ small against the terms' sizes. Catches

@@ -35,6 +35,9 @@ struct SolverOptions {
   double epsilon_growth = 10.0;
   int max_retries = 4;
   LinearSolverType linear_solver = LinearSolverType::kCholmod;
+  // Eliminate the items of eliminable blocks (per-element auxiliaries such as face normals)
+  // with a Schur complement before factorising; the factor then covers the rest only.
+  bool eliminate_auxiliaries = true;
   // Threads for the BLAS under CHOLMOD (0: leave the library default).
   int num_threads = 0;
 
@@ -52,11 +55,11 @@ struct IterationRecord {
   double energy = 0.0;  // ½ Σ w φ² + ½ ω_f² ‖P x‖² with this iteration's weights
   double max_constraint = 0.0;  // max |φ| over kConstraint families
   std::vector<FamilyResidual> families;
-  double step_norm = 0.0;              // ‖x^k − x^{k−1}‖∞ (0 at the start)
-  double epsilon = 0.0;                // ε used for the step that led here
-  double soft_scale = 1.0;             // soft-weight factor in effect for this iteration's energy
-  int retries = 0;                     // ε increases needed for that step
-  double assembly_seconds = 0.0;       // family updates + evaluation + assembly
+  double step_norm = 0.0;         // ‖x^k − x^{k−1}‖∞ (0 at the start)
+  double epsilon = 0.0;           // ε used for the step that led here
+  double soft_scale = 1.0;        // soft-weight factor in effect for this iteration's energy
+  int retries = 0;                // ε increases needed for that step
+  double assembly_seconds = 0.0;  // family updates + evaluation + assembly (+ Schur complement)
   double factorization_seconds = 0.0;  // numeric factorisation (of the step that led here)
   double solve_seconds = 0.0;          // triangular solves (of the step that led here)
 };
@@ -77,6 +80,8 @@ struct SolverSummary {
   int num_rows = 0;
   int64_t jacobian_nonzeros = 0;
   int64_t factor_nonzeros = 0;
+  int eliminated_variables = 0;  // removed by the Schur complement before factorising
+  std::string elimination_note;  // why no elimination happened, when it did not
   double analysis_seconds = 0.0;
   double total_seconds = 0.0;
   LinearSolverType linear_solver = LinearSolverType::kCholmod;

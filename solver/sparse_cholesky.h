@@ -1,7 +1,8 @@
 #pragma once
 // Sparse Cholesky behind an interface: factors  N = A Aᵀ + β I  given A (n × m, CSC), the
-// transposed, weighted Jacobian of guided projection. The pattern of A is fixed per problem:
-// Analyze once (ordering + symbolic factorisation), then Factorize per iteration.
+// transposed, weighted Jacobian of guided projection, or  S + β I  given a symmetric S (the
+// Schur complement once per-element auxiliaries are eliminated). The pattern is fixed per
+// problem: Analyze once (ordering + symbolic factorisation), then Factorize per iteration.
 
 #include <cstdint>
 #include <memory>
@@ -22,19 +23,26 @@ struct CscMatrix {
 
 enum class LinearSolverType {
   kCholmod,  // CHOLMOD supernodal (default)
-  kEigen,    // Eigen SimplicialLLT on the explicitly formed A Aᵀ + β I (fallback, test oracle)
+  kEigen,    // Eigen SimplicialLLT on the explicitly formed matrix (fallback, test oracle)
 };
 
 const char* LinearSolverTypeName(LinearSolverType type);
 // Parses "cholmod" / "eigen"; returns false for anything else.
 bool ParseLinearSolverType(const std::string& name, LinearSolverType* type);
 
+// What the matrix handed to Analyze/Factorize stands for.
+enum class MatrixForm {
+  kAAt,        // a is A (n × m): factor A Aᵀ + β I without forming it
+  kSymmetric,  // a is the upper triangle of a symmetric n × n matrix S: factor S + β I
+};
+
 class SparseCholesky {
  public:
   virtual ~SparseCholesky() = default;
-  // Symbolic analysis of A Aᵀ for the pattern of `a`. False (and `message`) on failure.
-  virtual bool Analyze(const CscMatrix& a, std::string* message) = 0;
-  // Numeric factorisation of A Aᵀ + β I; `a` must have the analysed pattern. False when the
+  // Symbolic analysis (ordering, elimination tree) for the pattern of `a`. False (and
+  // `message`) on failure.
+  virtual bool Analyze(const CscMatrix& a, MatrixForm form, std::string* message) = 0;
+  // Numeric factorisation; `a` must have the analysed pattern and form. False when the
   // matrix is not numerically positive definite or values are non-finite.
   virtual bool Factorize(const CscMatrix& a, double beta, std::string* message) = 0;
   // x = N⁻¹ rhs, both of length n. False on failure.

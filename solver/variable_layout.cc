@@ -4,13 +4,15 @@
 
 namespace gproj {
 
-int VariableLayout::AddBlock(const std::string& name, int num_items, int item_dim) {
+int VariableLayout::AddBlock(const std::string& name, int num_items, int item_dim,
+                             bool eliminable) {
   assert(num_items >= 0 && item_dim > 0);
   assert(FindBlock(name) < 0);
   VariableBlock b;
   b.name = name;
   b.num_items = num_items;
   b.item_dim = item_dim;
+  b.eliminable = eliminable;
   b.first_item = this->num_items();
   b.offset = num_variables();
   for (int i = 0; i < num_items; ++i) item_offsets_.push_back(item_offsets_.back() + item_dim);

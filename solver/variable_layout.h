@@ -15,13 +15,16 @@ struct VariableBlock {
   int item_dim = 0;    // e.g. 3
   int first_item = 0;  // global item id of item 0
   int offset = 0;      // index in x of the block's first scalar
+  // Per-element auxiliaries (a face normal, one sample's curvature values): no row touches two
+  // items of such a block, so the solver may eliminate them first (Schur complement).
+  bool eliminable = false;
   int size() const { return num_items * item_dim; }
 };
 
 class VariableLayout {
  public:
   // Appends a block of `num_items` items of `item_dim` scalars; returns the block id.
-  int AddBlock(const std::string& name, int num_items, int item_dim);
+  int AddBlock(const std::string& name, int num_items, int item_dim, bool eliminable = false);
 
   int num_blocks() const { return static_cast<int>(blocks_.size()); }
   int num_items() const { return static_cast<int>(item_offsets_.size()) - 1; }

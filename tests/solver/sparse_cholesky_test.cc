@@ -45,7 +45,7 @@ TEST_P(SparseCholeskyTest, SolvesRandomSpdSystemLikeDenseReference) {
   CscMatrix a = RandomCsc(n, m, 4, 11);
   auto cholesky = CreateSparseCholesky(GetParam(), 1);
   std::string message;
-  ASSERT_TRUE(cholesky->Analyze(a, &message)) << message;
+  ASSERT_TRUE(cholesky->Analyze(a, MatrixForm::kAAt, &message)) << message;
   const Eigen::MatrixXd ad = Dense(a);
   std::mt19937 rng(2);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -73,7 +73,7 @@ TEST_P(SparseCholeskyTest, ReportsSingularMatrix) {
     if (a.row_index[k] == 3) a.values[k] = 0.0;
   auto cholesky = CreateSparseCholesky(GetParam(), 1);
   std::string message;
-  ASSERT_TRUE(cholesky->Analyze(a, &message)) << message;
+  ASSERT_TRUE(cholesky->Analyze(a, MatrixForm::kAAt, &message)) << message;
   EXPECT_FALSE(cholesky->Factorize(a, 0.0, &message));
   EXPECT_NE(message.find("positive definite"), std::string::npos) << message;
 }
@@ -94,7 +94,7 @@ TEST(SparseCholeskyBackendsTest, CholmodAndEigenGiveTheSameStep) {
   for (int t = 0; t < 2; ++t) {
     auto cholesky = CreateSparseCholesky(types[t], 1);
     std::string message;
-    ASSERT_TRUE(cholesky->Analyze(a, &message));
+    ASSERT_TRUE(cholesky->Analyze(a, MatrixForm::kAAt, &message));
     ASSERT_TRUE(cholesky->Factorize(a, 1e-6, &message));
     x[t].resize(n);
     ASSERT_TRUE(cholesky->Solve(b.data(), x[t].data(), &message));

@@ -1,0 +1,251 @@
+#include "solver/schur_complement.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+
+namespace gproj {
+namespace {
+
+using SmallMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor,
+                                  SchurComplement::kMaxItemDim, SchurComplement::kMaxItemDim>;
+using SmallVector =
+    Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, SchurComplement::kMaxItemDim, 1>;
+
+// Position of entry (row, col) in an upper-triangular CSC pattern that contains it.
+int Position(const CscMatrix& s, int row, int col) {
+  const auto begin = s.row_index.begin() + s.col_begin[col];
+  const auto end = s.row_index.begin() + s.col_begin[col + 1];
+  return static_cast<int>(std::lower_bound(begin, end, row) - s.row_index.begin());
+}
+
+}  // namespace
+
+bool SchurComplement::Init(const VariableLayout& layout, const CscMatrix& a, std::string* message) {
+  const int n = a.num_rows, m = a.num_cols;
+  std::vector<int> item_of_var(n, -1);
+  items_.clear();
+  num_eliminated_ = 0;
+  for (int b = 0; b < layout.num_blocks(); ++b) {
+    const VariableBlock& block = layout.block(b);
+    if (!block.eliminable) continue;
+    if (block.item_dim > kMaxItemDim) {
+      *message = "items of block '" + block.name + "' are larger than " +
+                 std::to_string(kMaxItemDim) + " scalars";
+      return false;
+    }
+    for (int i = 0; i < block.num_items; ++i) {
+      Item item;
+      item.first_var = block.offset + i * block.item_dim;
+      item.dim = block.item_dim;
+      for (int c = 0; c < item.dim; ++c) item_of_var[item.first_var + c] = items_.size();
+      items_.push_back(item);
+      num_eliminated_ += item.dim;
+    }
+  }
+  if (items_.empty()) {
+    *message = "no eliminable variable blocks";
+    return false;
+  }
+  kept_of_var_.assign(n, -1);
+  kept_var_.clear();
+  for (int v = 0; v < n; ++v) {
+    if (item_of_var[v] >= 0) continue;
+    kept_of_var_[v] = static_cast<int>(kept_var_.size());
+    kept_var_.push_back(v);
+  }
+  const int num_kept = static_cast<int>(kept_var_.size());
+
+  // Split every column of A into kept and eliminated entries.
+  col_item_.assign(m, -1);
+  col_kept_begin_.assign(1, 0);
+  col_elim_begin_.assign(1, 0);
+  kept_pos_.clear(), kept_idx_.clear(), elim_pos_.clear(), elim_comp_.clear();
+  for (int c = 0; c < m; ++c) {
+    for (int k = a.col_begin[c]; k < a.col_begin[c + 1]; ++k) {
+      const int var = a.row_index[k];
+      const int e = item_of_var[var];
+      if (e < 0) {
+        kept_pos_.push_back(k);
+        kept_idx_.push_back(kept_of_var_[var]);
+        continue;
+      }
+      if (col_item_[c] >= 0 && col_item_[c] != e) {
+        *message = "row " + std::to_string(c) + " touches two eliminated items";
+        return false;
+      }
+      col_item_[c] = e;
+      elim_pos_.push_back(k);
+      elim_comp_.push_back(var - items_[e].first_var);
+    }
+    col_kept_begin_.push_back(static_cast<int>(kept_pos_.size()));
+    col_elim_begin_.push_back(static_cast<int>(elim_pos_.size()));
+  }
+
+  // Columns of each item (counting sort), and K_e, the kept variables coupled to it.
+  std::vector<int> count(items_.size() + 1, 0);
+  for (int c = 0; c < m; ++c)
+    if (col_item_[c] >= 0) ++count[col_item_[c] + 1];
+  for (size_t e = 0; e < items_.size(); ++e) count[e + 1] += count[e];
+  item_cols_.assign(count.back(), 0);
+  for (size_t e = 0; e < items_.size(); ++e) {
+    items_[e].col_begin = count[e];
+    items_[e].col_end = count[e];
+  }
+  for (int c = 0; c < m; ++c)
+    if (col_item_[c] >= 0) item_cols_[items_[col_item_[c]].col_end++] = c;
+  kept_vars_.clear();
+  int b_size = 0, dinv_size = 0;
+  for (Item& item : items_) {
+    item.kept_begin = static_cast<int>(kept_vars_.size());
+    for (int j = item.col_begin; j < item.col_end; ++j) {
+      const int c = item_cols_[j];
+      for (int k = col_kept_begin_[c]; k < col_kept_begin_[c + 1]; ++k)
+        kept_vars_.push_back(kept_idx_[k]);
+    }
+    std::sort(kept_vars_.begin() + item.kept_begin, kept_vars_.end());
+    kept_vars_.erase(std::unique(kept_vars_.begin() + item.kept_begin, kept_vars_.end()),
+                     kept_vars_.end());
+    item.kept_end = static_cast<int>(kept_vars_.size());
+    item.b_offset = b_size;
+    b_size += (item.kept_end - item.kept_begin) * item.dim;
+    item.dinv_offset = dinv_size;
+    dinv_size += item.dim * item.dim;
+  }
+  b_.assign(b_size, 0.0);
+  dinv_.assign(dinv_size, 0.0);
+  kept_local_.assign(kept_pos_.size(), -1);
+  for (int c = 0; c < m; ++c) {
+    if (col_item_[c] < 0) continue;
+    const Item& item = items_[col_item_[c]];
+    const auto begin = kept_vars_.begin() + item.kept_begin;
+    const auto end = kept_vars_.begin() + item.kept_end;
+    for (int k = col_kept_begin_[c]; k < col_kept_begin_[c + 1]; ++k)
+      kept_local_[k] = static_cast<int>(std::lower_bound(begin, end, kept_idx_[k]) - begin);
+  }
+
+  // Pattern of S (upper triangle): the diagonal, kept pairs of every column, item cliques.
+  std::vector<std::vector<int>> rows(num_kept);
+  for (int j = 0; j < num_kept; ++j) rows[j].push_back(j);
+  for (int c = 0; c < m; ++c)
+    for (int p = col_kept_begin_[c]; p < col_kept_begin_[c + 1]; ++p)
+      for (int q = p; q < col_kept_begin_[c + 1]; ++q) rows[kept_idx_[q]].push_back(kept_idx_[p]);
+  for (const Item& item : items_)
+    for (int p = item.kept_begin; p < item.kept_end; ++p)
+      for (int q = p; q < item.kept_end; ++q) rows[kept_vars_[q]].push_back(kept_vars_[p]);
+  s_ = CscMatrix();
+  s_.num_rows = s_.num_cols = num_kept;
+  s_.col_begin.assign(1, 0);
+  for (auto& r : rows) {
+    std::sort(r.begin(), r.end());
+    r.erase(std::unique(r.begin(), r.end()), r.end());
+    s_.row_index.insert(s_.row_index.end(), r.begin(), r.end());
+    s_.col_begin.push_back(static_cast<int>(s_.row_index.size()));
+    std::vector<int>().swap(r);
+  }
+  s_.values.assign(s_.row_index.size(), 0.0);
+
+  col_pair_begin_.assign(1, 0);
+  pair_pos_.clear();
+  for (int c = 0; c < m; ++c) {
+    for (int p = col_kept_begin_[c]; p < col_kept_begin_[c + 1]; ++p)
+      for (int q = p; q < col_kept_begin_[c + 1]; ++q)
+        pair_pos_.push_back(Position(s_, kept_idx_[p], kept_idx_[q]));
+    col_pair_begin_.push_back(static_cast<int>(pair_pos_.size()));
+  }
+  clique_pos_.clear();
+  for (Item& item : items_) {
+    item.clique_begin = static_cast<int>(clique_pos_.size());
+    for (int p = item.kept_begin; p < item.kept_end; ++p)
+      for (int q = p; q < item.kept_end; ++q)
+        clique_pos_.push_back(Position(s_, kept_vars_[p], kept_vars_[q]));
+  }
+  return true;
+}
+
+bool SchurComplement::Form(const CscMatrix& a, double beta, std::string* message) {
+  std::fill(s_.values.begin(), s_.values.end(), 0.0);
+  const int m = a.num_cols;
+  for (int c = 0; c < m; ++c) {
+    const int* pos = pair_pos_.data() + col_pair_begin_[c];
+    const int begin = col_kept_begin_[c], end = col_kept_begin_[c + 1];
+    for (int p = begin; p < end; ++p) {
+      const double vp = a.values[kept_pos_[p]];
+      for (int q = p; q < end; ++q) s_.values[*pos++] += vp * a.values[kept_pos_[q]];
+    }
+  }
+  std::fill(b_.begin(), b_.end(), 0.0);
+  for (size_t e = 0; e < items_.size(); ++e) {
+    const Item& item = items_[e];
+    const int d = item.dim;
+    SmallMatrix block = SmallMatrix::Identity(d, d) * beta;
+    double* b = b_.data() + item.b_offset;  // |K_e| × d
+    SmallVector ae(d);
+    for (int j = item.col_begin; j < item.col_end; ++j) {
+      const int c = item_cols_[j];
+      ae.setZero();
+      for (int k = col_elim_begin_[c]; k < col_elim_begin_[c + 1]; ++k)
+        ae[elim_comp_[k]] = a.values[elim_pos_[k]];
+      block.noalias() += ae * ae.transpose();
+      for (int k = col_kept_begin_[c]; k < col_kept_begin_[c + 1]; ++k) {
+        const double v = a.values[kept_pos_[k]];
+        double* row = b + kept_local_[k] * d;
+        for (int t = 0; t < d; ++t) row[t] += v * ae[t];
+      }
+    }
+    Eigen::LLT<SmallMatrix> llt(block);
+    if (llt.info() != Eigen::Success) {
+      *message = "an eliminated block is not positive definite";
+      return false;
+    }
+    SmallMatrix dinv = llt.solve(SmallMatrix::Identity(d, d));
+    std::copy(dinv.data(), dinv.data() + d * d, dinv_.data() + item.dinv_offset);
+    // S_KK −= B D⁻¹ Bᵀ.
+    const int kk = item.kept_end - item.kept_begin;
+    const int* pos = clique_pos_.data() + item.clique_begin;
+    SmallVector w(d);
+    for (int p = 0; p < kk; ++p) {
+      w.noalias() = dinv * Eigen::Map<const SmallVector>(b + p * d, d);
+      for (int q = p; q < kk; ++q) {
+        double dot = 0.0;
+        for (int t = 0; t < d; ++t) dot += w[t] * b[q * d + t];
+        s_.values[*pos++] -= dot;
+      }
+    }
+  }
+  return true;
+}
+
+void SchurComplement::ReduceRhs(const Eigen::VectorXd& g, Eigen::VectorXd* reduced) const {
+  const int num_kept = static_cast<int>(kept_var_.size());
+  for (int k = 0; k < num_kept; ++k) (*reduced)[k] = g[kept_var_[k]];
+  for (const Item& item : items_) {
+    const int d = item.dim;
+    const Eigen::Map<const SmallMatrix> dinv(dinv_.data() + item.dinv_offset, d, d);
+    const SmallVector t = dinv * g.segment(item.first_var, d);
+    const double* b = b_.data() + item.b_offset;
+    for (int p = item.kept_begin; p < item.kept_end; ++p, b += d) {
+      double dot = 0.0;
+      for (int i = 0; i < d; ++i) dot += b[i] * t[i];
+      (*reduced)[kept_vars_[p]] -= dot;
+    }
+  }
+}
+
+void SchurComplement::BackSubstitute(const Eigen::VectorXd& d_kept, const Eigen::VectorXd& g,
+                                     Eigen::VectorXd* d) const {
+  const int num_kept = static_cast<int>(kept_var_.size());
+  for (int k = 0; k < num_kept; ++k) (*d)[kept_var_[k]] = d_kept[k];
+  for (const Item& item : items_) {
+    const int dim = item.dim;
+    SmallVector r = g.segment(item.first_var, dim);
+    const double* b = b_.data() + item.b_offset;
+    for (int p = item.kept_begin; p < item.kept_end; ++p, b += dim) {
+      const double dk = d_kept[kept_vars_[p]];
+      for (int i = 0; i < dim; ++i) r[i] -= b[i] * dk;
+    }
+    const Eigen::Map<const SmallMatrix> dinv(dinv_.data() + item.dinv_offset, dim, dim);
+    d->segment(item.first_var, dim) = dinv * r;
+  }
+}
+
+}  // namespace gproj
