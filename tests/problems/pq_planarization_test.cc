@@ -43,6 +43,24 @@ TEST(PQPlanarizationTest, CholmodAndEigenBackendsAgree) {
   EXPECT_LT((a.problem().x() - b.problem().x()).lpNorm<Eigen::Infinity>(), 1e-10);
 }
 
+TEST(PQPlanarizationTest, EliminatingTheNormalsGivesTheSameIterates) {
+  QuadGridOptions grid;
+  grid.nu = grid.nv = 9;
+  grid.noise = 0.1;
+  const PolyMesh mesh = MakeQuadGrid(grid);
+  PQPlanarizationOptions options;
+  options.max_iterations = 6;
+  options.tolerance = 1e-300;
+  PQPlanarization with(mesh, options), without(mesh, options);
+  SolverOptions solver_options = options.ToSolverOptions();
+  const SolverSummary s1 = Solve(solver_options, &with.problem());
+  solver_options.eliminate_auxiliaries = false;
+  const SolverSummary s2 = Solve(solver_options, &without.problem());
+  EXPECT_EQ(s1.eliminated_variables, 3 * 64);
+  EXPECT_EQ(s2.eliminated_variables, 0);
+  EXPECT_LT((with.problem().x() - without.problem().x()).lpNorm<Eigen::Infinity>(), 1e-9);
+}
+
 // Fixed weights (no schedule): both solvers minimise ½ Σ w φ² + ½ ω_f² ‖P x‖² from the same
 // start and must agree on the objective; small soft weights leave planarity residuals ≤ 1e-8.
 TEST(PQPlanarizationTest, GuidedProjectionAndCeresReachTheSameObjective) {
