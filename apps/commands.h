@@ -16,5 +16,7 @@ constexpr int kExitSolverFailure = 4;  // numerical failure: nothing written
 void RegisterPlanarizeCommand(CLI::App* app, int* exit_code);
 // Registers `gproj grid` (noisy test grids).
 void RegisterGridCommand(CLI::App* app, int* exit_code);
+// Registers `gproj anet` and `gproj hnet`.
+void RegisterNetCommands(CLI::App* app, int* exit_code);
 
 }  // namespace gproj

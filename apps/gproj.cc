@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   int exit_code = gproj::kExitOk;
   gproj::RegisterPlanarizeCommand(&app, &exit_code);
   gproj::RegisterGridCommand(&app, &exit_code);
+  gproj::RegisterNetCommands(&app, &exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "apps/commands.h"
+#include "geometry/parametric_grid.h"
 #include "geometry/quad_grid.h"
 
 namespace gproj {
@@ -11,6 +12,7 @@ namespace gproj {
 void RegisterGridCommand(CLI::App* app, int* exit_code) {
   struct Args {
     std::string output;
+    std::string surface = "paraboloid";
     QuadGridOptions grid;
   };
   auto args = std::make_shared<Args>();
@@ -20,6 +22,12 @@ void RegisterGridCommand(CLI::App* app, int* exit_code) {
       "Write a quad grid over [-1,1]^2 on z = a x^2 + b y^2 + c x y with every vertex moved "
       "by uniform noise (a test input for planarize)");
   cmd->add_option("-o,--output", args->output, "Mesh to write (.obj, .off or .ply)")->required();
+  cmd->add_option(
+         "--surface", args->surface,
+         "paraboloid (z = a x^2 + b y^2 + c x y), or an asymptotic net: hypar, hyperboloid, "
+         "enneper (parameters over [-1,1]^2)")
+      ->check(CLI::IsMember({"paraboloid", "hypar", "hyperboloid", "enneper"}))
+      ->capture_default_str();
   cmd->add_option("--nu", args->grid.nu, "Vertices along u")
       ->check(CLI::Range(2, 100000))
       ->capture_default_str();
@@ -29,13 +37,24 @@ void RegisterGridCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--a", args->grid.a, "Coefficient of x^2")->capture_default_str();
   cmd->add_option("--b", args->grid.b, "Coefficient of y^2")->capture_default_str();
   cmd->add_option("--c", args->grid.c, "Coefficient of x y")->capture_default_str();
-  cmd->add_option("--noise", args->grid.noise, "Noise amplitude as a fraction of the grid spacing")
+  cmd->add_option(
+         "--noise", args->grid.noise,
+         "Noise amplitude as a fraction of the grid spacing (mean edge for asymptotic nets)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--seed", args->grid.seed, "Random seed")->capture_default_str();
   cmd->callback([args, exit_code]() {
     try {
-      WriteMeshAtomically(MakeQuadGrid(args->grid), args->output);
+      if (args->surface == "paraboloid") {
+        WriteMeshAtomically(MakeQuadGrid(args->grid), args->output);
+      } else {
+        ParametricGridOptions o;
+        o.nu = args->grid.nu;
+        o.nv = args->grid.nv;
+        o.jitter = args->grid.noise;
+        o.seed = args->grid.seed;
+        WriteMeshAtomically(MakeParametricGrid(AsymptoticSurface(args->surface), o), args->output);
+      }
       std::cout << "wrote " << args->output << ": " << args->grid.nu << " x " << args->grid.nv
                 << " vertices, noise " << args->grid.noise << " of the spacing\n";
       *exit_code = kExitOk;

@@ -5,35 +5,10 @@
 #include <vector>
 
 #include "constraints/closeness.h"
-#include "constraints/polyline_fairness.h"
 #include "constraints/quad_planarity.h"
+#include "problems/mesh_variables.h"
 
 namespace gproj {
-namespace {
-
-Eigen::Vector3d ToEigen(const PolyMesh::Point& p) { return Eigen::Vector3d(p[0], p[1], p[2]); }
-
-// Polylines through regular vertices: at an inner valence-4 vertex the two pairs of opposite
-// neighbours; at a boundary vertex of valence 3 its two boundary neighbours.
-template <typename Visit>
-void ForEachPolylineTriple(const PolyMesh& mesh, Visit visit) {
-  for (auto v : mesh.vertices()) {
-    if (mesh.is_boundary(v)) {
-      if (mesh.valence(v) != 3) continue;
-      const auto out = mesh.halfedge_handle(v);
-      const auto next = mesh.to_vertex_handle(out);
-      const auto prev = mesh.from_vertex_handle(mesh.prev_halfedge_handle(out));
-      visit(prev.idx(), v.idx(), next.idx());
-    } else if (mesh.valence(v) == 4) {
-      int ring[4], k = 0;
-      for (auto w : mesh.vv_range(v)) ring[k++] = w.idx();
-      visit(ring[0], v.idx(), ring[2]);
-      visit(ring[1], v.idx(), ring[3]);
-    }
-  }
-}
-
-}  // namespace
 
 bool PQPlanarizationOptions::IsValid(std::string* why) const {
   auto fail = [why](const std::string& text) {
@@ -115,22 +90,15 @@ PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOpti
                        std::to_string(mesh.valence(f)) + " vertices; a quad mesh is required");
   if (mesh.n_faces() == 0) throw InputError("the mesh has no faces");
 
-  center_.setZero();
-  for (auto v : mesh.vertices()) center_ += ToEigen(mesh.point(v));
-  center_ /= static_cast<double>(mesh.n_vertices());
-  double edge_sum = 0.0;
-  for (auto e : mesh.edges()) edge_sum += mesh.calc_edge_length(e);
-  scale_ = mesh.n_edges() / edge_sum;
+  norm_ = MeshNormalization::Of(mesh);
 
   VariableLayout& layout = problem_.layout();
   vertex_block_ = layout.AddBlock("vertices", static_cast<int>(mesh.n_vertices()), 3);
   normal_block_ =
       layout.AddBlock("face_normals", static_cast<int>(mesh.n_faces()), 3, /*eliminable=*/true);
   problem_.ResizeToLayout();
+  LoadVertices(mesh, norm_, vertex_block_, &problem_);
   Eigen::VectorXd& x = problem_.x();
-  for (auto v : mesh.vertices())
-    x.segment<3>(layout.Index(vertex_block_, v.idx(), 0)) =
-        (ToEigen(mesh.point(v)) - center_) * scale_;
 
   auto* planarity = problem_.AddFamily<QuadPlanarity>(options.planarity_weight);
   for (auto f : mesh.faces()) {
@@ -151,28 +119,8 @@ PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOpti
       closeness->AddTarget(layout.Item(vertex_block_, v.idx()), x.data() + index);
     }
   }
-  if (options.fairness_weight > 0.0) {
-    auto* fairness = problem_.AddFamily<PolylineFairness>(options.fairness_order, 3);
-    if (options.fairness_order == 2) {
-      ForEachPolylineTriple(mesh, [&](int a, int b, int c) {
-        fairness->AddElement({layout.Item(vertex_block_, a), layout.Item(vertex_block_, b),
-                              layout.Item(vertex_block_, c)});
-      });
-    } else {
-      // Third differences: extend each triple (a, b, c) by the next vertex beyond c when c is
-      // itself regular and the polyline continues straight through it.
-      std::vector<std::vector<std::pair<int, int>>> through(mesh.n_vertices());
-      ForEachPolylineTriple(mesh, [&](int a, int b, int c) { through[b].emplace_back(a, c); });
-      for (size_t b = 0; b < through.size(); ++b)
-        for (const auto& [a, c] : through[b])
-          for (const auto& [p, q] : through[c])
-            if (p == static_cast<int>(b) || q == static_cast<int>(b)) {
-              const int d = p == static_cast<int>(b) ? q : p;
-              fairness->AddElement({layout.Item(vertex_block_, a), layout.Item(vertex_block_, b),
-                                    layout.Item(vertex_block_, c), layout.Item(vertex_block_, d)});
-            }
-    }
-  }
+  if (options.fairness_weight > 0.0)
+    AddMeshFairness(mesh, options.fairness_order, vertex_block_, &problem_);
 }
 
 PlanarityMeasures PQPlanarization::MeasuresAt(const Eigen::VectorXd& x) const {
@@ -180,7 +128,7 @@ PlanarityMeasures PQPlanarization::MeasuresAt(const Eigen::VectorXd& x) const {
   const VariableLayout& layout = problem_.layout();
   for (auto v : current.vertices()) {
     const Eigen::Vector3d p =
-        x.segment<3>(layout.Index(vertex_block_, v.idx(), 0)) / scale_ + center_;
+        norm_.FromProblem(x.segment<3>(layout.Index(vertex_block_, v.idx(), 0)));
     current.set_point(v, PolyMesh::Point(p[0], p[1], p[2]));
   }
   return MeasurePlanarity(current, input_);
@@ -221,12 +169,7 @@ ceres::Solver::Summary PQPlanarization::SolveWithCeres(int max_iterations,
 
 PolyMesh PQPlanarization::Result() const {
   PolyMesh out = input_;
-  const VariableLayout& layout = problem_.layout();
-  for (auto v : out.vertices()) {
-    const Eigen::Vector3d p =
-        problem_.x().segment<3>(layout.Index(vertex_block_, v.idx(), 0)) / scale_ + center_;
-    out.set_point(v, PolyMesh::Point(p[0], p[1], p[2]));
-  }
+  StoreVertices(problem_, vertex_block_, norm_, &out);
   return out;
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "geometry/mesh_io.h"
+#include "problems/mesh_variables.h"
 #include "solver/ceres_adapter.h"
 #include "solver/guided_projection.h"
 #include "solver/problem.h"
@@ -81,8 +82,7 @@ class PQPlanarization {
 
   PQPlanarizationOptions options_;
   PolyMesh input_;
-  Eigen::Vector3d center_;
-  double scale_ = 1.0;  // scaled = (input − center) * scale
+  MeshNormalization norm_;
   Problem problem_;
   int vertex_block_ = -1;
   int normal_block_ = -1;

@@ -3,7 +3,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 
 #include "solver/sparse_cholesky.h"
@@ -20,11 +19,6 @@ class CholmodCholesky : public SparseCholesky {
     common_.supernodal = CHOLMOD_SUPERNODAL;
     common_.final_ll = 1;
     common_.print = 0;
-    if (const char* o = std::getenv("GPROJ_ORDERING")) {
-      common_.nmethods = 1;
-      common_.method[0].ordering = std::atoi(o);
-      common_.postorder = 1;
-    }
     common_.error_handler = nullptr;
     if (num_threads > 0) openblas_set_num_threads(num_threads);
   }
@@ -47,7 +41,6 @@ class CholmodCholesky : public SparseCholesky {
       return false;
     }
     n_ = a.num_rows;
-    if (std::getenv("GPROJ_DEBUG")) fprintf(stderr, "fl %g lnz %g\n", common_.fl, common_.lnz);
     b_ = cholmod_zeros(n_, 1, CHOLMOD_REAL, &common_);
     return true;
   }

@@ -56,6 +56,8 @@ bool SolverOptions::IsValid(std::string* why) const {
     return fail("soft_weight_decay must be in (0, 1]");
   if (!(soft_weight_floor >= 0.0 && soft_weight_floor <= 1.0))
     return fail("soft_weight_floor must be in [0, 1]");
+  if (!(initial_soft_scale >= 0.0 && initial_soft_scale <= 1.0))
+    return fail("initial_soft_scale must be in [0, 1]");
   if (!(epsilon_growth > 1.0) || !std::isfinite(epsilon_growth))
     return fail("epsilon_growth must be finite and > 1");
   if (max_retries < 0) return fail("max_retries must be ≥ 0");
@@ -151,7 +153,7 @@ SolverSummary Solve(const SolverOptions& options, Problem* problem,
   const int n_kept = eliminate ? schur.num_kept() : n;
   Eigen::VectorXd rhs(n), step(n), trial(n), check(n), reduced(n_kept), step_kept(n_kept);
   IterationRecord record;
-  double soft_scale = 1.0;
+  double soft_scale = options.initial_soft_scale;
   double schur_seconds = 0.0;
   for (int k = 0;; ++k) {
     record.iteration = k;

@@ -30,6 +30,8 @@ struct SolverOptions {
   // iteration k (decay 1: fixed weights, a fixed point minimises the weighted objective).
   double soft_weight_decay = 1.0;
   double soft_weight_floor = 0.0;
+  // Soft-weight factor at iteration 0 (e.g. small when continuing from a converged state).
+  double initial_soft_scale = 1.0;
   // On a failed factorisation or a non-finite step ε is multiplied by this and the iteration
   // retried, at most max_retries times, before the solver stops with kFailure.
   double epsilon_growth = 10.0;

@@ -1,0 +1,318 @@
+// `gproj anet` and `gproj hnet`: A-nets and H-nets (smooth skins from rational bilinear patches).
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "apps/commands.h"
+#include "geometry/mesh_io.h"
+#include "problems/anet.h"
+#include "problems/hnet.h"
+
+namespace gproj {
+namespace {
+
+struct NetArgs {
+  std::string input, output, reference, report, star_form = "normals", linear_solver = "cholmod";
+  std::string surface_mesh;
+  int samples = 8;
+  bool allow_not_simply_connected = false;
+  HNetOptions options;
+};
+
+nlohmann::json StarJson(const StarPlanarityMeasures& m) {
+  return {{"max_star_planarity", m.max_star_planarity},
+          {"mean_star_planarity", m.mean_star_planarity},
+          {"worst_vertex", m.worst_vertex},
+          {"max_displacement", m.max_displacement}};
+}
+
+void AddSharedOptions(CLI::App* cmd, NetArgs* args) {
+  ANetOptions& o = args->options.anet;
+  cmd->add_option("input", args->input,
+                  "Quad mesh roughly along asymptotic directions (.obj/.off/.ply)")
+      ->required();
+  cmd->add_option("--reference", args->reference,
+                  "Reference surface (polygon mesh) to stay close to; default: the input itself");
+  cmd->add_option("--report", args->report, "Write a JSON report (history and final measures)");
+  cmd->add_option("--star-form", args->star_form,
+                  "Vertex-star planarity: normals (auxiliary normal per inner vertex) or quads "
+                  "(n-2 quads of each star)")
+      ->check(CLI::IsMember({"normals", "quads"}))
+      ->capture_default_str();
+  cmd->add_option("--max-iterations", o.max_iterations, "Iterations of the A-net step at most")
+      ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
+  cmd->add_option("--tolerance", o.tolerance,
+                  "A-net step stops when max star planarity (neighbour distance from the star "
+                  "plane / mean edge) is <= this")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--tangent", o.tangent_weight,
+                  "Weight of the distance to the reference's tangent planes")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--point", o.point_weight,
+                  "Weight of the distance to the reference's closest points")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--fairness", o.fairness_weight, "omega_f of the polyline fairness")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--fairness-order", o.fairness_order, "2: second differences, 3: third")
+      ->check(CLI::IsMember({2, 3}))
+      ->capture_default_str();
+  cmd->add_option("--epsilon", o.epsilon, "epsilon of the proximal term eps^2 |x - x^k|^2")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--linear-solver", args->linear_solver, "cholmod or eigen")
+      ->check(CLI::IsMember({"cholmod", "eigen"}))
+      ->capture_default_str();
+}
+
+// Reads the inputs and fills the options; returns false after printing the error.
+bool Prepare(const char* name, NetArgs* args, PolyMesh* mesh,
+             std::unique_ptr<PolyMesh>* reference) {
+  args->options.anet.star_form =
+      args->star_form == "quads" ? StarPlanarityForm::kQuads : StarPlanarityForm::kNormals;
+  ParseLinearSolverType(args->linear_solver, &args->options.anet.linear_solver);
+  try {
+    *mesh = ReadMesh(args->input, MeshRequirements{true});
+    CheckANetTopology(*mesh, args->input);
+    if (!args->reference.empty()) reference->reset(new PolyMesh(ReadMesh(args->reference)));
+  } catch (const InputError& e) {
+    std::cerr << "gproj " << name << ": " << e.what() << "\n";
+    return false;
+  }
+  return true;
+}
+
+CallbackResult LogIteration(const IterationRecord& r, const StarPlanarityMeasures& m) {
+  std::printf("%5d %13.6e %13.3e %13.3e %11.3e %10.4f\n", r.iteration, r.energy,
+              m.max_star_planarity, m.mean_star_planarity, r.step_norm,
+              r.assembly_seconds + r.factorization_seconds + r.solve_seconds);
+  std::fflush(stdout);
+  return CallbackResult::kContinue;
+}
+
+void PrintHeader() {
+  std::printf("%5s %13s %13s %13s %11s %10s\n", "iter", "energy", "max_star", "mean_star", "step",
+              "time_s");
+}
+
+int RunANet(NetArgs& args) {
+  const auto start = std::chrono::steady_clock::now();
+  PolyMesh mesh;
+  std::unique_ptr<PolyMesh> reference;
+  if (!Prepare("anet", &args, &mesh, &reference)) return kExitInputError;
+  std::unique_ptr<ANet> anet;
+  try {
+    anet = std::make_unique<ANet>(mesh, reference.get(), args.options.anet);
+  } catch (const InputError& e) {
+    std::cerr << "gproj anet: " << args.input << ": " << e.what() << "\n";
+    return kExitInputError;
+  }
+  const StarPlanarityMeasures initial = anet->Measures();
+  std::printf("gproj anet: %s: %zu vertices, %zu quads, %d variables\n", args.input.c_str(),
+              mesh.n_vertices(), mesh.n_faces(), anet->problem().layout().num_variables());
+  PrintHeader();
+  nlohmann::json history = nlohmann::json::array();
+  const SolverSummary summary =
+      anet->Solve([&](const IterationRecord& r, const StarPlanarityMeasures& m) {
+        history.push_back({{"iteration", r.iteration},
+                           {"energy", r.energy},
+                           {"step", r.step_norm},
+                           {"star", StarJson(m)}});
+        return LogIteration(r, m);
+      });
+  const StarPlanarityMeasures final_measures = anet->Measures();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const bool failed = summary.termination == TerminationType::kFailure;
+  nlohmann::json report = {{"command", "anet"},
+                           {"input", args.input},
+                           {"output", failed ? "" : args.output},
+                           {"converged", summary.converged()},
+                           {"termination", std::string(TerminationTypeName(summary.termination)) +
+                                               ": " + summary.message},
+                           {"iterations", summary.num_steps()},
+                           {"seconds", seconds},
+                           {"variables", summary.num_variables},
+                           {"initial", StarJson(initial)},
+                           {"final", StarJson(final_measures)},
+                           {"history", history}};
+  try {
+    if (!failed) WriteMeshAtomically(anet->Result(), args.output);
+    if (!args.report.empty()) WriteTextFileAtomically(args.report, report.dump(2) + "\n");
+  } catch (const InputError& e) {
+    std::cerr << "gproj anet: " << e.what() << "\n";
+    return kExitInputError;
+  }
+  std::printf(
+      "%s after %d iterations, %.3f s\nfinal: max star planarity %.3e, mean %.3e, max "
+      "displacement %.3e of the bbox diagonal\n",
+      TerminationTypeName(summary.termination), summary.num_steps(), seconds,
+      final_measures.max_star_planarity, final_measures.mean_star_planarity,
+      final_measures.max_displacement);
+  if (failed) {
+    std::cerr << "gproj anet: solver failed (" << summary.message << "); nothing written\n";
+    return kExitSolverFailure;
+  }
+  std::printf("wrote %s%s%s\n", args.output.c_str(), args.report.empty() ? "" : " and ",
+              args.report.c_str());
+  return summary.converged() ? kExitOk : kExitNotConverged;
+}
+
+nlohmann::json HNetJson(const PolyMesh& mesh, const std::vector<std::array<double, 4>>& weights) {
+  nlohmann::json vertices = nlohmann::json::array(), faces = nlohmann::json::array(),
+                 w = nlohmann::json::array();
+  for (auto v : mesh.vertices()) {
+    const auto& p = mesh.point(v);
+    vertices.push_back({p[0], p[1], p[2]});
+  }
+  for (auto f : mesh.faces()) {
+    nlohmann::json face = nlohmann::json::array();
+    for (auto fv : mesh.fv_range(f)) face.push_back(fv.idx());
+    faces.push_back(face);
+    const auto& c = weights[f.idx()];
+    w.push_back({c[0], c[1], c[2], c[3]});
+  }
+  return {{"vertices", vertices}, {"faces", faces}, {"weights", w}};
+}
+
+int RunHNet(NetArgs& args) {
+  const auto start = std::chrono::steady_clock::now();
+  PolyMesh mesh;
+  std::unique_ptr<PolyMesh> reference;
+  if (!Prepare("hnet", &args, &mesh, &reference)) return kExitInputError;
+  args.options.allow_not_simply_connected = args.allow_not_simply_connected;
+  std::unique_ptr<HNet> hnet;
+  try {
+    hnet = std::make_unique<HNet>(mesh, reference.get(), args.options);
+  } catch (const InputError& e) {
+    std::cerr << "gproj hnet: " << args.input << ": " << e.what() << "\n";
+    return kExitInputError;
+  }
+  std::printf("gproj hnet: %s: %zu vertices, %zu quads\n", args.input.c_str(), mesh.n_vertices(),
+              mesh.n_faces());
+  bool header = false;
+  nlohmann::json rounds = nlohmann::json::array();
+  const HNetSummary summary = hnet->Run(
+      [&](const IterationRecord& r, const StarPlanarityMeasures& m) {
+        if (!header) {
+          std::printf("A-net step:\n");
+          PrintHeader();
+          header = true;
+        }
+        return LogIteration(r, m);
+      },
+      [&](const HNetRound& r) {
+        if (r.round == 0)
+          std::printf("H-net rounds:\n%5s %14s %12s %12s %12s %12s %8s\n", "round", "max_angle_deg",
+                      "W_change", "W_min", "W_max", "max_star", "iters");
+        std::printf("%5d %14.3e %12.3e %12.4e %12.4e %12.3e %8d\n", r.round,
+                    r.max_tangent_angle_deg, r.weight_change, r.min_w, r.max_w,
+                    r.star.max_star_planarity, r.solver_iterations);
+        std::fflush(stdout);
+        rounds.push_back({{"round", r.round},
+                          {"max_tangent_angle_deg", r.max_tangent_angle_deg},
+                          {"weight_change", r.weight_change},
+                          {"w_min", r.min_w},
+                          {"w_max", r.max_w},
+                          {"max_inconsistency", r.max_inconsistency},
+                          {"star", StarJson(r.star)},
+                          {"solver_iterations", r.solver_iterations},
+                          {"seconds", r.seconds}});
+      });
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (summary.rounds.empty()) {
+    std::cerr << "gproj hnet: " << summary.message << "; nothing written\n";
+    return kExitSolverFailure;
+  }
+  const HNetRound& last = summary.rounds.back();
+  nlohmann::json violations = nlohmann::json::array();
+  for (const auto& [a, b] : summary.equitwist_violations) violations.push_back({a, b});
+  nlohmann::json report = {{"command", "hnet"},
+                           {"input", args.input},
+                           {"output", args.output},
+                           {"converged", summary.converged},
+                           {"termination", summary.message},
+                           {"iterations", summary.anet_summary.num_steps()},
+                           {"rounds", rounds},
+                           {"seconds", seconds},
+                           {"variables", summary.variables},
+                           {"simply_connected", summary.simply_connected},
+                           {"equitwist_violations", violations},
+                           {"final",
+                            {{"max_tangent_angle_deg", last.max_tangent_angle_deg},
+                             {"w_min", last.min_w},
+                             {"w_max", last.max_w},
+                             {"star", StarJson(last.star)}}}};
+  try {
+    WriteTextFileAtomically(args.output, HNetJson(hnet->mesh(), hnet->weights()).dump(1) + "\n");
+    if (!args.surface_mesh.empty())
+      WriteMeshAtomically(SampleHNetSurface(hnet->mesh(), hnet->weights(), args.samples),
+                          args.surface_mesh);
+    if (!args.report.empty()) WriteTextFileAtomically(args.report, report.dump(2) + "\n");
+  } catch (const InputError& e) {
+    std::cerr << "gproj hnet: " << e.what() << "\n";
+    return kExitInputError;
+  }
+  std::printf(
+      "%s after %zu rounds, %.3f s\nfinal: max tangent-plane angle %.3e deg, W in [%.4g, %.4g], "
+      "max star planarity %.3e, max displacement %.3e of the bbox diagonal\n",
+      summary.message.c_str(), summary.rounds.size(), seconds, last.max_tangent_angle_deg,
+      last.min_w, last.max_w, last.star.max_star_planarity, last.star.max_displacement);
+  if (!summary.equitwist_violations.empty())
+    std::printf("warning: %zu inner edges violate the equitwist condition (listed in the report)\n",
+                summary.equitwist_violations.size());
+  if (!summary.simply_connected)
+    std::printf("warning: the mesh is not simply connected; the result is an optimisation only\n");
+  std::printf("wrote %s%s%s%s%s\n", args.output.c_str(), args.surface_mesh.empty() ? "" : ", ",
+              args.surface_mesh.c_str(), args.report.empty() ? "" : ", ", args.report.c_str());
+  return summary.converged ? kExitOk : kExitNotConverged;
+}
+
+}  // namespace
+
+void RegisterNetCommands(CLI::App* app, int* exit_code) {
+  auto anet = std::make_shared<NetArgs>();
+  CLI::App* a = app->add_subcommand(
+      "anet",
+      "A-net: make the vertex stars of a quad mesh planar, close to a reference surface and "
+      "fair (004 §3.2). Exit codes as for planarize.");
+  AddSharedOptions(a, anet.get());
+  a->add_option("-o,--output", anet->output, "A-net mesh to write")->required();
+  a->callback([anet, exit_code]() { *exit_code = RunANet(*anet); });
+
+  auto hnet = std::make_shared<NetArgs>();
+  CLI::App* h = app->add_subcommand(
+      "hnet",
+      "H-net: extend an A-net (running the A-net step first when needed) to smoothly joined "
+      "rational bilinear patches (004 §2-3). Exit codes as for planarize.");
+  AddSharedOptions(h, hnet.get());
+  h->add_option("-o,--output", hnet->output,
+                "H-net JSON to write: vertices, quad faces, four corner weights per face")
+      ->required();
+  h->add_option("--surface-mesh", hnet->surface_mesh,
+                "Also write a triangle mesh sampling every patch (.obj/.off/.ply)");
+  h->add_option("--samples", hnet->samples, "Samples per patch edge for --surface-mesh")
+      ->check(CLI::Range(1, 200))
+      ->capture_default_str();
+  h->add_option("--rounds", hnet->options.max_rounds,
+                "Alternations of weight and vertex updates at most")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  h->add_option("--frame-weight", hnet->options.frame_weight, "Weight of frame-point planarity")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  h->add_flag(
+      "--allow-not-simply-connected", hnet->allow_not_simply_connected,
+      "Optimise meshes that are not simply connected (no exact extension exists in general)");
+  h->callback([hnet, exit_code]() { *exit_code = RunHNet(*hnet); });
+}
+
+}  // namespace gproj

@@ -1,0 +1,242 @@
+#include "problems/anet.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "constraints/closeness.h"
+#include "constraints/frozen_quad_planarity.h"
+#include "constraints/normal_orthogonality.h"
+#include "constraints/surface_closeness.h"
+#include "solver/ceres_adapter.h"
+
+namespace gproj {
+namespace {
+
+// Neighbours of v in cyclic order.
+std::vector<int> Ring(const PolyMesh& mesh, PolyMesh::VertexHandle v) {
+  std::vector<int> ring;
+  for (auto w : mesh.vv_range(v)) ring.push_back(w.idx());
+  return ring;
+}
+
+// Unit normal of the least-squares plane through c containing the points as well as possible.
+Eigen::Vector3d StarNormal(const Eigen::Vector3d& c, const std::vector<Eigen::Vector3d>& points) {
+  Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+  for (const auto& p : points) m += (p - c) * (p - c).transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(m);
+  return eigen.eigenvectors().col(0);
+}
+
+}  // namespace
+
+bool ANetOptions::IsValid(std::string* why) const {
+  auto fail = [why](const std::string& text) {
+    *why = text;
+    return false;
+  };
+  for (double w : {planarity_weight, tangent_weight, point_weight, anchor_weight, fairness_weight})
+    if (!(w >= 0.0) || !std::isfinite(w)) return fail("weights must be finite and ≥ 0");
+  if (!(planarity_weight > 0.0)) return fail("planarity weight must be > 0");
+  if (fairness_order != 2 && fairness_order != 3) return fail("fairness order must be 2 or 3");
+  if (!(tolerance > 0.0) || !std::isfinite(tolerance))
+    return fail("tolerance must be finite and > 0");
+  return ToSolverOptions().IsValid(why);
+}
+
+SolverOptions ANetOptions::ToSolverOptions() const {
+  SolverOptions s;
+  s.max_iterations = max_iterations;
+  s.residual_tolerance = 0.0;
+  s.step_tolerance = 1e-15;
+  s.fairness_weight = fairness_weight;
+  s.epsilon = epsilon;
+  s.soft_weight_decay = soft_weight_decay;
+  s.soft_weight_floor = soft_weight_floor;
+  s.linear_solver = linear_solver;
+  s.num_threads = num_threads;
+  return s;
+}
+
+StarPlanarityMeasures MeasureStarPlanarity(const PolyMesh& mesh, const PolyMesh& reference) {
+  StarPlanarityMeasures m;
+  const double mean_edge = MeanEdgeLength(mesh);
+  double sum = 0.0;
+  int count = 0;
+  std::vector<Eigen::Vector3d> points;
+  for (auto v : mesh.vertices()) {
+    if (mesh.valence(v) < 3) continue;
+    const Eigen::Vector3d c = ToEigen(mesh.point(v));
+    points.clear();
+    for (auto w : mesh.vv_range(v)) points.push_back(ToEigen(mesh.point(w)));
+    const Eigen::Vector3d n = StarNormal(c, points);
+    double worst = 0.0;
+    for (const auto& p : points) worst = std::max(worst, std::abs(n.dot(p - c)));
+    worst /= mean_edge;
+    if (worst > m.max_star_planarity) {
+      m.max_star_planarity = worst;
+      m.worst_vertex = v.idx();
+    }
+    sum += worst;
+    ++count;
+  }
+  m.mean_star_planarity = count > 0 ? sum / count : 0.0;
+  Eigen::AlignedBox3d box;
+  for (auto v : reference.vertices()) box.extend(ToEigen(reference.point(v)));
+  const double diagonal = box.diagonal().norm();
+  for (auto v : mesh.vertices())
+    m.max_displacement =
+        std::max(m.max_displacement,
+                 (ToEigen(mesh.point(v)) - ToEigen(reference.point(v))).norm() / diagonal);
+  return m;
+}
+
+void CheckANetTopology(const PolyMesh& mesh, const std::string& path) {
+  const std::string prefix = path.empty() ? "" : path + ": ";
+  for (auto f : mesh.faces())
+    if (mesh.valence(f) != 4)
+      throw InputError(prefix + "face " + std::to_string(f.idx()) + " has " +
+                       std::to_string(mesh.valence(f)) + " vertices; a quad mesh is required");
+  for (auto v : mesh.vertices())
+    if (!mesh.is_boundary(v) && mesh.valence(v) % 2 != 0)
+      throw InputError(prefix + "vertex " + std::to_string(v.idx()) + " has valence " +
+                       std::to_string(mesh.valence(v)) +
+                       "; inner vertices of an A-net must have even valence");
+}
+
+ANetFamilies AddANetLayout(const PolyMesh& mesh, const ANetOptions& options, Problem* problem) {
+  ANetFamilies out;
+  for (auto v : mesh.vertices())
+    if (mesh.valence(v) >= 3) out.star_vertices.push_back(v.idx());
+  if (options.star_form == StarPlanarityForm::kNormals)
+    out.normal_block = problem->layout().AddBlock(
+        "star_normals", static_cast<int>(out.star_vertices.size()), 3, /*eliminable=*/true);
+  return out;
+}
+
+void AddANetFamilies(const PolyMesh& mesh, const ANetOptions& options, int vertex_block,
+                     const ANetFamilies& layout_info, const ClosestPointQuery* reference,
+                     const MeshNormalization& norm, Problem* problem) {
+  const VariableLayout& layout = problem->layout();
+  auto item = [&](int v) { return layout.Item(vertex_block, v); };
+  if (options.star_form == StarPlanarityForm::kNormals) {
+    auto* star =
+        problem->AddFamily<EdgeNormalOrthogonality>("star_planarity", options.planarity_weight);
+    auto* unit = problem->AddFamily<UnitNormal>("star_unit_normal", options.planarity_weight);
+    for (size_t k = 0; k < layout_info.star_vertices.size(); ++k) {
+      const int v = layout_info.star_vertices[k];
+      const int normal = layout.Item(layout_info.normal_block, static_cast<int>(k));
+      unit->AddElement({normal});
+      for (int w : Ring(mesh, PolyMesh::VertexHandle(v)))
+        star->AddElement({normal, item(v), item(w)});
+    }
+  } else {
+    auto* quads =
+        problem->AddFamily<FrozenQuadPlanarity>("star_planarity", options.planarity_weight);
+    for (int v : layout_info.star_vertices) {
+      const std::vector<int> ring = Ring(mesh, PolyMesh::VertexHandle(v));
+      for (size_t i = 1; i + 1 < ring.size(); ++i)
+        quads->AddElement({item(v), item(ring[0]), item(ring[i]), item(ring[i + 1])});
+    }
+  }
+  if (reference != nullptr) {
+    SurfaceProjector projector = [reference, norm](const Eigen::Vector3d& q, Eigen::Vector3d* p,
+                                                   Eigen::Vector3d* n) {
+      reference->Project(norm.FromProblem(q), p, n);
+      *p = norm.ToProblem(*p);
+    };
+    if (options.tangent_weight > 0.0) {
+      auto* tangent =
+          problem->AddFamily<SurfaceTangentCloseness>(projector, options.tangent_weight);
+      for (auto v : mesh.vertices()) tangent->AddElement({item(v.idx())});
+    }
+    if (options.point_weight > 0.0) {
+      auto* point = problem->AddFamily<SurfacePointCloseness>(projector, options.point_weight);
+      for (auto v : mesh.vertices()) point->AddElement({item(v.idx())});
+    }
+  }
+  if (options.anchor_weight > 0.0) {
+    auto* anchor = problem->AddFamily<Closeness>(3, options.anchor_weight, "anchor");
+    for (auto v : mesh.vertices()) {
+      const Eigen::Vector3d p = norm.ToProblem(ToEigen(mesh.point(v)));
+      anchor->AddTarget(item(v.idx()), p.data());
+    }
+  }
+  if (options.fairness_weight > 0.0)
+    AddMeshFairness(mesh, options.fairness_order, vertex_block, problem);
+}
+
+void LoadANetNormals(const PolyMesh& mesh, int vertex_block, const ANetFamilies& layout_info,
+                     Problem* problem) {
+  if (layout_info.normal_block < 0) return;
+  const VariableLayout& layout = problem->layout();
+  Eigen::VectorXd& x = problem->x();
+  std::vector<Eigen::Vector3d> points;
+  for (size_t k = 0; k < layout_info.star_vertices.size(); ++k) {
+    const int v = layout_info.star_vertices[k];
+    points.clear();
+    for (int w : Ring(mesh, PolyMesh::VertexHandle(v)))
+      points.push_back(x.segment<3>(layout.Index(vertex_block, w, 0)));
+    x.segment<3>(layout.Index(layout_info.normal_block, static_cast<int>(k), 0)) =
+        StarNormal(x.segment<3>(layout.Index(vertex_block, v, 0)), points);
+  }
+}
+
+ANet::ANet(const PolyMesh& mesh, const PolyMesh* reference, const ANetOptions& options)
+    : options_(options), input_(mesh) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("invalid A-net options: " + why);
+  if (mesh.n_faces() == 0) throw InputError("the mesh has no faces");
+  CheckANetTopology(mesh, "");
+  norm_ = MeshNormalization::Of(mesh);
+  reference_ = std::make_unique<ClosestPointQuery>(reference != nullptr ? *reference : mesh);
+  vertex_block_ = problem_.layout().AddBlock("vertices", static_cast<int>(mesh.n_vertices()), 3);
+  families_ = AddANetLayout(mesh, options, &problem_);
+  problem_.ResizeToLayout();
+  LoadVertices(mesh, norm_, vertex_block_, &problem_);
+  LoadANetNormals(mesh, vertex_block_, families_, &problem_);
+  AddANetFamilies(mesh, options, vertex_block_, families_, reference_.get(), norm_, &problem_);
+}
+
+StarPlanarityMeasures ANet::MeasuresAt(const Eigen::VectorXd& x) const {
+  PolyMesh current = input_;
+  const VariableLayout& layout = problem_.layout();
+  for (auto v : current.vertices()) {
+    const Eigen::Vector3d p =
+        norm_.FromProblem(x.segment<3>(layout.Index(vertex_block_, v.idx(), 0)));
+    current.set_point(v, PolyMesh::Point(p[0], p[1], p[2]));
+  }
+  return MeasureStarPlanarity(current, input_);
+}
+
+StarPlanarityMeasures ANet::Measures() const { return MeasuresAt(problem_.x()); }
+
+SolverSummary ANet::Solve(const Callback& callback) {
+  const double tolerance = options_.tolerance;
+  return gproj::Solve(
+      options_.ToSolverOptions(), &problem_,
+      [&](const IterationRecord& record, const Eigen::VectorXd& x) {
+        const StarPlanarityMeasures m = MeasuresAt(x);
+        CallbackResult result = callback ? callback(record, m) : CallbackResult::kContinue;
+        if (result == CallbackResult::kContinue && m.max_star_planarity <= tolerance)
+          result = CallbackResult::kConverged;
+        return result;
+      });
+}
+
+ceres::Solver::Summary ANet::SolveWithCeres(int max_iterations, double soft_scale) {
+  CeresOptions options;
+  options.max_iterations = max_iterations;
+  options.fairness_weight = options_.fairness_weight;
+  options.soft_scale = soft_scale;
+  options.num_threads = std::max(1, options_.num_threads);
+  return gproj::SolveWithCeres(options, &problem_);
+}
+
+PolyMesh ANet::Result() const {
+  PolyMesh out = input_;
+  StoreVertices(problem_, vertex_block_, norm_, &out);
+  return out;
+}
+
+}  // namespace gproj

@@ -1,0 +1,459 @@
+#include "problems/hnet.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <limits>
+
+#include "constraints/frame_point_planarity.h"
+
+namespace gproj {
+namespace {
+
+Eigen::Vector3d P(const PolyMesh& mesh, int v) {
+  return ToEigen(mesh.point(PolyMesh::VertexHandle(v)));
+}
+
+double Det(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  return a.dot(b.cross(c));
+}
+
+std::array<int, 4> FaceVertices(const PolyMesh& mesh, PolyMesh::FaceHandle f) {
+  std::array<int, 4> v{};
+  int k = 0;
+  for (auto fv : mesh.fv_range(f)) v[k++ % 4] = fv.idx();
+  return v;
+}
+
+}  // namespace
+
+std::vector<int> TwoColourVertices(const PolyMesh& mesh) {
+  std::vector<int> colour(mesh.n_vertices(), -1);
+  for (auto start : mesh.vertices()) {
+    if (colour[start.idx()] >= 0) continue;
+    colour[start.idx()] = 0;
+    std::deque<PolyMesh::VertexHandle> queue = {start};
+    while (!queue.empty()) {
+      const auto v = queue.front();
+      queue.pop_front();
+      for (auto w : mesh.vv_range(v)) {
+        if (colour[w.idx()] < 0) {
+          colour[w.idx()] = 1 - colour[v.idx()];
+          queue.push_back(w);
+        } else if (colour[w.idx()] == colour[v.idx()]) {
+          throw InputError("the vertices cannot be 2-coloured (edge " + std::to_string(v.idx()) +
+                           "-" + std::to_string(w.idx()) +
+                           " closes an odd cycle), so the patch diagonals cannot be chosen");
+        }
+      }
+    }
+  }
+  return colour;
+}
+
+EdgeStencil EdgeStencilOf(const PolyMesh& mesh, const std::vector<int>& colour,
+                          PolyMesh::EdgeHandle e) {
+  auto h = mesh.halfedge_handle(e, 0);
+  if (colour[mesh.from_vertex_handle(h).idx()] != 0) h = mesh.halfedge_handle(e, 1);
+  const auto o = mesh.opposite_halfedge_handle(h);
+  EdgeStencil s;
+  s.b[0] = mesh.from_vertex_handle(h).idx();
+  s.b[3] = mesh.to_vertex_handle(h).idx();
+  s.b[4] = mesh.to_vertex_handle(mesh.next_halfedge_handle(h)).idx();
+  s.b[5] = mesh.to_vertex_handle(mesh.next_halfedge_handle(mesh.next_halfedge_handle(h))).idx();
+  s.b[1] = mesh.to_vertex_handle(mesh.next_halfedge_handle(o)).idx();
+  s.b[2] = mesh.to_vertex_handle(mesh.next_halfedge_handle(mesh.next_halfedge_handle(o))).idx();
+  s.right_face = mesh.face_handle(h).idx();
+  s.left_face = mesh.face_handle(o).idx();
+  return s;
+}
+
+double ShapeParameterRatio(const PolyMesh& mesh, const EdgeStencil& s) {
+  auto b = [&](int i, int j) { return Eigen::Vector3d(P(mesh, s.b[i]) - P(mesh, s.b[j])); };
+  return Det(b(3, 0), b(5, 0), b(2, 0)) / Det(b(3, 0), b(1, 0), b(4, 0));
+}
+
+std::pair<double, double> ClosureProducts(const PolyMesh& mesh, PolyMesh::VertexHandle v) {
+  // B[1..2n]: odd entries the edge neighbours, even entries the free vertices of the quads.
+  std::vector<Eigen::Vector3d> b;
+  const Eigen::Vector3d b0 = ToEigen(mesh.point(v));
+  auto h = mesh.halfedge_handle(v);
+  const auto first = h;
+  do {
+    b.push_back(ToEigen(mesh.point(mesh.to_vertex_handle(h))) - b0);
+    b.push_back(ToEigen(mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)))) - b0);
+    h = mesh.opposite_halfedge_handle(mesh.prev_halfedge_handle(h));
+  } while (h != first);
+  const int m = static_cast<int>(b.size());  // 2n
+  auto at = [&](int k) -> const Eigen::Vector3d& { return b[((k - 1) % m + m) % m]; };
+  double lhs = 1.0, rhs = 1.0;
+  for (int i = 1; i <= m / 2; ++i) {
+    lhs *= Det(at(2 * i + 1), at(2 * i + 3), at(2 * i));
+    rhs *= Det(at(2 * i + 1), at(2 * i - 1), at(2 * i + 2));
+  }
+  return {lhs, rhs};
+}
+
+double OptimalShapeScale(const std::vector<double>& w) {
+  double s2 = 0.0, s1 = 0.0, si = 0.0, si2 = 0.0;
+  for (double x : w) {
+    s2 += x * x;
+    s1 += x;
+    si += 1.0 / x;
+    si2 += 1.0 / (x * x);
+  }
+  auto objective = [&w](double lambda) {
+    double f = 0.0;
+    for (double x : w) f += std::pow(lambda * x - 1.0, 2) + std::pow(1.0 / (lambda * x) - 1.0, 2);
+    return f;
+  };
+  // Companion matrix of λ⁴ + a3 λ³ + a2 λ² + a1 λ + a0 (divided by ΣW²).
+  const double a3 = -s1 / s2, a2 = 0.0, a1 = si / s2, a0 = -si2 / s2;
+  Eigen::Matrix4d companion = Eigen::Matrix4d::Zero();
+  companion(1, 0) = companion(2, 1) = companion(3, 2) = 1.0;
+  companion(0, 3) = -a0;
+  companion(1, 3) = -a1;
+  companion(2, 3) = -a2;
+  companion(3, 3) = -a3;
+  const Eigen::Vector4cd roots = Eigen::EigenSolver<Eigen::Matrix4d>(companion).eigenvalues();
+  double best = 1.0, best_f = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 4; ++i) {
+    const double re = roots[i].real();
+    if (re <= 0.0 || std::abs(roots[i].imag()) > 1e-8 * std::abs(re)) continue;
+    const double f = objective(re);
+    if (f < best_f) {
+      best_f = f;
+      best = re;
+    }
+  }
+  return best;
+}
+
+ShapeParameters PropagateShapeParameters(const PolyMesh& mesh, const std::vector<int>& colour,
+                                         int seed_face) {
+  ShapeParameters out;
+  out.w.assign(mesh.n_faces(), std::numeric_limits<double>::quiet_NaN());
+  std::vector<bool> visited(mesh.n_faces(), false);
+  auto spread = [&](int seed) {
+    visited[seed] = true;
+    out.w[seed] = 1.0;
+    std::deque<int> queue = {seed};
+    while (!queue.empty()) {
+      const auto f = PolyMesh::FaceHandle(queue.front());
+      queue.pop_front();
+      for (auto h : mesh.fh_range(f)) {
+        const auto edge = mesh.edge_handle(h);
+        if (mesh.is_boundary(edge)) continue;
+        const EdgeStencil s = EdgeStencilOf(mesh, colour, edge);
+        const double ratio = ShapeParameterRatio(mesh, s);  // W_right / W_left
+        const bool f_is_left = s.left_face == f.idx();
+        const int g = f_is_left ? s.right_face : s.left_face;
+        const double predicted = f_is_left ? out.w[f.idx()] * ratio : out.w[f.idx()] / ratio;
+        if (!visited[g]) {
+          visited[g] = true;
+          out.w[g] = predicted;
+          queue.push_back(g);
+        } else {
+          out.max_inconsistency =
+              std::max(out.max_inconsistency, std::abs(predicted / out.w[g] - 1.0));
+        }
+      }
+    }
+  };
+  spread(seed_face);
+  for (auto f : mesh.faces())
+    if (!visited[f.idx()]) spread(f.idx());
+  out.lambda = OptimalShapeScale(out.w);
+  for (double& x : out.w) x *= out.lambda;
+  return out;
+}
+
+std::array<double, 4> CornerWeights(const PolyMesh& mesh, const std::vector<int>& colour,
+                                    PolyMesh::FaceHandle f, double w) {
+  const std::array<int, 4> v = FaceVertices(mesh, f);
+  std::array<double, 4> weights = {1.0, 1.0, 1.0, 1.0};
+  for (int k = 0; k < 4; ++k)
+    if (colour[v[k]] == 0) {
+      weights[k] = w;
+      break;
+    }
+  return weights;
+}
+
+void EvaluatePatch(const PolyMesh& mesh, PolyMesh::FaceHandle f, const std::array<double, 4>& w,
+                   double u, double v, Eigen::Vector3d* point, Eigen::Vector3d* normal) {
+  const std::array<int, 4> c = FaceVertices(mesh, f);
+  const double basis[4] = {(1 - u) * (1 - v), u * (1 - v), u * v, (1 - u) * v};
+  const double du[4] = {-(1 - v), 1 - v, v, -v};
+  const double dv[4] = {-(1 - u), -u, u, 1 - u};
+  Eigen::Vector4d x = Eigen::Vector4d::Zero(), xu = x, xv = x;
+  for (int i = 0; i < 4; ++i) {
+    Eigen::Vector4d h;
+    h << w[i] * P(mesh, c[i]), w[i];
+    x += basis[i] * h;
+    xu += du[i] * h;
+    xv += dv[i] * h;
+  }
+  *point = x.head<3>() / x[3];
+  const Eigen::Vector3d tu = (xu.head<3>() * x[3] - x.head<3>() * xu[3]) / (x[3] * x[3]);
+  const Eigen::Vector3d tv = (xv.head<3>() * x[3] - x.head<3>() * xv[3]) / (x[3] * x[3]);
+  *normal = tu.cross(tv).normalized();
+}
+
+namespace {
+// (u, v) of the point at fraction t of the parameter along corner k → k+1 of a patch.
+void EdgeParameter(int k, double t, double* u, double* v) {
+  switch (k) {
+    case 0:
+      *u = t, *v = 0;
+      break;
+    case 1:
+      *u = 1, *v = t;
+      break;
+    case 2:
+      *u = 1 - t, *v = 1;
+      break;
+    default:
+      *u = 0, *v = 1 - t;
+      break;
+  }
+}
+// Normal of face f's patch at the point (1 − s) a + s b of its edge from vertex a to vertex b.
+Eigen::Vector3d NormalOnEdge(const PolyMesh& mesh, PolyMesh::FaceHandle f,
+                             const std::array<double, 4>& w, int a, double s) {
+  const std::array<int, 4> c = FaceVertices(mesh, f);
+  int k = 0;
+  while (c[k] != a) ++k;
+  const double wa = w[k], wb = w[(k + 1) % 4];
+  const double t = s * wa / (s * wa + (1 - s) * wb);
+  double u, v;
+  EdgeParameter(k, t, &u, &v);
+  Eigen::Vector3d point, normal;
+  EvaluatePatch(mesh, f, w, u, v, &point, &normal);
+  return normal;
+}
+}  // namespace
+
+double MaxTangentPlaneAngle(const PolyMesh& mesh, const std::vector<std::array<double, 4>>& weights,
+                            int samples) {
+  double worst = 0.0;
+  for (auto e : mesh.edges()) {
+    if (mesh.is_boundary(e)) continue;
+    const auto h = mesh.halfedge_handle(e, 0);
+    const auto o = mesh.opposite_halfedge_handle(h);
+    const int a = mesh.from_vertex_handle(h).idx(), b = mesh.to_vertex_handle(h).idx();
+    const auto f = mesh.face_handle(h), g = mesh.face_handle(o);
+    for (int k = 0; k <= samples; ++k) {
+      const double s = static_cast<double>(k) / samples;
+      const Eigen::Vector3d n1 = NormalOnEdge(mesh, f, weights[f.idx()], a, s);
+      const Eigen::Vector3d n2 = NormalOnEdge(mesh, g, weights[g.idx()], b, 1.0 - s);
+      const double sine = n1.cross(n2).norm();
+      worst = std::max(worst, std::asin(std::min(1.0, sine)) * 180.0 / M_PI);
+    }
+  }
+  return worst;
+}
+
+std::vector<std::pair<int, int>> EquitwistViolations(const PolyMesh& mesh,
+                                                     const std::vector<int>& colour) {
+  std::vector<std::pair<int, int>> out;
+  for (auto e : mesh.edges()) {
+    if (mesh.is_boundary(e)) continue;
+    if (ShapeParameterRatio(mesh, EdgeStencilOf(mesh, colour, e)) <= 0.0) {
+      const auto h = mesh.halfedge_handle(e, 0);
+      out.emplace_back(mesh.from_vertex_handle(h).idx(), mesh.to_vertex_handle(h).idx());
+    }
+  }
+  return out;
+}
+
+std::string SimplyConnectedProblem(const PolyMesh& mesh) {
+  // Connected components over faces.
+  std::vector<int> component(mesh.n_faces(), -1);
+  int components = 0;
+  for (auto f0 : mesh.faces()) {
+    if (component[f0.idx()] >= 0) continue;
+    std::deque<PolyMesh::FaceHandle> queue = {f0};
+    component[f0.idx()] = components;
+    while (!queue.empty()) {
+      const auto f = queue.front();
+      queue.pop_front();
+      for (auto g : mesh.ff_range(f))
+        if (component[g.idx()] < 0) {
+          component[g.idx()] = components;
+          queue.push_back(g);
+        }
+    }
+    ++components;
+  }
+  if (components != 1)
+    return "the mesh has " + std::to_string(components) + " connected components";
+  std::vector<bool> seen(mesh.n_halfedges(), false);
+  int loops = 0;
+  for (auto h : mesh.halfedges()) {
+    if (!mesh.is_boundary(h) || seen[h.idx()]) continue;
+    ++loops;
+    for (auto k = h; !seen[k.idx()]; k = mesh.next_halfedge_handle(k)) seen[k.idx()] = true;
+  }
+  int used_vertices = 0;
+  for (auto v : mesh.vertices()) used_vertices += mesh.is_isolated(v) ? 0 : 1;
+  const int euler =
+      used_vertices - static_cast<int>(mesh.n_edges()) + static_cast<int>(mesh.n_faces());
+  const int genus2 = 2 - euler - loops;  // 2g
+  if (genus2 == 0 && loops <= 1) return "";
+  return "the mesh is not simply connected (" + std::to_string(loops) + " boundary loops, genus " +
+         std::to_string(genus2 / 2) + ")";
+}
+
+PolyMesh SampleHNetSurface(const PolyMesh& mesh, const std::vector<std::array<double, 4>>& weights,
+                           int samples) {
+  PolyMesh out;
+  std::vector<PolyMesh::VertexHandle> grid((samples + 1) * (samples + 1));
+  for (auto f : mesh.faces()) {
+    for (int i = 0; i <= samples; ++i)
+      for (int j = 0; j <= samples; ++j) {
+        Eigen::Vector3d point, normal;
+        EvaluatePatch(mesh, f, weights[f.idx()], static_cast<double>(i) / samples,
+                      static_cast<double>(j) / samples, &point, &normal);
+        grid[i * (samples + 1) + j] = out.add_vertex(PolyMesh::Point(point[0], point[1], point[2]));
+      }
+    for (int i = 0; i < samples; ++i)
+      for (int j = 0; j < samples; ++j) {
+        const auto a = grid[i * (samples + 1) + j], b = grid[(i + 1) * (samples + 1) + j],
+                   c = grid[(i + 1) * (samples + 1) + j + 1], d = grid[i * (samples + 1) + j + 1];
+        out.add_face(a, b, c);
+        out.add_face(a, c, d);
+      }
+  }
+  return out;
+}
+
+HNet::HNet(const PolyMesh& mesh, const PolyMesh* reference, const HNetOptions& options)
+    : options_(options), input_(mesh), mesh_(mesh), reference_(reference) {
+  std::string why;
+  if (!options.anet.IsValid(&why)) throw InputError("invalid H-net options: " + why);
+  if (!(options.frame_weight > 0.0) || options.max_rounds < 1 || options.iterations_per_round < 1)
+    throw InputError("invalid H-net options: frame weight > 0, rounds and iterations ≥ 1");
+  if (mesh.n_faces() == 0) throw InputError("the mesh has no faces");
+  CheckANetTopology(mesh, "");
+  topology_note_ = SimplyConnectedProblem(mesh);
+  if (!topology_note_.empty() && !options.allow_not_simply_connected)
+    throw InputError(topology_note_ +
+                     "; the exact H-net extension needs a simply connected A-net (pass "
+                     "--allow-not-simply-connected to optimise anyway)");
+  colour_ = TwoColourVertices(mesh);
+}
+
+HNetSummary HNet::Run(const IterationCallback& on_iteration, const RoundCallback& on_round) {
+  const auto start = std::chrono::steady_clock::now();
+  HNetSummary summary;
+  summary.simply_connected = topology_note_.empty();
+  const PolyMesh& reference = reference_ != nullptr ? *reference_ : input_;
+
+  // 1. The A-net step, unless the stars are already planar to tolerance.
+  if (MeasureStarPlanarity(mesh_, mesh_).max_star_planarity > options_.anet.tolerance) {
+    ANet anet(mesh_, &reference, options_.anet);
+    summary.anet_summary = anet.Solve(on_iteration);
+    summary.anet_step_run = true;
+    if (summary.anet_summary.termination == TerminationType::kFailure) {
+      summary.message = "A-net step failed: " + summary.anet_summary.message;
+      return summary;
+    }
+    mesh_ = anet.Result();
+  }
+
+  // 2. The vertex-update problem: A-net families + frame-point planarity per inner edge.
+  const MeshNormalization norm = MeshNormalization::Of(mesh_);
+  ClosestPointQuery query(reference);
+  Problem problem;
+  const int vertex_block =
+      problem.layout().AddBlock("vertices", static_cast<int>(mesh_.n_vertices()), 3);
+  const ANetFamilies anet = AddANetLayout(mesh_, options_.anet, &problem);
+  std::vector<PolyMesh::EdgeHandle> inner_edges;
+  for (auto e : mesh_.edges())
+    if (!mesh_.is_boundary(e)) inner_edges.push_back(e);
+  const int edge_block = problem.layout().AddBlock(
+      "frame_normals", static_cast<int>(inner_edges.size()), 3, /*eliminable=*/true);
+  problem.ResizeToLayout();
+  summary.variables = problem.layout().num_variables();
+  LoadVertices(mesh_, norm, vertex_block, &problem);
+  LoadANetNormals(mesh_, vertex_block, anet, &problem);
+  AddANetFamilies(mesh_, options_.anet, vertex_block, anet, &query, norm, &problem);
+  auto* frame = problem.AddFamily<FramePointPlanarity>(options_.frame_weight);
+  std::vector<EdgeStencil> stencils;
+  for (size_t k = 0; k < inner_edges.size(); ++k) {
+    const EdgeStencil s = EdgeStencilOf(mesh_, colour_, inner_edges[k]);
+    stencils.push_back(s);
+    std::vector<int> items = {problem.layout().Item(edge_block, static_cast<int>(k))};
+    for (int i = 0; i < 6; ++i) items.push_back(problem.layout().Item(vertex_block, s.b[i]));
+    frame->AddEdge(items[0], items[1], items[2], items[3], items[4], items[5], items[6], 1.0, 1.0);
+  }
+  summary.equitwist_violations = EquitwistViolations(mesh_, colour_);
+
+  SolverOptions solver_options = options_.anet.ToSolverOptions();
+  solver_options.max_iterations = options_.iterations_per_round;
+  solver_options.residual_tolerance = options_.residual_tolerance;
+  solver_options.initial_soft_scale = options_.round_soft_scale;
+  bool last_solve_converged = true;
+  for (int round = 0; round < options_.max_rounds; ++round) {
+    const auto round_start = std::chrono::steady_clock::now();
+    StoreVertices(problem, vertex_block, norm, &mesh_);
+    const ShapeParameters shape = PropagateShapeParameters(mesh_, colour_, 0);
+    HNetRound r;
+    r.round = round;
+    r.max_inconsistency = shape.max_inconsistency;
+    if (!w_.empty())
+      for (size_t f = 0; f < w_.size(); ++f)
+        r.weight_change = std::max(r.weight_change, std::abs(shape.w[f] / w_[f] - 1.0));
+    w_ = shape.w;
+    weights_.clear();
+    for (auto f : mesh_.faces()) weights_.push_back(CornerWeights(mesh_, colour_, f, w_[f.idx()]));
+    r.min_w = *std::min_element(w_.begin(), w_.end());
+    r.max_w = *std::max_element(w_.begin(), w_.end());
+    r.max_tangent_angle_deg = MaxTangentPlaneAngle(mesh_, weights_);
+    r.star = MeasureStarPlanarity(mesh_, reference);
+    const bool settled =
+        round > 0 && r.weight_change <= options_.weight_tolerance && last_solve_converged;
+    if (settled || round + 1 == options_.max_rounds) {
+      r.seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - round_start).count();
+      summary.rounds.push_back(r);
+      if (on_round) on_round(r);
+      summary.converged = settled;
+      summary.message =
+          settled ? "weights and vertices settled" : "maximum number of rounds reached";
+      break;
+    }
+    // 3. Vertex update with the weights frozen.
+    Eigen::VectorXd& x = problem.x();
+    for (size_t k = 0; k < stencils.size(); ++k) {
+      const EdgeStencil& s = stencils[k];
+      const double wl = w_[s.left_face], wr = w_[s.right_face];
+      frame->SetShapeParameters(static_cast<int>(k), wl, wr);
+      auto b = [&](int i) {
+        return Eigen::Vector3d(x.segment<3>(problem.layout().Index(vertex_block, s.b[i], 0)));
+      };
+      const Eigen::Vector3d f1 = (b(1) + wl * b(2)) / (1 + wl), f4 = (b(5) + wr * b(4)) / (1 + wr);
+      Eigen::Vector3d n = (b(3) - b(0)).cross(f1 - f4);
+      if (n.norm() > 0) n.normalize();
+      x.segment<3>(problem.layout().Index(edge_block, static_cast<int>(k), 0)) = n;
+    }
+    const SolverSummary s = gproj::Solve(solver_options, &problem);
+    if (s.termination == TerminationType::kFailure) {
+      summary.message = "vertex update failed: " + s.message;
+      break;
+    }
+    last_solve_converged = s.converged();
+    r.solver_iterations = s.num_steps();
+    r.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - round_start).count();
+    summary.rounds.push_back(r);
+    if (on_round) on_round(r);
+  }
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace gproj
