@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "constraints/closeness.h"
-#include "constraints/frozen_quad_planarity.h"
 #include "constraints/normal_orthogonality.h"
+#include "constraints/quad_diagonal_planarity.h"
 #include "constraints/surface_closeness.h"
 #include "solver/ceres_adapter.h"
 
@@ -132,11 +132,15 @@ void AddANetFamilies(const PolyMesh& mesh, const ANetOptions& options, int verte
     }
   } else {
     auto* quads =
-        problem->AddFamily<FrozenQuadPlanarity>("star_planarity", options.planarity_weight);
+        problem->AddFamily<QuadDiagonalPlanarity>("star_planarity", options.planarity_weight);
+    // n − 3 quads of neighbours make the ring planar, one quad with v puts v in that plane.
+    // (Quads of v with two opposite neighbours would be satisfied by straightening the mesh
+    // polylines instead of flattening the star.)
     for (int v : layout_info.star_vertices) {
-      const std::vector<int> ring = Ring(mesh, PolyMesh::VertexHandle(v));
-      for (size_t i = 1; i + 1 < ring.size(); ++i)
-        quads->AddElement({item(v), item(ring[0]), item(ring[i]), item(ring[i + 1])});
+      const std::vector<int> r = Ring(mesh, PolyMesh::VertexHandle(v));
+      for (size_t i = 2; i + 1 < r.size(); ++i)
+        quads->AddElement({item(r[0]), item(r[1]), item(r[i]), item(r[i + 1])});
+      quads->AddElement({item(r[0]), item(r[1]), item(r[2]), item(v)});
     }
   }
   if (reference != nullptr) {

@@ -20,7 +20,7 @@ namespace gproj {
 
 enum class StarPlanarityForm {
   kNormals,  // an auxiliary unit normal per inner vertex, orthogonal to its star's edges
-  kQuads,    // planarity of n − 2 quads of the star (frozen-normal diagonal distance)
+  kQuads,    // planarity of n − 2 quads of the star (diagonal-distance approximation)
 };
 
 struct ANetOptions {

@@ -396,7 +396,6 @@ HNetSummary HNet::Run(const IterationCallback& on_iteration, const RoundCallback
   solver_options.max_iterations = options_.iterations_per_round;
   solver_options.residual_tolerance = options_.residual_tolerance;
   solver_options.initial_soft_scale = options_.round_soft_scale;
-  bool last_solve_converged = true;
   for (int round = 0; round < options_.max_rounds; ++round) {
     const auto round_start = std::chrono::steady_clock::now();
     StoreVertices(problem, vertex_block, norm, &mesh_);
@@ -414,8 +413,7 @@ HNetSummary HNet::Run(const IterationCallback& on_iteration, const RoundCallback
     r.max_w = *std::max_element(w_.begin(), w_.end());
     r.max_tangent_angle_deg = MaxTangentPlaneAngle(mesh_, weights_);
     r.star = MeasureStarPlanarity(mesh_, reference);
-    const bool settled =
-        round > 0 && r.weight_change <= options_.weight_tolerance && last_solve_converged;
+    const bool settled = round > 0 && r.weight_change <= options_.weight_tolerance;
     if (settled || round + 1 == options_.max_rounds) {
       r.seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - round_start).count();
@@ -445,7 +443,7 @@ HNetSummary HNet::Run(const IterationCallback& on_iteration, const RoundCallback
       summary.message = "vertex update failed: " + s.message;
       break;
     }
-    last_solve_converged = s.converged();
+    r.vertex_update_converged = s.converged();
     r.solver_iterations = s.num_steps();
     r.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - round_start).count();

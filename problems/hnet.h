@@ -83,8 +83,7 @@ struct HNetOptions {
   double frame_weight = 1.0;  // frame-point planarity rows
   int max_rounds = 8;         // alternations of the weight and vertex updates
   int iterations_per_round = 20;
-  // Alternation stops when the weights change by less than this (max |W_new/W_old − 1|) and the
-  // vertex update met its residual tolerance.
+  // Alternation stops when the weights change by less than this (max |W_new/W_old − 1|).
   double weight_tolerance = 1e-6;
   // Soft (closeness, fairness) weight factor at the start of every vertex update: the A-net is
   // already close and fair, the update should mostly satisfy the frame-point rows.
@@ -103,6 +102,7 @@ struct HNetRound {
   double max_inconsistency = 0.0;
   StarPlanarityMeasures star;
   int solver_iterations = 0;
+  bool vertex_update_converged = false;  // met residual_tolerance within iterations_per_round
   double seconds = 0.0;
 };
 

@@ -148,6 +148,46 @@ TEST_F(PlanarizeCommandTest, RefusesInvalidOptionValues) {
   ExpectRefused(in, {"closeness"}, "--closeness nan");
 }
 
+// A 2 × 2-quad grid along the rulings of z = x y: an exact A-net.
+const char* kHypar3x3 =
+    "v -1 -1 1\nv -1 0 0\nv -1 1 -1\nv 0 -1 0\nv 0 0 0\nv 0 1 0\nv 1 -1 -1\nv 1 0 0\nv 1 1 1\n"
+    "f 1 4 5 2\nf 2 5 6 3\nf 4 7 8 5\nf 5 8 9 6\n";
+
+TEST_F(PlanarizeCommandTest, HNetWritesPatchesSurfaceAndReport) {
+  const std::string in = Write("hypar.obj", kHypar3x3);
+  const CommandRun r =
+      Gproj("hnet " + in + " -o " + (dir_ / "h.json").string() + " --surface-mesh " +
+            (dir_ / "s.obj").string() + " --samples 4 --report " + (dir_ / "r.json").string());
+  EXPECT_EQ(r.exit_code, 0) << r.err << r.out;
+  const std::string hnet = Slurp(dir_ / "h.json");
+  for (const char* key : {"\"vertices\"", "\"faces\"", "\"weights\""})
+    EXPECT_NE(hnet.find(key), std::string::npos) << key;
+  // 4 patches × 5 × 5 samples.
+  const std::string surface = Slurp(dir_ / "s.obj");
+  std::istringstream lines(surface);
+  int vertices = 0;
+  for (std::string line; std::getline(lines, line);) vertices += line.rfind("v ", 0) == 0 ? 1 : 0;
+  EXPECT_EQ(vertices, 100) << surface.substr(0, 200);
+  EXPECT_NE(Slurp(dir_ / "r.json").find("max_tangent_angle_deg"), std::string::npos);
+}
+
+TEST_F(PlanarizeCommandTest, ANetRefusesOddValenceAndNonQuads) {
+  // Three quads around vertex 1: inner valence 3.
+  const std::string odd =
+      Write("odd.obj",
+            "v 0 0 0\nv 1 0 0\nv 0.8 0.9 0.1\nv -0.5 0.9 0\nv -1 0 0.1\nv -0.5 -0.9 0\n"
+            "v 0.8 -0.9 0.1\nf 1 2 3 4\nf 1 4 5 6\nf 1 6 7 2\n");
+  const CommandRun r = Gproj("anet " + odd + " -o " + (dir_ / "a.obj").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("odd.obj: vertex 0 has valence 3"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "a.obj"));
+  const std::string tri = Write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const CommandRun t = Gproj("hnet " + tri + " -o " + (dir_ / "h.json").string());
+  EXPECT_EQ(t.exit_code, 1);
+  EXPECT_NE(t.err.find("tri.obj:4: face 0 has 3 vertices"), std::string::npos) << t.err;
+  EXPECT_FALSE(fs::exists(dir_ / "h.json"));
+}
+
 TEST_F(PlanarizeCommandTest, HelpExplainsEveryOption) {
   const CommandRun r = Gproj("planarize --help");
   EXPECT_EQ(r.exit_code, 0);

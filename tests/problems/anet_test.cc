@@ -66,6 +66,20 @@ TEST(ANetTest, JitteredEnneperGridBecomesAnANet) {
   EXPECT_LE(m.max_displacement, 0.02);
 }
 
+TEST(ANetTest, QuadFormAlsoConverges) {
+  const PolyMesh exact = Grid("enneper", 21, 0.0);
+  const PolyMesh mesh = Grid("enneper", 21, 0.03, 5);
+  ANetOptions options;
+  options.star_form = StarPlanarityForm::kQuads;
+  ANet anet(mesh, &exact, options);
+  const SolverSummary summary = anet.Solve();
+  ASSERT_TRUE(summary.converged()) << summary.FullReport();
+  const StarPlanarityMeasures m = MeasureStarPlanarity(anet.Result(), mesh);
+  EXPECT_LE(m.max_star_planarity, 1e-9);
+  EXPECT_LE(m.max_displacement, 0.02);
+  EXPECT_EQ(anet.problem().layout().FindBlock("star_normals"), -1);  // no auxiliaries
+}
+
 TEST(ANetTest, RefusesOddValence) {
   // A quad mesh whose inner vertex 0 has valence 3: three quads around it.
   PolyMesh mesh;
