@@ -16,7 +16,15 @@ echo "== The same problem through the Ceres cross-check path =="
 ./build/gproj planarize examples/data/noisy_grid_21x21.obj -o out/demo/planarized_ceres.obj \
   --report out/demo/planarize_ceres_report.json --solver ceres --tolerance 1e-6 --max-iterations 200
 echo
-echo "Results in $(pwd)/out/demo:"
-echo "  planarized.obj          planar-quad mesh (open in any mesh viewer, e.g. MeshLab or Blender)"
-echo "  planarize_report.json   convergence history and final measures"
+echo "== H-net: smooth skin of rational bilinear patches from a jittered asymptotic grid of Enneper's surface =="
+./build/gproj hnet examples/data/enneper_41x41_jitter3.obj --reference examples/data/enneper_41x41.obj \
+  -o out/demo/enneper_hnet.json --surface-mesh out/demo/enneper_hnet_surface.obj --samples 6 \
+  --report out/demo/enneper_hnet_report.json
+echo
+echo "Results in $(pwd)/out/demo (open the .obj files in any mesh viewer, e.g. MeshLab or Blender):"
+echo "  planarized.obj                planar-quad mesh"
+echo "  planarize_report.json         convergence history and final measures"
 echo "  planarized_ceres.obj, planarize_ceres_report.json   the Ceres cross-check"
+echo "  enneper_hnet.json             H-net: vertices, quads, four corner weights per patch"
+echo "  enneper_hnet_surface.obj      the smooth patchwork sampled as a triangle mesh"
+echo "  enneper_hnet_report.json      A-net and H-net history, tangent-plane angles, weights"

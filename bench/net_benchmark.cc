@@ -1,0 +1,77 @@
+// Benchmarks of the A-net and H-net problems on jittered 3%-of-edge grids along the asymptotic
+// lines of Enneper's surface (n × n vertices), the exact grid as reference surface.
+//   BM_ANetIteration/n   guided-projection iterations of the A-net step, split per phase
+//   BM_HNet/n            the whole H-net run (A-net step, then weight/vertex rounds)
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+
+#include "geometry/parametric_grid.h"
+#include "problems/hnet.h"
+
+namespace gproj {
+namespace {
+
+PolyMesh Enneper(int n, double jitter) {
+  ParametricGridOptions o;
+  o.nu = o.nv = n;
+  o.jitter = jitter;
+  o.seed = 7;
+  return MakeParametricGrid(AsymptoticSurface("enneper"), o);
+}
+
+void BM_ANetIteration(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const PolyMesh exact = Enneper(n, 0.0), mesh = Enneper(n, 0.03);
+  ANetOptions options;
+  options.max_iterations = 4;
+  options.tolerance = 1e-300;
+  SolverSummary summary;
+  for (auto _ : state) {
+    ANet anet(mesh, &exact, options);
+    summary = anet.Solve();
+  }
+  double assembly = 0.0, factorization = 0.0, solve = 0.0;
+  const int steps = summary.num_steps();
+  for (int k = 1; k <= steps; ++k) {
+    assembly += summary.iterations[k].assembly_seconds;
+    factorization += summary.iterations[k].factorization_seconds;
+    solve += summary.iterations[k].solve_seconds;
+  }
+  state.counters["variables"] = summary.num_variables;
+  state.counters["factored"] = summary.num_variables - summary.eliminated_variables;
+  state.counters["nnz_L"] = static_cast<double>(summary.factor_nonzeros);
+  state.counters["assembly_ms"] = 1e3 * assembly / steps;
+  state.counters["factor_ms"] = 1e3 * factorization / steps;
+  state.counters["solve_ms"] = 1e3 * solve / steps;
+}
+BENCHMARK(BM_ANetIteration)->Arg(41)->Arg(161)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+void BM_HNet(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const PolyMesh exact = Enneper(n, 0.0), mesh = Enneper(n, 0.03);
+  HNetSummary summary;
+  for (auto _ : state) {
+    HNet hnet(mesh, &exact, HNetOptions());
+    summary = hnet.Run();
+  }
+  int round_iterations = 0;
+  double round_seconds = 0.0;
+  for (const HNetRound& r : summary.rounds) {
+    round_iterations += r.solver_iterations;
+    round_seconds += r.seconds;
+  }
+  state.counters["variables"] = summary.variables;
+  state.counters["anet_iterations"] = summary.anet_summary.num_steps();
+  state.counters["rounds"] = static_cast<double>(summary.rounds.size());
+  state.counters["vertex_update_iterations"] = round_iterations;
+  state.counters["ms_per_vertex_update_iteration"] =
+      round_iterations > 0 ? 1e3 * round_seconds / round_iterations : 0.0;
+  state.counters["max_angle_deg"] =
+      summary.rounds.empty() ? -1 : summary.rounds.back().max_tangent_angle_deg;
+  if (!summary.converged) state.SkipWithError(summary.message.c_str());
+}
+BENCHMARK(BM_HNet)->Arg(41)->Arg(161)->Iterations(1)->Unit(benchmark::kSecond);
+
+}  // namespace
+}  // namespace gproj
