@@ -82,6 +82,18 @@ TEST_P(ClosureTest, ClosureProductFailsWhenTheStarIsNotPlanar) {
 
 INSTANTIATE_TEST_SUITE_P(Valences, ClosureTest, ::testing::Values(4, 6, 8));
 
+TEST(HNetTest, ClosureProductHoldsAtEveryInnerVertexOfAnExactANet) {
+  const PolyMesh mesh = Grid("hyperboloid", 9);
+  int checked = 0;
+  for (auto v : mesh.vertices()) {
+    if (mesh.is_boundary(v)) continue;
+    const auto [lhs, rhs] = ClosureProducts(mesh, v);
+    EXPECT_NEAR(lhs, rhs, 1e-10 * std::abs(lhs)) << "vertex " << v.idx();
+    ++checked;
+  }
+  EXPECT_EQ(checked, 49);
+}
+
 TEST(HNetTest, OptimalScaleMatchesOneDimensionalMinimisation) {
   const std::vector<double> w = {0.3, 0.8, 1.7, 2.5, 0.45};
   auto f = [&w](double l) {
