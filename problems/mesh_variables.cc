@@ -30,12 +30,11 @@ void LoadVertices(const PolyMesh& mesh, const MeshNormalization& norm, int verte
         norm.ToProblem(ToEigen(mesh.point(v)));
 }
 
-void StoreVertices(const Problem& problem, int vertex_block, const MeshNormalization& norm,
-                   PolyMesh* mesh) {
-  const VariableLayout& layout = problem.layout();
+void StoreVertices(const Eigen::VectorXd& x, const VariableLayout& layout, int vertex_block,
+                   const MeshNormalization& norm, PolyMesh* mesh) {
   for (auto v : mesh->vertices()) {
     const Eigen::Vector3d p =
-        norm.FromProblem(problem.x().segment<3>(layout.Index(vertex_block, v.idx(), 0)));
+        norm.FromProblem(x.segment<3>(layout.Index(vertex_block, v.idx(), 0)));
     mesh->set_point(v, PolyMesh::Point(p[0], p[1], p[2]));
   }
 }

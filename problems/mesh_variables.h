@@ -27,8 +27,12 @@ double MeanEdgeLength(const PolyMesh& mesh);
 void LoadVertices(const PolyMesh& mesh, const MeshNormalization& norm, int vertex_block,
                   Problem* problem);
 // mesh vertices = x[vertex block] in input units.
-void StoreVertices(const Problem& problem, int vertex_block, const MeshNormalization& norm,
-                   PolyMesh* mesh);
+void StoreVertices(const Eigen::VectorXd& x, const VariableLayout& layout, int vertex_block,
+                   const MeshNormalization& norm, PolyMesh* mesh);
+inline void StoreVertices(const Problem& problem, int vertex_block, const MeshNormalization& norm,
+                          PolyMesh* mesh) {
+  StoreVertices(problem.x(), problem.layout(), vertex_block, norm, mesh);
+}
 
 // Calls visit(a, b, c) for every triple of consecutive vertices on a mesh polyline through a
 // regular vertex b: at an inner valence-4 vertex the two pairs of opposite neighbours, at a

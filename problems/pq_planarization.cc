@@ -125,12 +125,7 @@ PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOpti
 
 PlanarityMeasures PQPlanarization::MeasuresAt(const Eigen::VectorXd& x) const {
   PolyMesh current = input_;
-  const VariableLayout& layout = problem_.layout();
-  for (auto v : current.vertices()) {
-    const Eigen::Vector3d p =
-        norm_.FromProblem(x.segment<3>(layout.Index(vertex_block_, v.idx(), 0)));
-    current.set_point(v, PolyMesh::Point(p[0], p[1], p[2]));
-  }
+  StoreVertices(x, problem_.layout(), vertex_block_, norm_, &current);
   return MeasurePlanarity(current, input_);
 }
 
