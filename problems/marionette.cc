@@ -1,0 +1,215 @@
+#include "problems/marionette.h"
+
+#include <cmath>
+
+#include "solver/constraint_family.h"
+
+namespace gproj {
+namespace {
+
+double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+// z_C − z_A − α (z_B − z_A) − β (z_D − z_A) = 0; items {A, B, C, D} (heights).
+class MarionettePlanarity : public ConstraintFamily {
+ public:
+  explicit MarionettePlanarity(double weight)
+      : ConstraintFamily("planarity", 1, FamilyRole::kConstraint, weight) {}
+  void Add(int a, int b, int c, int d, double alpha, double beta) {
+    alpha_.push_back(alpha);
+    beta_.push_back(beta);
+    AddElement({a, b, c, d});
+  }
+  void EvaluateElement(int e, const double* z, double* phi, double* jac) const override {
+    const double al = alpha_[e], be = beta_[e];
+    jac[0] = -1.0 + al + be;
+    jac[1] = -al;
+    jac[2] = 1.0;
+    jac[3] = -be;
+    phi[0] = jac[0] * z[0] + jac[1] * z[1] + jac[2] * z[2] + jac[3] * z[3];
+  }
+
+ private:
+  std::vector<double> alpha_, beta_;
+};
+
+// z − h = 0; items {z}.
+class HeightTarget : public ConstraintFamily {
+ public:
+  HeightTarget(std::string name, FamilyRole role, double weight)
+      : ConstraintFamily(std::move(name), 1, role, weight) {}
+  void Add(int item, double h) {
+    h_.push_back(h);
+    AddElement({item});
+  }
+  void EvaluateElement(int e, const double* z, double* phi, double* jac) const override {
+    phi[0] = z[0] - h_[e];
+    jac[0] = 1.0;
+  }
+
+ private:
+  std::vector<double> h_;
+};
+
+}  // namespace
+
+MarionettePlan MakeMarionettePlan(const PolyMesh& mesh, const std::string& path) {
+  const std::string prefix = path.empty() ? "" : path + ": ";
+  // (N + 1)(M + 1) = V and N M = F give N + M = V − F − 1.
+  const long v = static_cast<long>(mesh.n_vertices()), f = static_cast<long>(mesh.n_faces());
+  const long sum = v - f - 1;
+  const double disc = static_cast<double>(sum * sum - 4 * f);
+  const long n = disc >= 0 ? std::lround((sum + std::sqrt(disc)) / 2) : -1;
+  if (n <= 0 || n * (sum - n) != f)
+    throw InputError(prefix + "not a regular quad grid (" + std::to_string(v) + " vertices, " +
+                     std::to_string(f) + " faces)");
+  MarionettePlan plan;
+  // Rows of faces: try N = n and N = sum − n, whichever matches the face order.
+  for (long rows : {n, sum - n}) {
+    plan.rows = static_cast<int>(rows);
+    plan.cols = static_cast<int>(sum - rows);
+    bool ok = true;
+    for (auto fh : mesh.faces()) {
+      const int i = fh.idx() / plan.cols, j = fh.idx() % plan.cols;
+      const int expected[4] = {plan.Vertex(i, j), plan.Vertex(i + 1, j), plan.Vertex(i + 1, j + 1),
+                               plan.Vertex(i, j + 1)};
+      int got[4], k = 0;
+      for (auto fv : mesh.fv_range(fh)) got[k++ % 4] = fv.idx();
+      bool match = false;
+      for (int r = 0; r < 4 && !match; ++r) {
+        bool same = true, reversed = true;
+        for (int t = 0; t < 4; ++t) {
+          same = same && got[(r + t) % 4] == expected[t];
+          reversed = reversed && got[(r + 4 - t) % 4] == expected[t];
+        }
+        match = same || reversed;
+      }
+      if (!match) {
+        ok = false;
+        break;
+      }
+    }
+    if (ok) break;
+    if (rows == sum - n)
+      throw InputError(prefix +
+                       "the faces are not in grid order: vertex (i, j) must have index "
+                       "i * (cols + 1) + j and face (i, j) index i * cols + j");
+  }
+  for (auto vh : mesh.vertices()) {
+    const auto& p = mesh.point(vh);
+    plan.xy.emplace_back(p[0], p[1]);
+  }
+  for (int i = 0; i < plan.rows; ++i)
+    for (int j = 0; j < plan.cols; ++j) {
+      const Eigen::Vector2d a = plan.xy[plan.Vertex(i, j)];
+      const Eigen::Vector2d ab = plan.xy[plan.Vertex(i + 1, j)] - a;
+      const Eigen::Vector2d ac = plan.xy[plan.Vertex(i + 1, j + 1)] - a;
+      const Eigen::Vector2d ad = plan.xy[plan.Vertex(i, j + 1)] - a;
+      const double d = Cross(ab, ad);
+      if (!(std::abs(d) > 1e-12 * ab.norm() * ad.norm()))
+        throw InputError(prefix + "face " + std::to_string(i * plan.cols + j) +
+                         " has a degenerate plan view: its vertices " +
+                         std::to_string(plan.Vertex(i, j)) + ", " +
+                         std::to_string(plan.Vertex(i + 1, j)) + " and " +
+                         std::to_string(plan.Vertex(i, j + 1)) +
+                         " are collinear in x, y, so its height cannot be propagated");
+      plan.alpha.push_back(Cross(ac, ad) / d);
+      plan.beta.push_back(Cross(ab, ac) / d);
+    }
+  return plan;
+}
+
+Eigen::VectorXd LiftMarionette(const MarionettePlan& plan, const Eigen::VectorXd& row,
+                               const Eigen::VectorXd& column) {
+  if (row.size() != plan.cols + 1 || column.size() != plan.rows + 1)
+    throw InputError("guide curves need " + std::to_string(plan.cols + 1) + " row heights and " +
+                     std::to_string(plan.rows + 1) + " column heights, got " +
+                     std::to_string(row.size()) + " and " + std::to_string(column.size()));
+  if (std::abs(row[0] - column[0]) > 1e-12 * (1.0 + std::abs(row[0])))
+    throw InputError("incompatible guide curves: they share vertex 0 but give it heights " +
+                     std::to_string(row[0]) + " and " + std::to_string(column[0]));
+  Eigen::VectorXd z(plan.num_vertices());
+  for (int j = 0; j <= plan.cols; ++j) z[plan.Vertex(0, j)] = row[j];
+  for (int i = 0; i <= plan.rows; ++i) z[plan.Vertex(i, 0)] = column[i];
+  for (int i = 0; i < plan.rows; ++i)
+    for (int j = 0; j < plan.cols; ++j) {
+      const int f = i * plan.cols + j;
+      const double za = z[plan.Vertex(i, j)];
+      z[plan.Vertex(i + 1, j + 1)] = za + plan.alpha[f] * (z[plan.Vertex(i + 1, j)] - za) +
+                                     plan.beta[f] * (z[plan.Vertex(i, j + 1)] - za);
+    }
+  return z;
+}
+
+Eigen::MatrixXd MarionetteGuideMatrix(const MarionettePlan& plan) {
+  const int guides = plan.rows + plan.cols + 1;
+  Eigen::MatrixXd a(plan.num_vertices(), guides);
+  for (int k = 0; k < guides; ++k) {
+    Eigen::VectorXd row = Eigen::VectorXd::Zero(plan.cols + 1),
+                    column = Eigen::VectorXd::Zero(plan.rows + 1);
+    if (k <= plan.cols) {
+      row[k] = 1.0;
+      if (k == 0) column[0] = 1.0;
+    } else {
+      column[k - plan.cols] = 1.0;
+    }
+    a.col(k) = LiftMarionette(plan, row, column);
+  }
+  return a;
+}
+
+Eigen::MatrixXd MarionettePlanarityMatrix(const MarionettePlan& plan) {
+  Eigen::MatrixXd p = Eigen::MatrixXd::Zero(plan.rows * plan.cols, plan.num_vertices());
+  for (int i = 0; i < plan.rows; ++i)
+    for (int j = 0; j < plan.cols; ++j) {
+      const int f = i * plan.cols + j;
+      p(f, plan.Vertex(i, j)) = -1.0 + plan.alpha[f] + plan.beta[f];
+      p(f, plan.Vertex(i + 1, j)) = -plan.alpha[f];
+      p(f, plan.Vertex(i + 1, j + 1)) = 1.0;
+      p(f, plan.Vertex(i, j + 1)) = -plan.beta[f];
+    }
+  return p;
+}
+
+Problem MakeMarionetteProblem(const MarionettePlan& plan, const std::vector<MarionetteTarget>& hard,
+                              const std::vector<MarionetteTarget>& soft, double hard_weight,
+                              double soft_weight) {
+  Problem problem;
+  const int block = problem.layout().AddBlock("heights", plan.num_vertices(), 1);
+  problem.ResizeToLayout();
+  problem.x().setZero();
+  auto* planarity = problem.AddFamily<MarionettePlanarity>(1.0);
+  for (int i = 0; i < plan.rows; ++i)
+    for (int j = 0; j < plan.cols; ++j) {
+      const int f = i * plan.cols + j;
+      planarity->Add(problem.layout().Item(block, plan.Vertex(i, j)),
+                     problem.layout().Item(block, plan.Vertex(i + 1, j)),
+                     problem.layout().Item(block, plan.Vertex(i + 1, j + 1)),
+                     problem.layout().Item(block, plan.Vertex(i, j + 1)), plan.alpha[f],
+                     plan.beta[f]);
+    }
+  if (!hard.empty()) {
+    auto* guides =
+        problem.AddFamily<HeightTarget>("prescribed_heights", FamilyRole::kConstraint, hard_weight);
+    for (const auto& t : hard) guides->Add(problem.layout().Item(block, t.vertex), t.height);
+  }
+  if (!soft.empty()) {
+    auto* target =
+        problem.AddFamily<HeightTarget>("target_heights", FamilyRole::kSoft, soft_weight);
+    for (const auto& t : soft) target->Add(problem.layout().Item(block, t.vertex), t.height);
+  }
+  return problem;
+}
+
+SolverOptions MarionetteSolverOptions() {
+  SolverOptions options;
+  options.max_iterations = 1;
+  options.epsilon = 1e-9;
+  options.residual_tolerance = 0.0;
+  options.step_tolerance = 0.0;
+  options.eliminate_auxiliaries = false;
+  return options;
+}
+
+}  // namespace gproj

@@ -1,0 +1,62 @@
+#pragma once
+// Marionette meshes (002 §2–3): the plan view (x, y of every vertex) of a regular quad grid is
+// fixed and only heights are unknown, so quad planarity is linear in the heights (002 eq. 2):
+//   z_C = z_A + α (z_B − z_A) + β (z_D − z_A),  AC = α AB + β AD in the plan.
+// Planar height fields of an N × M-face grid form a vector space of dimension N + M + 1: the
+// heights along one row and one column of vertices (the guide curves) determine the rest.
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "geometry/mesh_io.h"
+#include "solver/guided_projection.h"
+#include "solver/problem.h"
+
+namespace gproj {
+
+// A regular grid of (rows + 1) × (cols + 1) vertices; vertex (i, j) has index i * (cols + 1) + j
+// and face (i, j) is (i, j), (i+1, j), (i+1, j+1), (i, j+1).
+struct MarionettePlan {
+  int rows = 0, cols = 0;           // faces per direction (N, M)
+  std::vector<Eigen::Vector2d> xy;  // (N + 1)(M + 1)
+  // Per face: α, β of the plan (AC = α AB + β AD with A = (i, j), B = (i+1, j), D = (i, j+1)).
+  std::vector<double> alpha, beta;
+
+  int num_vertices() const { return static_cast<int>(xy.size()); }
+  int Vertex(int i, int j) const { return i * (cols + 1) + j; }
+};
+
+// Builds the plan from x, y of a grid mesh in the vertex order above (as `gproj grid` writes).
+// Throws InputError naming the face when the mesh is not such a grid, or when a face's plan view
+// is degenerate (A, B, D collinear: no unique planar lift).
+MarionettePlan MakeMarionettePlan(const PolyMesh& mesh, const std::string& path = "");
+
+// Direct lift by propagation, linear time: `row` holds the heights of vertices (0, j), j = 0..M,
+// `column` those of (i, 0), i = 0..N; row[0] must equal column[0] (InputError otherwise).
+// Returns all heights.
+Eigen::VectorXd LiftMarionette(const MarionettePlan& plan, const Eigen::VectorXd& row,
+                               const Eigen::VectorXd& column);
+
+// The (N + 1)(M + 1) × (N + M + 1) matrix of 002 eq. 10 that maps the guide heights
+// (row, then column without its first entry) to all heights.
+Eigen::MatrixXd MarionetteGuideMatrix(const MarionettePlan& plan);
+
+// The planarity rows (NM × (N + 1)(M + 1)) as a dense matrix: P z = 0 for planar lifts.
+Eigen::MatrixXd MarionettePlanarityMatrix(const MarionettePlan& plan);
+
+// The same lift as a gproj problem: one height item per vertex, a planarity row per face
+// (constraint), and soft rows z_v − h_v for prescribed heights (guide curves, boundary heights,
+// a target surface) with their own weights.
+struct MarionetteTarget {
+  int vertex;
+  double height;
+};
+Problem MakeMarionetteProblem(const MarionettePlan& plan, const std::vector<MarionetteTarget>& hard,
+                              const std::vector<MarionetteTarget>& soft, double hard_weight,
+                              double soft_weight);
+
+// Solver options for the linear problem: one iteration, tiny ε.
+SolverOptions MarionetteSolverOptions();
+
+}  // namespace gproj

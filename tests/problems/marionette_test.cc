@@ -1,0 +1,154 @@
+#include "problems/marionette.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+#include <cmath>
+#include <random>
+
+#include "geometry/quad_grid.h"
+
+namespace gproj {
+namespace {
+
+// A plan view: a (n+1) × (m+1)-vertex grid with jittered x, y (z is ignored).
+MarionettePlan Plan(int n, int m, double jitter = 0.15, uint32_t seed = 3) {
+  QuadGridOptions o;
+  o.nu = n + 1;
+  o.nv = m + 1;
+  o.noise = jitter;
+  o.seed = seed;
+  return MakeMarionettePlan(MakeQuadGrid(o));
+}
+
+Eigen::VectorXd Smooth(int size, double phase) {
+  Eigen::VectorXd v(size);
+  for (int k = 0; k < size; ++k) v[k] = 0.5 * std::sin(0.7 * k + phase) + 0.1 * k;
+  return v;
+}
+
+double MaxPlanarity(const MarionettePlan& plan, const Eigen::VectorXd& z) {
+  double worst = 0.0;
+  auto p = [&](int i, int j) {
+    const int v = plan.Vertex(i, j);
+    return Eigen::Vector3d(plan.xy[v].x(), plan.xy[v].y(), z[v]);
+  };
+  for (int i = 0; i < plan.rows; ++i)
+    for (int j = 0; j < plan.cols; ++j) {
+      const Eigen::Vector3d a = p(i, j), ab = p(i + 1, j) - a, ac = p(i + 1, j + 1) - a,
+                            ad = p(i, j + 1) - a;
+      worst = std::max(worst, std::abs(ab.cross(ac).dot(ad)) / (ab.norm() * ac.norm() * ad.norm()));
+    }
+  return worst;
+}
+
+TEST(MarionetteTest, LiftIsPlanarAndKeepsTheGuideCurves) {
+  const MarionettePlan plan = Plan(12, 9);
+  Eigen::VectorXd row = Smooth(10, 0.3), column = Smooth(13, 1.1);
+  column[0] = row[0];
+  const Eigen::VectorXd z = LiftMarionette(plan, row, column);
+  EXPECT_LE(MaxPlanarity(plan, z), 1e-12);
+  for (int j = 0; j <= 9; ++j) EXPECT_EQ(z[plan.Vertex(0, j)], row[j]);
+  for (int i = 0; i <= 12; ++i) EXPECT_EQ(z[plan.Vertex(i, 0)], column[i]);
+  // Not trivially flat.
+  EXPECT_GT(z.maxCoeff() - z.minCoeff(), 0.5);
+}
+
+class MarionetteRankTest : public ::testing::TestWithParam<std::pair<int, int>> {};
+
+TEST_P(MarionetteRankTest, PlanarHeightFieldsHaveDimensionNPlusMPlusOne) {
+  const auto [n, m] = GetParam();
+  const MarionettePlan plan = Plan(n, m);
+  const Eigen::MatrixXd p = MarionettePlanarityMatrix(plan);
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(p);
+  lu.setThreshold(1e-10);
+  EXPECT_EQ(plan.num_vertices() - lu.rank(), n + m + 1);
+  // The guide matrix spans that space: full column rank, and P A = 0.
+  const Eigen::MatrixXd a = MarionetteGuideMatrix(plan);
+  EXPECT_EQ(Eigen::FullPivLU<Eigen::MatrixXd>(a).rank(), n + m + 1);
+  EXPECT_LT((p * a).cwiseAbs().maxCoeff(), 1e-10);
+}
+
+INSTANTIATE_TEST_SUITE_P(Sizes, MarionetteRankTest,
+                         ::testing::Values(std::make_pair(1, 1), std::make_pair(3, 4),
+                                           std::make_pair(5, 2), std::make_pair(8, 8)));
+
+TEST(MarionetteTest, GuidedProjectionReachesTheDirectLiftInOneIteration) {
+  const MarionettePlan plan = Plan(10, 10);
+  Eigen::VectorXd row = Smooth(11, 0.2), column = Smooth(11, 2.0);
+  column[0] = row[0];
+  const Eigen::VectorXd direct = LiftMarionette(plan, row, column);
+  std::vector<MarionetteTarget> guides;
+  for (int j = 0; j <= 10; ++j) guides.push_back({plan.Vertex(0, j), row[j]});
+  for (int i = 1; i <= 10; ++i) guides.push_back({plan.Vertex(i, 0), column[i]});
+  Problem problem = MakeMarionetteProblem(plan, guides, {}, 1.0, 0.0);
+  const SolverSummary summary = Solve(MarionetteSolverOptions(), &problem);
+  ASSERT_EQ(summary.num_steps(), 1) << summary.FullReport();
+  EXPECT_LE((problem.x() - direct).norm(), 1e-12 * direct.norm());
+}
+
+TEST(MarionetteTest, LeastSquaresFitEqualsTheNormalEquationsOfEq14) {
+  const MarionettePlan plan = Plan(8, 6);
+  // Target: heights of a saddle over the plan, not a Marionette mesh itself.
+  Eigen::VectorXd z0(plan.num_vertices());
+  for (int v = 0; v < plan.num_vertices(); ++v)
+    z0[v] = plan.xy[v].x() * plan.xy[v].y() + 0.3 * std::sin(3 * plan.xy[v].x());
+  const Eigen::MatrixXd a = MarionetteGuideMatrix(plan);
+  const Eigen::VectorXd zp = (a.transpose() * a).ldlt().solve(a.transpose() * z0);
+  const Eigen::VectorXd expected = a * zp;
+  EXPECT_GT((expected - z0).norm(), 1e-3);  // a real fit, not an interpolation
+
+  std::vector<MarionetteTarget> targets;
+  for (int v = 0; v < plan.num_vertices(); ++v) targets.push_back({v, z0[v]});
+  // Planarity (weight 1) against a target weight 1e-8: the constrained least-squares optimum up
+  // to a bias of the order of the weight ratio (smaller ratios make the normal matrix too
+  // ill-conditioned for one factorisation).
+  Problem problem = MakeMarionetteProblem(plan, {}, targets, 1.0, 1e-8);
+  Solve(MarionetteSolverOptions(), &problem);
+  EXPECT_LE((problem.x() - expected).norm(), 1e-6 * expected.norm());
+  EXPECT_LE(MaxPlanarity(plan, problem.x()), 5e-7);
+}
+
+TEST(MarionetteTest, RefusesDegeneratePlanViewNamingTheFace) {
+  QuadGridOptions o;
+  o.nu = 3;
+  o.nv = 3;
+  PolyMesh mesh = MakeQuadGrid(o);
+  // Put vertex (1, 1) = 4 on the line through (0, 1) = 1 and (1, 0) = 3... make face 0's A, B, D
+  // collinear instead: move vertex (0, 1) = 1 onto the line through (0, 0) and (1, 0).
+  const auto p0 = mesh.point(PolyMesh::VertexHandle(0)), p3 = mesh.point(PolyMesh::VertexHandle(3));
+  mesh.set_point(PolyMesh::VertexHandle(1), p0 + 0.5 * (p3 - p0));
+  try {
+    MakeMarionettePlan(mesh, "plan.obj");
+    FAIL() << "degenerate plan accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("plan.obj: face 0 has a degenerate plan view"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(MarionetteTest, RefusesIncompatibleGuideCurves) {
+  const MarionettePlan plan = Plan(3, 3);
+  Eigen::VectorXd row = Smooth(4, 0.0), column = Smooth(4, 1.0);
+  column[0] = row[0] + 0.5;
+  try {
+    LiftMarionette(plan, row, column);
+    FAIL() << "incompatible guides accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("incompatible guide curves"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(MarionetteTest, RefusesMeshesThatAreNotGrids) {
+  PolyMesh mesh;
+  std::vector<PolyMesh::VertexHandle> v;
+  for (int k = 0; k < 5; ++k) v.push_back(mesh.add_vertex({double(k), double(k * k % 3), 0}));
+  mesh.add_face({v[0], v[1], v[2], v[3]});
+  EXPECT_THROW(MakeMarionettePlan(mesh), InputError);
+}
+
+}  // namespace
+}  // namespace gproj
