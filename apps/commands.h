@@ -18,5 +18,7 @@ void RegisterPlanarizeCommand(CLI::App* app, int* exit_code);
 void RegisterGridCommand(CLI::App* app, int* exit_code);
 // Registers `gproj anet` and `gproj hnet`.
 void RegisterNetCommands(CLI::App* app, int* exit_code);
+// Registers `gproj marionette`.
+void RegisterMarionetteCommand(CLI::App* app, int* exit_code);
 
 }  // namespace gproj

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   gproj::RegisterPlanarizeCommand(&app, &exit_code);
   gproj::RegisterGridCommand(&app, &exit_code);
   gproj::RegisterNetCommands(&app, &exit_code);
+  gproj::RegisterMarionetteCommand(&app, &exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

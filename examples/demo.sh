@@ -21,6 +21,12 @@ echo "== H-net: smooth skin of rational bilinear patches from a jittered asympto
   -o out/demo/enneper_hnet.json --surface-mesh out/demo/enneper_hnet_surface.obj --samples 6 \
   --report out/demo/enneper_hnet_report.json
 echo
+echo "== Marionette mesh: planar quads over a fixed plan view, lifted from two guide curves =="
+ROW=$(awk 'BEGIN { for (j = 0; j <= 20; ++j) printf "%s%.4f", (j ? "," : ""), 0.4 * sin(j / 4.0) }')
+COLUMN=$(awk 'BEGIN { for (i = 0; i <= 20; ++i) printf "%s%.4f", (i ? "," : ""), 0.3 * (1 - cos(i / 5.0)) }')
+./build/gproj marionette examples/data/marionette_plan_21x21.obj -o out/demo/marionette.obj \
+  --row "$ROW" --column "$COLUMN" --report out/demo/marionette_report.json
+echo
 echo "Results in $(pwd)/out/demo (open the .obj files in any mesh viewer, e.g. MeshLab or Blender):"
 echo "  planarized.obj                planar-quad mesh"
 echo "  planarize_report.json         convergence history and final measures"
@@ -28,3 +34,4 @@ echo "  planarized_ceres.obj, planarize_ceres_report.json   the Ceres cross-chec
 echo "  enneper_hnet.json             H-net: vertices, quads, four corner weights per patch"
 echo "  enneper_hnet_surface.obj      the smooth patchwork sampled as a triangle mesh"
 echo "  enneper_hnet_report.json      A-net and H-net history, tangent-plane angles, weights"
+echo "  marionette.obj                Marionette mesh (planar quads, plan view kept)"

@@ -53,9 +53,9 @@ class PlanarizeCommandTest : public ::testing::Test {
   }
   // Runs planarize on `input`; expects exit 1, an error containing every `parts`, and no output.
   void ExpectRefused(const std::string& input, const std::vector<std::string>& parts,
-                     const std::string& extra = "") {
+                     const std::string& extra = "", const std::string& command = "planarize") {
     const fs::path out = dir_ / "out.obj";
-    const CommandRun r = Gproj("planarize " + input + " -o " + out.string() + " --report " +
+    const CommandRun r = Gproj(command + " " + input + " -o " + out.string() + " --report " +
                                (dir_ / "r.json").string() + " " + extra);
     EXPECT_EQ(r.exit_code, 1) << r.err;
     for (const std::string& part : parts) EXPECT_NE(r.err.find(part), std::string::npos) << r.err;
@@ -186,6 +186,40 @@ TEST_F(PlanarizeCommandTest, ANetRefusesOddValenceAndNonQuads) {
   EXPECT_EQ(t.exit_code, 1);
   EXPECT_NE(t.err.find("tri.obj:4: face 0 has 3 vertices"), std::string::npos) << t.err;
   EXPECT_FALSE(fs::exists(dir_ / "h.json"));
+}
+
+using MarionetteCommandTest = PlanarizeCommandTest;
+
+// A 2 × 2-face plan view in grid order (z ignored).
+const char* kPlan2x2 =
+    "v 0 0 0\nv 0 1 0\nv 0 2 0\nv 1 0.1 0\nv 1.1 1 0\nv 1 2.1 0\nv 2 0 0\nv 2 1.2 0\nv 2.1 2 0\n"
+    "f 1 4 5 2\nf 2 5 6 3\nf 4 7 8 5\nf 5 8 9 6\n";
+
+TEST_F(MarionetteCommandTest, LiftsFromGuideCurvesWithBothSolvers) {
+  const std::string plan = Write("plan.obj", kPlan2x2);
+  for (const char* solver : {"direct", "gp"}) {
+    const CommandRun r = Gproj("marionette " + plan + " -o " + (dir_ / "m.obj").string() +
+                               " --row 0,0.5,0.2 --column 0,0.3,0.1 --solver " + solver +
+                               " --report " + (dir_ / "r.json").string());
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(Slurp(dir_ / "r.json").find("max_planarity"), std::string::npos);
+    EXPECT_NE(Slurp(dir_ / "m.obj").find("v 1.1 1 0."), std::string::npos) << "x, y kept";
+  }
+}
+
+TEST_F(MarionetteCommandTest, RefusesDegeneratePlanAndIncompatibleGuides) {
+  // Vertex (0, 1) moved onto the line through (0, 0) and (1, 0): face 0 is degenerate.
+  std::string text = kPlan2x2;
+  text.replace(text.find("v 0 1 0"), 7, "v 0.5 0.05 0");
+  const std::string bad = Write("bad.obj", text);
+  ExpectRefused(bad, {"bad.obj: face 0 has a degenerate plan view"}, "--row 0,0,0 --column 0,0,0",
+                "marionette");
+  const std::string plan = Write("plan.obj", kPlan2x2);
+  const CommandRun r = Gproj("marionette " + plan + " -o " + (dir_ / "m.obj").string() +
+                             " --row 0,0.5,0.2 --column 1,0.3,0.1");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("incompatible guide curves"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "m.obj"));
 }
 
 TEST_F(PlanarizeCommandTest, HelpExplainsEveryOption) {
