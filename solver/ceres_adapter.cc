@@ -1,5 +1,6 @@
 #include "solver/ceres_adapter.h"
 
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <memory>
@@ -18,12 +19,18 @@ class ElementCost : public ceres::CostFunction {
     for (int d : dims) mutable_parameter_block_sizes()->push_back(d);
     local_dim_ = 0;
     for (int d : dims) local_dim_ += d;
+    assert(local_dim_ <= kMaxLocal && family->rows_per_element() * local_dim_ <= kMaxJacobian);
   }
+
+  static constexpr int kMaxLocal = 128;
+  static constexpr int kMaxJacobian = 1024;
 
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override {
     const int rows = num_residuals();
-    std::vector<double> x_local(local_dim_), jac(static_cast<size_t>(rows) * local_dim_);
+    // Stack buffers: Ceres calls this for every element in every iteration.
+    std::array<double, kMaxLocal> x_local;
+    std::array<double, kMaxJacobian> jac;
     for (size_t b = 0, l = 0; b < dims_.size(); ++b)
       for (int c = 0; c < dims_[b]; ++c) x_local[l++] = parameters[b][c];
     family_->EvaluateElement(element_, x_local.data(), residuals, jac.data());
