@@ -212,4 +212,63 @@ SolverOptions MarionetteSolverOptions() {
   return options;
 }
 
+namespace {
+
+// z_{i+1}* = α_i z_i* + (1 − α_i − β_i) Z_i + β_i Z_{i+1} for quad (A, B, C, D) = (P_i, Q_i,
+// Q_{i+1}, P_{i+1}); returns z_N*.
+double PropagateStrip(const std::vector<double>& alpha, const std::vector<double>& beta,
+                      const Eigen::VectorXd& z, double outer0, Eigen::VectorXd* outer) {
+  const int n = static_cast<int>(alpha.size());
+  double q = outer0;
+  for (int i = 0; i < n; ++i) {
+    if (outer != nullptr) (*outer)[i] = q;
+    q = alpha[i] * q + (1.0 - alpha[i] - beta[i]) * z[i] + beta[i] * z[(i + 1) % n];
+  }
+  return q;
+}
+
+}  // namespace
+
+ClosedStripLift LiftClosedStrip(const ClosedStrip& strip, const Eigen::VectorXd& inner_heights,
+                                double outer0_when_free, double tolerance) {
+  const int n = static_cast<int>(strip.inner.size());
+  if (n < 3 || static_cast<int>(strip.outer.size()) != n || inner_heights.size() != n)
+    throw InputError(
+        "a closed strip needs inner and outer curves of the same length (≥ 3) and one "
+        "height per inner vertex");
+  std::vector<double> alpha(n), beta(n);
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector2d a = strip.inner[i];
+    const Eigen::Vector2d ab = strip.outer[i] - a, ac = strip.outer[(i + 1) % n] - a,
+                          ad = strip.inner[(i + 1) % n] - a;
+    const double d = Cross(ab, ad);
+    if (!(std::abs(d) > 1e-12 * ab.norm() * ad.norm()))
+      throw InputError("quad " + std::to_string(i) +
+                       " of the closed strip has a degenerate plan view (inner " +
+                       std::to_string(i) + ", outer " + std::to_string(i) + " and inner " +
+                       std::to_string((i + 1) % n) + " are collinear)");
+    alpha[i] = Cross(ac, ad) / d;
+    beta[i] = Cross(ab, ac) / d;
+  }
+  ClosedStripLift out;
+  // z_N* is linear in (Z, z_0*): a from (0, 1), V_k from (e_k, 0).
+  out.a = PropagateStrip(alpha, beta, Eigen::VectorXd::Zero(n), 1.0, nullptr);
+  out.v.resize(n);
+  for (int k = 0; k < n; ++k)
+    out.v[k] = PropagateStrip(alpha, beta, Eigen::VectorXd::Unit(n, k), 0.0, nullptr);
+  out.a_is_one = std::abs(out.a - 1.0) <= tolerance;
+  out.inner_heights = inner_heights;
+  double outer0 = outer0_when_free;
+  if (out.a_is_one) {
+    // V = 0 (e.g. concentric circles) leaves every inner curve free.
+    if (out.v.norm() > tolerance)
+      out.inner_heights -= (out.v.dot(inner_heights) / out.v.squaredNorm()) * out.v;
+  } else {
+    outer0 = out.v.dot(inner_heights) / (1.0 - out.a);
+  }
+  out.outer_heights.resize(n);
+  PropagateStrip(alpha, beta, out.inner_heights, outer0, &out.outer_heights);
+  return out;
+}
+
 }  // namespace gproj

@@ -59,4 +59,26 @@ Problem MakeMarionetteProblem(const MarionettePlan& plan, const std::vector<Mari
 // Solver options for the linear problem: one iteration, tiny ε.
 SolverOptions MarionetteSolverOptions();
 
+// A closed strip (002 §2.5): an inner and an outer closed polyline in the plan, N vertices each,
+// quads (P_i, Q_i, Q_{i+1}, P_{i+1}) with indices mod N.
+struct ClosedStrip {
+  std::vector<Eigen::Vector2d> inner, outer;
+};
+
+// Lift of a closed strip from the heights Z of the inner curve. Propagating around the strip
+// from z_0* (outer vertex 0) gives z_N* = V·Z + a z_0* (002 eq. 8); closing needs z_N* = z_0*.
+//   a ≠ 1: z_0* = V·Z / (1 − a), the only closing lift; the inner heights are kept.
+//   a = 1 (|a − 1| ≤ tolerance, e.g. a plan with rotational symmetry): Z must satisfy V·Z = 0,
+//          so it is projected onto that hyperplane (N − 1 free heights), and z_0* is free.
+struct ClosedStripLift {
+  double a = 0.0;
+  Eigen::VectorXd v;  // N
+  bool a_is_one = false;
+  Eigen::VectorXd inner_heights;  // N: Z, projected when a = 1
+  Eigen::VectorXd outer_heights;  // N
+};
+// Throws InputError naming the quad when a plan quad is degenerate.
+ClosedStripLift LiftClosedStrip(const ClosedStrip& strip, const Eigen::VectorXd& inner_heights,
+                                double outer0_when_free = 0.0, double tolerance = 1e-9);
+
 }  // namespace gproj

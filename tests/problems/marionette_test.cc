@@ -152,3 +152,82 @@ TEST(MarionetteTest, RefusesMeshesThatAreNotGrids) {
 
 }  // namespace
 }  // namespace gproj
+
+namespace gproj {
+namespace {
+
+// Inner unit circle, outer ellipse with semi-axes 1.6 and 1.6 + stretch (mirror symmetric in
+// both axes), every vertex jittered.
+ClosedStrip Ring(int n, double jitter, double stretch = 0.0) {
+  ClosedStrip strip;
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * M_PI * i / n;
+    const Eigen::Vector2d dir(std::cos(t), std::sin(t));
+    strip.inner.push_back(1.0 * dir + jitter * Eigen::Vector2d(u(rng), u(rng)));
+    strip.outer.push_back(Eigen::Vector2d(1.6 * dir.x(), (1.6 + stretch) * dir.y()) +
+                          jitter * Eigen::Vector2d(u(rng), u(rng)));
+  }
+  return strip;
+}
+
+// Max normalised det over the N quads of the strip, the closing one included.
+double StripPlanarity(const ClosedStrip& s, const ClosedStripLift& lift) {
+  const int n = static_cast<int>(s.inner.size());
+  double worst = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const int k = (i + 1) % n;
+    const Eigen::Vector3d a(s.inner[i].x(), s.inner[i].y(), lift.inner_heights[i]);
+    const Eigen::Vector3d b(s.outer[i].x(), s.outer[i].y(), lift.outer_heights[i]);
+    const Eigen::Vector3d c(s.outer[k].x(), s.outer[k].y(), lift.outer_heights[k]);
+    const Eigen::Vector3d d(s.inner[k].x(), s.inner[k].y(), lift.inner_heights[k]);
+    const Eigen::Vector3d ab = b - a, ac = c - a, ad = d - a;
+    worst = std::max(worst, std::abs(ab.cross(ac).dot(ad)) / (ab.norm() * ac.norm() * ad.norm()));
+  }
+  return worst;
+}
+
+TEST(MarionetteClosedStripTest, GenericPlanHasOneClosingLift) {
+  const ClosedStrip strip = Ring(24, 0.08);
+  Eigen::VectorXd z(24);
+  for (int i = 0; i < 24; ++i)
+    z[i] = 0.3 * std::sin(2 * M_PI * i / 24) + 0.1 * std::cos(6 * M_PI * i / 24);
+  const ClosedStripLift lift = LiftClosedStrip(strip, z);
+  EXPECT_FALSE(lift.a_is_one) << lift.a;
+  EXPECT_EQ(lift.inner_heights, z);  // the designer's curve is kept
+  EXPECT_LE(StripPlanarity(strip, lift), 1e-12);
+}
+
+TEST(MarionetteClosedStripTest, SymmetricPlanHasAEqualOneAndProjectsTheInnerCurve) {
+  const ClosedStrip strip = Ring(24, 0.0, 0.3);
+  Eigen::VectorXd z(24);
+  for (int i = 0; i < 24; ++i) z[i] = 0.3 * std::cos(0.9 * i) + 0.2;
+  const ClosedStripLift lift = LiftClosedStrip(strip, z, 0.7);
+  EXPECT_TRUE(lift.a_is_one) << lift.a;
+  EXPECT_NEAR(lift.v.dot(lift.inner_heights), 0.0, 1e-12);
+  EXPECT_NEAR(lift.outer_heights[0], 0.7, 1e-15);  // z_0* stays free
+  EXPECT_LE(StripPlanarity(strip, lift), 1e-12);
+  EXPECT_GT(lift.v.norm(), 0.1);
+  EXPECT_GT(std::abs(lift.v.dot(z)), 1e-3);  // the designer's curve had to be projected
+}
+
+TEST(MarionetteClosedStripTest, ConcentricCirclesLeaveEveryInnerCurveFree) {
+  const ClosedStrip strip = Ring(24, 0.0);  // α_i = 1, and z_N* = z_0* for every Z
+  Eigen::VectorXd z(24);
+  for (int i = 0; i < 24; ++i) z[i] = std::cos(0.9 * i);
+  const ClosedStripLift lift = LiftClosedStrip(strip, z, 0.4);
+  EXPECT_TRUE(lift.a_is_one);
+  EXPECT_LT(lift.v.norm(), 1e-12);
+  EXPECT_EQ(lift.inner_heights, z);
+  EXPECT_LE(StripPlanarity(strip, lift), 1e-12);
+}
+
+TEST(MarionetteClosedStripTest, RefusesDegenerateQuads) {
+  ClosedStrip strip = Ring(8, 0.0);
+  strip.outer[3] = strip.inner[3] + 0.5 * (strip.inner[4] - strip.inner[3]);
+  EXPECT_THROW(LiftClosedStrip(strip, Eigen::VectorXd::Zero(8)), InputError);
+}
+
+}  // namespace
+}  // namespace gproj
