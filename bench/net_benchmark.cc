@@ -8,6 +8,7 @@
 
 #include "geometry/parametric_grid.h"
 #include "problems/hnet.h"
+#include "solver_counters.h"
 
 namespace gproj {
 namespace {
@@ -31,19 +32,7 @@ void BM_ANetIteration(benchmark::State& state) {
     ANet anet(mesh, &exact, options);
     summary = anet.Solve();
   }
-  double assembly = 0.0, factorization = 0.0, solve = 0.0;
-  const int steps = summary.num_steps();
-  for (int k = 1; k <= steps; ++k) {
-    assembly += summary.iterations[k].assembly_seconds;
-    factorization += summary.iterations[k].factorization_seconds;
-    solve += summary.iterations[k].solve_seconds;
-  }
-  state.counters["variables"] = summary.num_variables;
-  state.counters["factored"] = summary.num_variables - summary.eliminated_variables;
-  state.counters["nnz_L"] = static_cast<double>(summary.factor_nonzeros);
-  state.counters["assembly_ms"] = 1e3 * assembly / steps;
-  state.counters["factor_ms"] = 1e3 * factorization / steps;
-  state.counters["solve_ms"] = 1e3 * solve / steps;
+  SetSolverCounters(summary, &state);
 }
 BENCHMARK(BM_ANetIteration)->Arg(41)->Arg(161)->Iterations(1)->Unit(benchmark::kMillisecond);
 
