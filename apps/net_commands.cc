@@ -8,6 +8,7 @@
 
 #include "apps/commands.h"
 #include "geometry/mesh_io.h"
+#include "geometry/svg_render.h"
 #include "problems/anet.h"
 #include "problems/hnet.h"
 
@@ -16,7 +17,7 @@ namespace {
 
 struct NetArgs {
   std::string input, output, reference, report, star_form = "normals", linear_solver = "cholmod";
-  std::string surface_mesh;
+  std::string surface_mesh, picture;
   int samples = 8;
   bool allow_not_simply_connected = false;
   HNetOptions options;
@@ -256,6 +257,16 @@ int RunHNet(NetArgs& args) {
     if (!args.surface_mesh.empty())
       WriteMeshAtomically(SampleHNetSurface(hnet->mesh(), hnet->weights(), args.samples),
                           args.surface_mesh);
+    if (!args.picture.empty()) {
+      SvgOptions svg;
+      char title[160];
+      std::snprintf(title, sizeof(title),
+                    "H-net: %zu patches, max tangent-plane angle %.2e deg, W in [%.4g, %.4g]",
+                    mesh.n_faces(), last.max_tangent_angle_deg, last.min_w, last.max_w);
+      svg.title = title;
+      WriteTextFileAtomically(
+          args.picture, RenderMeshSvg(SampleHNetSurface(hnet->mesh(), hnet->weights(), 2), svg));
+    }
     if (!args.report.empty()) WriteTextFileAtomically(args.report, report.dump(2) + "\n");
   } catch (const InputError& e) {
     std::cerr << "gproj hnet: " << e.what() << "\n";
@@ -271,8 +282,9 @@ int RunHNet(NetArgs& args) {
                 summary.equitwist_violations.size());
   if (!summary.simply_connected)
     std::printf("warning: the mesh is not simply connected; the result is an optimisation only\n");
-  std::printf("wrote %s%s%s%s%s\n", args.output.c_str(), args.surface_mesh.empty() ? "" : ", ",
-              args.surface_mesh.c_str(), args.report.empty() ? "" : ", ", args.report.c_str());
+  std::printf("wrote %s%s%s%s%s%s%s\n", args.output.c_str(), args.surface_mesh.empty() ? "" : ", ",
+              args.surface_mesh.c_str(), args.picture.empty() ? "" : ", ", args.picture.c_str(),
+              args.report.empty() ? "" : ", ", args.report.c_str());
   return summary.converged ? kExitOk : kExitNotConverged;
 }
 
@@ -299,6 +311,8 @@ void RegisterNetCommands(CLI::App* app, int* exit_code) {
       ->required();
   h->add_option("--surface-mesh", hnet->surface_mesh,
                 "Also write a triangle mesh sampling every patch (.obj/.off/.ply)");
+  h->add_option("--picture", hnet->picture,
+                "Also write a shaded picture of the patchwork (.svg, opens in any browser)");
   h->add_option("--samples", hnet->samples, "Samples per patch edge for --surface-mesh")
       ->check(CLI::Range(1, 200))
       ->capture_default_str();

@@ -9,6 +9,7 @@
 
 #include "apps/commands.h"
 #include "geometry/mesh_io.h"
+#include "geometry/svg_render.h"
 #include "problems/pq_planarization.h"
 
 namespace gproj {
@@ -18,6 +19,7 @@ struct PlanarizeArgs {
   std::string input;
   std::string output;
   std::string report;
+  std::string picture;
   std::string solver = "gp";
   std::string linear_solver = "cholmod";
   PQPlanarizationOptions options;
@@ -149,6 +151,14 @@ int RunPlanarize(const PlanarizeArgs& args) {
 
   try {
     if (!failed) WriteMeshAtomically(pq->Result(), args.output);
+    if (!failed && !args.picture.empty()) {
+      SvgOptions svg;
+      char title[128];
+      std::snprintf(title, sizeof(title), "%zu quads, max planarity %.2e", input.n_faces(),
+                    final_measures.max_planarity);
+      svg.title = title;
+      WriteTextFileAtomically(args.picture, RenderMeshSvg(pq->Result(), svg));
+    }
     if (!args.report.empty()) WriteTextFileAtomically(args.report, report.dump(2) + "\n");
   } catch (const InputError& e) {
     std::cerr << "gproj planarize: " << e.what() << "\n";
@@ -190,6 +200,8 @@ void RegisterPlanarizeCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--report", args->report,
                   "Write a JSON report: converged, iterations, seconds, variables, per-iteration "
                   "history and the final measures");
+  cmd->add_option("--picture", args->picture,
+                  "Also write a shaded picture of the result (.svg, opens in any browser)");
   cmd->add_option("--solver", args->solver,
                   "gp: guided projection (default); ceres: Levenberg-Marquardt on the same "
                   "residuals (cross-check)")

@@ -10,7 +10,7 @@ mkdir -p out/demo
 echo
 echo "== PQ planarisation of examples/data/noisy_grid_21x21.obj (guided projection) =="
 ./build/gproj planarize examples/data/noisy_grid_21x21.obj -o out/demo/planarized.obj \
-  --report out/demo/planarize_report.json
+  --report out/demo/planarize_report.json --picture out/demo/planarized.svg
 echo
 echo "== The same problem through the Ceres cross-check path =="
 ./build/gproj planarize examples/data/noisy_grid_21x21.obj -o out/demo/planarized_ceres.obj \
@@ -19,7 +19,7 @@ echo
 echo "== H-net: smooth skin of rational bilinear patches from a jittered asymptotic grid of Enneper's surface =="
 ./build/gproj hnet examples/data/enneper_41x41_jitter3.obj --reference examples/data/enneper_41x41.obj \
   -o out/demo/enneper_hnet.json --surface-mesh out/demo/enneper_hnet_surface.obj --samples 6 \
-  --report out/demo/enneper_hnet_report.json
+  --picture out/demo/enneper_hnet.svg --report out/demo/enneper_hnet_report.json
 echo
 echo "== Marionette mesh: planar quads over a fixed plan view, lifted from two guide curves =="
 ROW=$(awk 'BEGIN { for (j = 0; j <= 20; ++j) printf "%s%.4f", (j ? "," : ""), 0.4 * sin(j / 4.0) }')
@@ -28,10 +28,11 @@ COLUMN=$(awk 'BEGIN { for (i = 0; i <= 20; ++i) printf "%s%.4f", (i ? "," : ""),
   --row "$ROW" --column "$COLUMN" --report out/demo/marionette_report.json
 echo
 echo "Results in $(pwd)/out/demo (open the .obj files in any mesh viewer, e.g. MeshLab or Blender):"
-echo "  planarized.obj                planar-quad mesh"
+echo "  planarized.obj                planar-quad mesh (planarized.svg: a picture of it)"
 echo "  planarize_report.json         convergence history and final measures"
 echo "  planarized_ceres.obj, planarize_ceres_report.json   the Ceres cross-check"
 echo "  enneper_hnet.json             H-net: vertices, quads, four corner weights per patch"
 echo "  enneper_hnet_surface.obj      the smooth patchwork sampled as a triangle mesh"
+echo "  enneper_hnet.svg              a shaded picture of it (open in a web browser)"
 echo "  enneper_hnet_report.json      A-net and H-net history, tangent-plane angles, weights"
 echo "  marionette.obj                Marionette mesh (planar quads, plan view kept)"

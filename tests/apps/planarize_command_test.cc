@@ -157,7 +157,8 @@ TEST_F(PlanarizeCommandTest, HNetWritesPatchesSurfaceAndReport) {
   const std::string in = Write("hypar.obj", kHypar3x3);
   const CommandRun r =
       Gproj("hnet " + in + " -o " + (dir_ / "h.json").string() + " --surface-mesh " +
-            (dir_ / "s.obj").string() + " --samples 4 --report " + (dir_ / "r.json").string());
+            (dir_ / "s.obj").string() + " --samples 4 --picture " + (dir_ / "p.svg").string() +
+            " --report " + (dir_ / "r.json").string());
   EXPECT_EQ(r.exit_code, 0) << r.err << r.out;
   const std::string hnet = Slurp(dir_ / "h.json");
   for (const char* key : {"\"vertices\"", "\"faces\"", "\"weights\""})
@@ -169,6 +170,7 @@ TEST_F(PlanarizeCommandTest, HNetWritesPatchesSurfaceAndReport) {
   for (std::string line; std::getline(lines, line);) vertices += line.rfind("v ", 0) == 0 ? 1 : 0;
   EXPECT_EQ(vertices, 100) << surface.substr(0, 200);
   EXPECT_NE(Slurp(dir_ / "r.json").find("max_tangent_angle_deg"), std::string::npos);
+  EXPECT_EQ(Slurp(dir_ / "p.svg").rfind("<svg", 0), 0u);
 }
 
 TEST_F(PlanarizeCommandTest, ANetRefusesOddValenceAndNonQuads) {

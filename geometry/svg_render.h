@@ -1,0 +1,22 @@
+#pragma once
+// A picture of a mesh a person can open in any browser: an SVG of its faces seen from a given
+// direction (orthographic), flat Lambert shading, back-to-front painter's order.
+
+#include <Eigen/Core>
+#include <string>
+
+#include "geometry/mesh_io.h"
+
+namespace gproj {
+
+struct SvgOptions {
+  Eigen::Vector3d view = Eigen::Vector3d(0.7, -1.0, 1.6);   // direction from the scene to the eye
+  Eigen::Vector3d light = Eigen::Vector3d(0.4, -0.5, 1.0);  // direction towards the light
+  int width = 900;                                          // pixels; height follows the aspect
+  std::string title;
+};
+
+// The SVG document. Throws InputError if the mesh has no faces or non-finite points.
+std::string RenderMeshSvg(const PolyMesh& mesh, const SvgOptions& options = {});
+
+}  // namespace gproj
