@@ -81,13 +81,7 @@ StarPlanarityMeasures MeasureStarPlanarity(const PolyMesh& mesh, const PolyMesh&
     ++count;
   }
   m.mean_star_planarity = count > 0 ? sum / count : 0.0;
-  Eigen::AlignedBox3d box;
-  for (auto v : reference.vertices()) box.extend(ToEigen(reference.point(v)));
-  const double diagonal = box.diagonal().norm();
-  for (auto v : mesh.vertices())
-    m.max_displacement =
-        std::max(m.max_displacement,
-                 (ToEigen(mesh.point(v)) - ToEigen(reference.point(v))).norm() / diagonal);
+  m.max_displacement = MaxDisplacement(mesh, reference);
   return m;
 }
 
@@ -187,7 +181,7 @@ void LoadANetNormals(const PolyMesh& mesh, int vertex_block, const ANetFamilies&
 }
 
 ANet::ANet(const PolyMesh& mesh, const PolyMesh* reference, const ANetOptions& options)
-    : options_(options), input_(mesh) {
+    : options_(options), input_(mesh), current_(mesh) {
   std::string why;
   if (!options.IsValid(&why)) throw InputError("invalid A-net options: " + why);
   if (mesh.n_faces() == 0) throw InputError("the mesh has no faces");
@@ -203,24 +197,18 @@ ANet::ANet(const PolyMesh& mesh, const PolyMesh* reference, const ANetOptions& o
 }
 
 StarPlanarityMeasures ANet::MeasuresAt(const Eigen::VectorXd& x) const {
-  PolyMesh current = input_;
-  StoreVertices(x, problem_.layout(), vertex_block_, norm_, &current);
-  return MeasureStarPlanarity(current, input_);
+  StoreVertices(x, problem_.layout(), vertex_block_, norm_, &current_);
+  return MeasureStarPlanarity(current_, input_);
 }
 
 StarPlanarityMeasures ANet::Measures() const { return MeasuresAt(problem_.x()); }
 
 SolverSummary ANet::Solve(const Callback& callback) {
-  const double tolerance = options_.tolerance;
-  return gproj::Solve(
+  return SolveWithMeasures<StarPlanarityMeasures>(
       options_.ToSolverOptions(), &problem_,
-      [&](const IterationRecord& record, const Eigen::VectorXd& x) {
-        const StarPlanarityMeasures m = MeasuresAt(x);
-        CallbackResult result = callback ? callback(record, m) : CallbackResult::kContinue;
-        if (result == CallbackResult::kContinue && m.max_star_planarity <= tolerance)
-          result = CallbackResult::kConverged;
-        return result;
-      });
+      [this](const Eigen::VectorXd& x) { return MeasuresAt(x); },
+      [this](const StarPlanarityMeasures& m) { return m.max_star_planarity <= options_.tolerance; },
+      callback);
 }
 
 ceres::Solver::Summary ANet::SolveWithCeres(int max_iterations, double soft_scale) {

@@ -98,6 +98,7 @@ class ANet {
 
   ANetOptions options_;
   PolyMesh input_;
+  mutable PolyMesh current_;  // the iterate as a mesh, rewritten in place by MeasuresAt
   MeshNormalization norm_;
   std::unique_ptr<ClosestPointQuery> reference_;
   Problem problem_;

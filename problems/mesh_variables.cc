@@ -1,5 +1,7 @@
 #include "problems/mesh_variables.h"
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <utility>
 #include <vector>
 
@@ -20,6 +22,16 @@ double MeanEdgeLength(const PolyMesh& mesh) {
   double sum = 0.0;
   for (auto e : mesh.edges()) sum += mesh.calc_edge_length(e);
   return mesh.n_edges() > 0 ? sum / mesh.n_edges() : 0.0;
+}
+
+double MaxDisplacement(const PolyMesh& mesh, const PolyMesh& reference) {
+  Eigen::AlignedBox3d box;
+  for (auto v : reference.vertices()) box.extend(ToEigen(reference.point(v)));
+  const double diagonal = box.diagonal().norm();
+  double worst = 0.0;
+  for (auto v : mesh.vertices())
+    worst = std::max(worst, (ToEigen(mesh.point(v)) - ToEigen(reference.point(v))).norm());
+  return diagonal > 0.0 ? worst / diagonal : worst;
 }
 
 void LoadVertices(const PolyMesh& mesh, const MeshNormalization& norm, int vertex_block,

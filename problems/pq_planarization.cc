@@ -70,18 +70,12 @@ PlanarityMeasures MeasurePlanarity(const PolyMesh& mesh, const PolyMesh& referen
     sum += d;
   }
   m.mean_planarity = mesh.n_faces() > 0 ? sum / mesh.n_faces() : 0.0;
-  Eigen::AlignedBox3d box;
-  for (auto v : reference.vertices()) box.extend(ToEigen(reference.point(v)));
-  const double diagonal = box.diagonal().norm();
-  for (auto v : mesh.vertices()) {
-    const double d = (ToEigen(mesh.point(v)) - ToEigen(reference.point(v))).norm();
-    m.max_displacement = std::max(m.max_displacement, d / diagonal);
-  }
+  m.max_displacement = MaxDisplacement(mesh, reference);
   return m;
 }
 
 PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOptions& options)
-    : options_(options), input_(mesh) {
+    : options_(options), input_(mesh), current_(mesh) {
   std::string why;
   if (!options.IsValid(&why)) throw InputError("invalid planarisation options: " + why);
   for (auto f : mesh.faces())
@@ -124,24 +118,18 @@ PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOpti
 }
 
 PlanarityMeasures PQPlanarization::MeasuresAt(const Eigen::VectorXd& x) const {
-  PolyMesh current = input_;
-  StoreVertices(x, problem_.layout(), vertex_block_, norm_, &current);
-  return MeasurePlanarity(current, input_);
+  StoreVertices(x, problem_.layout(), vertex_block_, norm_, &current_);
+  return MeasurePlanarity(current_, input_);
 }
 
 PlanarityMeasures PQPlanarization::Measures() const { return MeasuresAt(problem_.x()); }
 
 SolverSummary PQPlanarization::Solve(const Callback& callback) {
-  const double tolerance = options_.tolerance;
-  return gproj::Solve(options_.ToSolverOptions(), &problem_,
-                      [&](const IterationRecord& record, const Eigen::VectorXd& x) {
-                        const PlanarityMeasures m = MeasuresAt(x);
-                        CallbackResult result =
-                            callback ? callback(record, m) : CallbackResult::kContinue;
-                        if (result == CallbackResult::kContinue && m.max_planarity <= tolerance)
-                          result = CallbackResult::kConverged;
-                        return result;
-                      });
+  return SolveWithMeasures<PlanarityMeasures>(
+      options_.ToSolverOptions(), &problem_,
+      [this](const Eigen::VectorXd& x) { return MeasuresAt(x); },
+      [this](const PlanarityMeasures& m) { return m.max_planarity <= options_.tolerance; },
+      callback);
 }
 
 ceres::Solver::Summary PQPlanarization::SolveWithCeres(int max_iterations,

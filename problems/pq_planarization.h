@@ -82,6 +82,7 @@ class PQPlanarization {
 
   PQPlanarizationOptions options_;
   PolyMesh input_;
+  mutable PolyMesh current_;  // the iterate as a mesh, rewritten in place by MeasuresAt
   MeshNormalization norm_;
   Problem problem_;
   int vertex_block_ = -1;
