@@ -1,4 +1,5 @@
 // `gproj grid`: writes a noisy doubly curved quad grid, the test input of the benchmarks.
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -22,11 +23,11 @@ void RegisterGridCommand(CLI::App* app, int* exit_code) {
       "Write a quad grid over [-1,1]^2 on z = a x^2 + b y^2 + c x y with every vertex moved "
       "by uniform noise (a test input for planarize)");
   cmd->add_option("-o,--output", args->output, "Mesh to write (.obj, .off or .ply)")->required();
-  cmd->add_option(
-         "--surface", args->surface,
-         "paraboloid (z = a x^2 + b y^2 + c x y), or an asymptotic net: hypar, hyperboloid, "
-         "enneper (parameters over [-1,1]^2)")
-      ->check(CLI::IsMember({"paraboloid", "hypar", "hyperboloid", "enneper"}))
+  cmd->add_option("--surface", args->surface,
+                  "paraboloid (z = a x^2 + b y^2 + c x y), an asymptotic net: hypar, hyperboloid, "
+                  "enneper, or a circular net: revolution (meridians and parallels of a surface of "
+                  "revolution; parameters over [-1,1]^2)")
+      ->check(CLI::IsMember({"paraboloid", "hypar", "hyperboloid", "enneper", "revolution"}))
       ->capture_default_str();
   cmd->add_option("--nu", args->grid.nu, "Vertices along u")
       ->check(CLI::Range(2, 100000))
@@ -53,7 +54,10 @@ void RegisterGridCommand(CLI::App* app, int* exit_code) {
         o.nv = args->grid.nv;
         o.jitter = args->grid.noise;
         o.seed = args->grid.seed;
-        WriteMeshAtomically(MakeParametricGrid(AsymptoticSurface(args->surface), o), args->output);
+        const auto surface = args->surface == "revolution"
+                                 ? std::function<Eigen::Vector3d(double, double)>(RevolutionSurface)
+                                 : AsymptoticSurface(args->surface);
+        WriteMeshAtomically(MakeParametricGrid(surface, o), args->output);
       }
       std::cout << "wrote " << args->output << ": " << args->grid.nu << " x " << args->grid.nv
                 << " vertices, noise " << args->grid.noise << " of the spacing\n";

@@ -56,4 +56,9 @@ std::function<Eigen::Vector3d(double, double)> AsymptoticSurface(const std::stri
   throw InputError("unknown surface '" + name + "' (hypar, hyperboloid or enneper)");
 }
 
+Eigen::Vector3d RevolutionSurface(double s, double t) {
+  const double r = 1.5 + 0.5 * s * s;
+  return {r * std::cos(t), r * std::sin(t), s};
+}
+
 }  // namespace gproj

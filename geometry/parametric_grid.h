@@ -30,4 +30,9 @@ PolyMesh MakeParametricGrid(const std::function<Eigen::Vector3d(double, double)>
 // Throws InputError for an unknown name.
 std::function<Eigen::Vector3d(double, double)> AsymptoticSurface(const std::string& name);
 
+// A surface of revolution about the z axis, meshed along its lines of curvature (meridians and
+// parallels), so every quad is circular (an isosceles trapezoid): the test input of the
+// super-canal problems. (s, t) ↦ (r cos t, r sin t, s) with r = 1.5 + 0.5 s², t in radians.
+Eigen::Vector3d RevolutionSurface(double s, double t);
+
 }  // namespace gproj

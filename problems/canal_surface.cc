@@ -1,0 +1,393 @@
+#include "problems/canal_surface.h"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <memory>
+
+namespace gproj {
+namespace {
+
+using std::acos;
+using std::asin;
+using std::atan2;
+using std::cos;
+using std::sin;
+using std::sqrt;
+
+template <typename T>
+Vec3<T> Cast(const Eigen::Vector3d& v) {
+  return Vec3<T>(T(v.x()), T(v.y()), T(v.z()));
+}
+
+// x rotated by `angle` about the axis through c with unit direction n.
+template <typename T>
+Vec3<T> Rotate(const Vec3<T>& x, const Vec3<T>& c, const Vec3<T>& n, const T& angle) {
+  const Vec3<T> d = x - c;
+  return c + cos(angle) * d + sin(angle) * n.cross(d);
+}
+
+// Angle in [0, 2π) from `from` to `to` about the axis (c, n), counter-clockwise seen from n.
+template <typename T>
+T CcwAngle(const Vec3<T>& from, const Vec3<T>& to, const Vec3<T>& c, const Vec3<T>& n) {
+  const Vec3<T> e1 = from - c, e2 = n.cross(e1), d = to - c;
+  T angle = atan2(d.dot(e2), d.dot(e1));
+  if (angle < T(0)) angle += T(2 * M_PI);
+  return angle;
+}
+
+// Reflection in the plane perpendicular to `edge`.
+template <typename T>
+Vec3<T> Reflect(const Vec3<T>& x, const Vec3<T>& edge) {
+  return x - (T(2) * x.dot(edge) / edge.squaredNorm()) * edge;
+}
+
+// 1 / R² of the arc from a to a + chord with tangent t (unit) at a.
+template <typename T>
+T InverseRadiusSquared(const Vec3<T>& t, const Vec3<T>& chord) {
+  const T c2 = chord.squaredNorm();
+  return T(4) * t.cross(chord).squaredNorm() / (c2 * c2);
+}
+
+// Q_0..Q_n by propagation (see the header). On failure returns false with a message.
+template <typename T>
+bool BuildStripT(const std::vector<Eigen::Vector3d>& curve, const Eigen::Vector3d& first,
+                 const T* lengths, std::vector<Vec3<T>>* q, std::string* error) {
+  const int n = static_cast<int>(curve.size()) - 1;
+  q->assign(n + 1, Vec3<T>::Zero());
+  const CircleT<T> first_circle =
+      CircleThrough<T>(Cast<T>(curve[0]), Cast<T>(curve[1]), Cast<T>(first));
+  auto point_at_chord = [&](const CircleT<T>& circle, const Vec3<T>& from, const T& length, int k,
+                            T* angle) {
+    if (!(length > T(0)) || !(length < T(2) * circle.radius)) {
+      *error = "length " + std::to_string(k) + " (" +
+               std::to_string(ceres::internal::AsScalar(length)) +
+               ") must be positive and shorter than the circle's diameter " +
+               std::to_string(2 * ceres::internal::AsScalar(circle.radius));
+      return false;
+    }
+    *angle = T(2) * asin(length / (T(2) * circle.radius));
+    return true;
+  };
+  {
+    // Q_0: from P_0 clockwise (away from P_1, which comes first counter-clockwise).
+    T delta;
+    if (!point_at_chord(first_circle, Cast<T>(curve[0]), lengths[0], 0, &delta)) return false;
+    const T alpha =
+        CcwAngle<T>(Cast<T>(curve[0]), Cast<T>(curve[1]), first_circle.centre, first_circle.normal);
+    if (!(T(2 * M_PI) - delta > alpha)) {
+      *error = "length 0 is so long that Q_0 passes P_1 on the first circle";
+      return false;
+    }
+    (*q)[0] = Rotate<T>(Cast<T>(curve[0]), first_circle.centre, first_circle.normal, -delta);
+  }
+  for (int k = 0; k < n; ++k) {
+    const Vec3<T> pk = Cast<T>(curve[k]), pk1 = Cast<T>(curve[k + 1]);
+    const CircleT<T> circle = CircleThrough<T>(pk, pk1, (*q)[k]);
+    if (!(circle.radius == circle.radius) || !(circle.radius < T(1e12))) {
+      *error = "P_" + std::to_string(k) + ", P_" + std::to_string(k + 1) + " and Q_" +
+               std::to_string(k) + " are collinear";
+      return false;
+    }
+    T delta;
+    if (!point_at_chord(circle, pk1, lengths[k + 1], k + 1, &delta)) return false;
+    const T gamma = CcwAngle<T>(pk1, (*q)[k], circle.centre, circle.normal);
+    if (!(delta < gamma)) {
+      *error = "length " + std::to_string(k + 1) + " makes Q_" + std::to_string(k + 1) +
+               " pass Q_" + std::to_string(k) + " (quad " + std::to_string(k) + " would fold)";
+      return false;
+    }
+    (*q)[k + 1] = Rotate<T>(pk1, circle.centre, circle.normal, delta);
+  }
+  return true;
+}
+
+template <typename T>
+void FrameAtStart(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const T* angles,
+                  Vec3<T>* t1, Vec3<T>* t2, Vec3<T>* n) {
+  const T &lambda = angles[0], &theta = angles[1], &psi = angles[2];
+  *n = Vec3<T>(cos(lambda) * cos(theta), cos(lambda) * sin(theta), sin(lambda));
+  const Vec3<T> chord = Cast<T>(p1) - Cast<T>(p0);
+  const Vec3<T> projected = chord - chord.dot(*n) * (*n);
+  const Vec3<T> u = projected / projected.norm();
+  *t1 = cos(psi) * u + sin(psi) * n->cross(u);
+  *t2 = n->cross(*t1);
+}
+
+// F of 000 eq. 5 over the strip's edges, and the edge count.
+template <typename T>
+T StripEnergy(const std::vector<Eigen::Vector3d>& p, const std::vector<Vec3<T>>& q,
+              const T* angles) {
+  Vec3<T> t1, t2, n;
+  FrameAtStart<T>(p[0], p[1], angles, &t1, &t2, &n);
+  T energy(0);
+  const int last = static_cast<int>(p.size()) - 1;
+  for (int k = 0; k <= last; ++k) {
+    const Vec3<T> pk = Cast<T>(p[k]);
+    const Vec3<T> across = q[k] - pk;
+    energy += InverseRadiusSquared<T>(t2, across);
+    // Frame at Q_k, and the edge Q_k → Q_{k+1}.
+    const Vec3<T> qt1 = Reflect<T>(t1, across);
+    if (k < last) {
+      energy += InverseRadiusSquared<T>(qt1, q[k + 1] - q[k]);
+      const Vec3<T> along = Cast<T>(p[k + 1]) - pk;
+      energy += InverseRadiusSquared<T>(t1, along);
+      t1 = Reflect<T>(t1, along);
+      t2 = Reflect<T>(t2, along);
+    }
+  }
+  return energy;
+}
+
+// Parameters: [lengths (if optimised)] [λ, θ, ψ (if optimised)].
+class CanalObjective final : public ceres::FirstOrderFunction {
+ public:
+  CanalObjective(const CircularStripInput& input, const FrameAngles& angles,
+                 const CanalSmoothingOptions& options, double edge_scale)
+      : input_(input), options_(options), edge_scale_(edge_scale) {
+    angles_[0] = angles.lambda;
+    angles_[1] = angles.theta;
+    angles_[2] = angles.psi;
+    num_parameters_ = (options.optimize_lengths ? static_cast<int>(input.lengths.size()) : 0) +
+                      (options.optimize_frame ? 3 : 0);
+  }
+
+  template <typename T>
+  bool Eval(const T* x, T* cost, T* energy_out = nullptr) const {
+    const int n = static_cast<int>(input_.lengths.size());
+    std::vector<T> lengths(n);
+    int k = 0;
+    for (int i = 0; i < n; ++i)
+      lengths[i] = options_.optimize_lengths ? x[k++] : T(input_.lengths[i]);
+    T angles[3];
+    for (int i = 0; i < 3; ++i) angles[i] = options_.optimize_frame ? x[k++] : T(angles_[i]);
+    std::vector<Vec3<T>> q;
+    std::string error;
+    if (!BuildStripT<T>(input_.curve, input_.first_point, lengths.data(), &q, &error)) return false;
+    const T energy = StripEnergy<T>(input_.curve, q, angles);
+    const int edges = 3 * (n - 1) + 1;
+    T regulariser(0);
+    for (int i = 0; i < n; ++i) {
+      const T r = lengths[i] / T(input_.lengths[i]) - T(1);
+      regulariser += r * r;
+    }
+    *cost =
+        energy * T(edge_scale_ * edge_scale_ / edges) + T(options_.length_weight / n) * regulariser;
+    if (energy_out) *energy_out = energy;
+    using std::isfinite;
+    return isfinite(*cost);
+  }
+
+  bool Evaluate(const double* parameters, double* cost, double* gradient) const override {
+    if (gradient == nullptr) return Eval<double>(parameters, cost);
+    // Forward-mode automatic differentiation, eight parameters per pass.
+    using Jet = ceres::Jet<double, 8>;
+    std::vector<Jet> x(num_parameters_);
+    for (int start = 0; start < num_parameters_; start += 8) {
+      for (int i = 0; i < num_parameters_; ++i) {
+        x[i] = Jet(parameters[i]);
+        if (i >= start && i < start + 8) x[i].v[i - start] = 1.0;
+      }
+      Jet out;
+      if (!Eval<Jet>(x.data(), &out)) return false;
+      *cost = out.a;
+      for (int i = start; i < std::min(start + 8, num_parameters_); ++i)
+        gradient[i] = out.v[i - start];
+    }
+    return true;
+  }
+  int NumParameters() const override { return num_parameters_; }
+
+ private:
+  CircularStripInput input_;
+  CanalSmoothingOptions options_;
+  double edge_scale_;
+  double angles_[3];
+  int num_parameters_ = 0;
+};
+
+class ProgressCallback final : public ceres::IterationCallback {
+ public:
+  explicit ProgressCallback(std::function<void(int, double)> f) : f_(std::move(f)) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
+    if (f_) f_(s.iteration, s.cost);
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  std::function<void(int, double)> f_;
+};
+
+}  // namespace
+
+CircularStrip BuildCircularStrip(const CircularStripInput& input) {
+  const int n = static_cast<int>(input.curve.size()) - 1;
+  if (n < 1) throw InputError("the curve needs at least two points");
+  if (static_cast<int>(input.lengths.size()) != n + 1)
+    throw InputError("the strip needs one length per curve point (" + std::to_string(n + 1) +
+                     "), got " + std::to_string(input.lengths.size()));
+  for (int k = 0; k <= n; ++k)
+    if (!input.curve[k].allFinite())
+      throw InputError("curve point " + std::to_string(k) + " is not finite");
+  const Eigen::Vector3d a = input.curve[1] - input.curve[0], b = input.first_point - input.curve[0];
+  if (!(a.cross(b).norm() > 1e-12 * a.norm() * b.norm()))
+    throw InputError("P_0, P_1 and the first point are collinear: they do not fix a circle");
+  CircularStrip strip;
+  strip.p = input.curve;
+  std::string error;
+  if (!BuildStripT<double>(input.curve, input.first_point, input.lengths.data(), &strip.q, &error))
+    throw InputError(error);
+  return strip;
+}
+
+PolyMesh StripMesh(const CircularStrip& strip) {
+  PolyMesh mesh;
+  const int n = static_cast<int>(strip.p.size()) - 1;
+  std::vector<PolyMesh::VertexHandle> v;
+  for (const auto* row : {&strip.p, &strip.q})
+    for (const auto& x : *row) v.push_back(mesh.add_vertex(PolyMesh::Point(x.x(), x.y(), x.z())));
+  for (int k = 0; k < n; ++k)
+    mesh.add_face(std::vector<PolyMesh::VertexHandle>{v[k], v[n + 1 + k], v[n + 2 + k], v[k + 1]});
+  return mesh;
+}
+
+FrameAngles AnglesFromNormal(const Eigen::Vector3d& normal) {
+  const Eigen::Vector3d n = normal.normalized();
+  FrameAngles angles;
+  angles.lambda = std::asin(std::max(-1.0, std::min(1.0, n.z())));
+  angles.theta = std::atan2(n.y(), n.x());
+  return angles;
+}
+
+CyclidicStrip MakeCyclidicStrip(const CircularStrip& strip, const FrameAngles& angles) {
+  CyclidicStrip net;
+  net.strip = strip;
+  const double a[3] = {angles.lambda, angles.theta, angles.psi};
+  const int n = static_cast<int>(strip.p.size()) - 1;
+  Frame f;
+  FrameAtStart<double>(strip.p[0], strip.p[1], a, &f.t1, &f.t2, &f.n);
+  for (int k = 0; k <= n; ++k) {
+    net.p_frames.push_back(f);
+    const Eigen::Vector3d across = strip.q[k] - strip.p[k];
+    net.q_frames.push_back({Reflect<double>(f.t1, across), Reflect<double>(f.t2, across),
+                            Reflect<double>(f.n, across)});
+    // C_k: through P_k and Q_k with tangent t2 at P_k.
+    const Eigen::Vector3d normal = f.t2.cross(across).normalized();
+    const Eigen::Vector3d inward = normal.cross(f.t2);
+    const double r = across.squaredNorm() / (2.0 * across.dot(inward));
+    net.circles.push_back({strip.p[k] + r * inward, normal, std::abs(r)});
+    if (k < n) {
+      const Eigen::Vector3d along = strip.p[k + 1] - strip.p[k];
+      f = {Reflect<double>(f.t1, along), Reflect<double>(f.t2, along), Reflect<double>(f.n, along)};
+    }
+  }
+  net.energy = StripEnergy<double>(strip.p, strip.q, a);
+  return net;
+}
+
+PolyMesh MeshCanalSurface(const CyclidicStrip& net, int m) {
+  if (m < 1) throw InputError("the canal mesh needs at least one segment per circle");
+  const int n = static_cast<int>(net.strip.p.size()) - 1;
+  std::vector<std::vector<Eigen::Vector3d>> rows(n + 1, std::vector<Eigen::Vector3d>(m + 1));
+  {
+    const Circle& c0 = net.circles[0];
+    // The circle's normal t2 × (Q − P) makes the positive rotation start along t2 at P_0.
+    const double arc = CcwAngle<double>(net.strip.p[0], net.strip.q[0], c0.centre, c0.normal);
+    for (int j = 0; j <= m; ++j)
+      rows[0][j] = Rotate<double>(net.strip.p[0], c0.centre, c0.normal, arc * j / m);
+  }
+  for (int k = 0; k < n; ++k) {
+    const Circle& c = net.circles[k + 1];
+    rows[k + 1][0] = net.strip.p[k + 1];
+    for (int j = 0; j < m; ++j) {
+      const Eigen::Vector3d& x0 = rows[k][j];
+      const Eigen::Vector3d& x1 = rows[k][j + 1];
+      const Eigen::Vector3d& y0 = rows[k + 1][j];
+      const Eigen::Vector3d plane = (x1 - x0).cross(y0 - x0);
+      const Eigen::Vector3d u = plane.cross(c.normal);
+      if (!(u.norm() > 1e-12 * plane.norm()))
+        throw InputError("canal mesh: the plane of quad (" + std::to_string(k) + ", " +
+                         std::to_string(j) + ") is parallel to circle C_" + std::to_string(k + 1));
+      const Eigen::Vector3d dir = u.normalized();
+      rows[k + 1][j + 1] = y0 - 2.0 * (y0 - c.centre).dot(dir) * dir;
+    }
+  }
+  PolyMesh mesh;
+  std::vector<PolyMesh::VertexHandle> v;
+  for (const auto& row : rows)
+    for (const auto& x : row) v.push_back(mesh.add_vertex(PolyMesh::Point(x.x(), x.y(), x.z())));
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < m; ++j) {
+      const int a = k * (m + 1) + j;
+      mesh.add_face(
+          std::vector<PolyMesh::VertexHandle>{v[a], v[a + m + 1], v[a + m + 2], v[a + 1]});
+    }
+  return mesh;
+}
+
+bool CanalSmoothingOptions::IsValid(std::string* why) const {
+  if (max_iterations < 1) {
+    *why = "max_iterations must be ≥ 1";
+    return false;
+  }
+  if (!(length_weight >= 0.0) || !std::isfinite(length_weight)) {
+    *why = "length_weight must be finite and ≥ 0";
+    return false;
+  }
+  if (!optimize_lengths && !optimize_frame) {
+    *why = "nothing to optimise: free the lengths, the frame or both";
+    return false;
+  }
+  return true;
+}
+
+CanalSmoothingSummary SmoothCanalStrip(const CircularStripInput& input, const FrameAngles& angles,
+                                       const CanalSmoothingOptions& options,
+                                       const std::function<void(int, double)>& progress) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("canal smoothing: " + why);
+  const CircularStrip strip = BuildCircularStrip(input);  // validates the input
+  double edge_sum = 0.0;
+  const int n = static_cast<int>(strip.p.size()) - 1;
+  for (int k = 0; k <= n; ++k) {
+    edge_sum += (strip.q[k] - strip.p[k]).norm();
+    if (k < n)
+      edge_sum += (strip.p[k + 1] - strip.p[k]).norm() + (strip.q[k + 1] - strip.q[k]).norm();
+  }
+  const double edge_scale = edge_sum / (3 * n + 1);
+  auto* objective = new CanalObjective(input, angles, options, edge_scale);
+  std::vector<double> x;
+  if (options.optimize_lengths) x = input.lengths;
+  if (options.optimize_frame) {
+    x.push_back(angles.lambda);
+    x.push_back(angles.theta);
+    x.push_back(angles.psi);
+  }
+  ceres::GradientProblem problem(objective);  // takes ownership
+  ceres::GradientProblemSolver::Options ceres_options;
+  ceres_options.line_search_direction_type = ceres::BFGS;
+  ceres_options.max_num_iterations = options.max_iterations;
+  ProgressCallback callback(progress);
+  ceres_options.callbacks.push_back(&callback);
+  ceres::GradientProblemSolver::Summary summary;
+  ceres::Solve(ceres_options, problem, x.data(), &summary);
+
+  CanalSmoothingSummary out;
+  out.converged = summary.termination_type == ceres::CONVERGENCE;
+  out.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  out.message = summary.BriefReport();
+  out.initial_energy = MakeCyclidicStrip(strip, angles).energy;
+  int k = 0;
+  out.lengths = input.lengths;
+  if (options.optimize_lengths)
+    for (auto& l : out.lengths) l = x[k++];
+  out.angles = angles;
+  if (options.optimize_frame) out.angles = {x[k], x[k + 1], x[k + 2]};
+  CircularStripInput result = input;
+  result.lengths = out.lengths;
+  out.final_energy = MakeCyclidicStrip(BuildCircularStrip(result), out.angles).energy;
+  return out;
+}
+
+}  // namespace gproj

@@ -1,0 +1,212 @@
+#include "problems/combescure.h"
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "constraints/edge_parallelism.h"
+#include "problems/mesh_variables.h"
+#include "problems/pq_planarization.h"
+
+namespace gproj {
+namespace {
+
+Eigen::Vector3d Point(const PolyMesh& mesh, int v) {
+  const auto& p = mesh.point(PolyMesh::VertexHandle(v));
+  return {p[0], p[1], p[2]};
+}
+
+std::string FaceName(const GridShape& shape, int i, int j) {
+  return "face " + std::to_string(i * shape.cols + j) + " (grid " + std::to_string(i) + ", " +
+         std::to_string(j) + ")";
+}
+
+// v − target = 0 as a hard constraint: fixes the translation of the parallel mesh.
+class PointAnchor : public ConstraintFamily {
+ public:
+  PointAnchor() : ConstraintFamily("anchor", 3, FamilyRole::kConstraint, 1.0) {}
+  void Add(int item, const Eigen::Vector3d& target) {
+    targets_.push_back(target);
+    AddElement({item});
+  }
+  void EvaluateElement(int e, const double* x, double* phi, double* jac) const override {
+    std::fill(jac, jac + 9, 0.0);
+    for (int r = 0; r < 3; ++r) {
+      phi[r] = x[r] - targets_[e][r];
+      jac[r * 3 + r] = 1.0;
+    }
+  }
+  bool RowTouches(int, int row, int local) const override { return row == local; }
+
+ private:
+  std::vector<Eigen::Vector3d> targets_;
+};
+
+}  // namespace
+
+CombescureLengths ReferenceLengths(const PolyMesh& reference, const GridShape& shape,
+                                   double scale) {
+  CombescureLengths lengths;
+  for (int j = 0; j < shape.cols; ++j)
+    lengths.row.push_back(
+        scale *
+        (Point(reference, shape.Vertex(0, j + 1)) - Point(reference, shape.Vertex(0, j))).norm());
+  for (int i = 0; i < shape.rows; ++i)
+    lengths.column.push_back(
+        scale *
+        (Point(reference, shape.Vertex(i + 1, 0)) - Point(reference, shape.Vertex(i, 0))).norm());
+  lengths.origin = Point(reference, 0);
+  return lengths;
+}
+
+void CheckCombescureInput(const PolyMesh& reference, const GridShape& shape,
+                          const CombescureLengths& lengths, double tolerance) {
+  if (static_cast<int>(lengths.row.size()) != shape.cols)
+    throw InputError("the row needs " + std::to_string(shape.cols) + " edge lengths (one per " +
+                     "edge (0, j) → (0, j + 1)), got " + std::to_string(lengths.row.size()));
+  if (static_cast<int>(lengths.column.size()) != shape.rows)
+    throw InputError("the column needs " + std::to_string(shape.rows) + " edge lengths (one per " +
+                     "edge (i, 0) → (i + 1, 0)), got " + std::to_string(lengths.column.size()));
+  for (size_t k = 0; k < lengths.row.size(); ++k)
+    if (!std::isfinite(lengths.row[k]))
+      throw InputError("row length " + std::to_string(k) + " is not finite");
+  for (size_t k = 0; k < lengths.column.size(); ++k)
+    if (!std::isfinite(lengths.column[k]))
+      throw InputError("column length " + std::to_string(k) + " is not finite");
+  if (!lengths.origin.allFinite()) throw InputError("the origin is not finite");
+  const double mean_edge = MeasurePlanarity(reference, reference).mean_edge_length;
+  for (int i = 0; i < shape.rows; ++i)
+    for (int j = 0; j < shape.cols; ++j) {
+      const Eigen::Vector3d a = Point(reference, shape.Vertex(i, j)),
+                            b = Point(reference, shape.Vertex(i + 1, j)),
+                            c = Point(reference, shape.Vertex(i + 1, j + 1)),
+                            d = Point(reference, shape.Vertex(i, j + 1));
+      const double planarity = DiagonalDistance(a, b, c, d) / mean_edge;
+      if (planarity > tolerance)
+        throw InputError(FaceName(shape, i, j) + " of the reference is not planar (diagonal " +
+                         "distance " + std::to_string(planarity) + " mean edges > tolerance " +
+                         std::to_string(tolerance) + "); planarise it first");
+      const Eigen::Vector3d sides[4] = {b - a, c - b, d - c, a - d};
+      for (int k = 0; k < 4; ++k) {
+        const Eigen::Vector3d& u = sides[k];
+        const Eigen::Vector3d& w = sides[(k + 1) % 4];
+        if (!(u.cross(w).norm() > 1e-9 * u.norm() * w.norm()))
+          throw InputError(FaceName(shape, i, j) +
+                           " of the reference is degenerate: two adjacent sides are parallel "
+                           "or of zero length");
+      }
+    }
+}
+
+PolyMesh CombescureByPropagation(const PolyMesh& reference, const GridShape& shape,
+                                 const CombescureLengths& lengths, double tolerance) {
+  CheckCombescureInput(reference, shape, lengths, tolerance);
+  std::vector<Eigen::Vector3d> out(shape.num_vertices());
+  auto unit = [&](int a, int b) {
+    return Eigen::Vector3d((Point(reference, b) - Point(reference, a)).normalized());
+  };
+  out[0] = lengths.origin;
+  for (int j = 0; j < shape.cols; ++j)
+    out[shape.Vertex(0, j + 1)] =
+        out[shape.Vertex(0, j)] + lengths.row[j] * unit(shape.Vertex(0, j), shape.Vertex(0, j + 1));
+  for (int i = 0; i < shape.rows; ++i)
+    out[shape.Vertex(i + 1, 0)] =
+        out[shape.Vertex(i, 0)] +
+        lengths.column[i] * unit(shape.Vertex(i, 0), shape.Vertex(i + 1, 0));
+  // Quad (A, B, C, D) = ((i, j), (i+1, j), (i+1, j+1), (i, j+1)) with A, B, D known:
+  // C = B + l1 u_BC = D + l2 u_DC, solved in the plane of the quad (000 eq. 4).
+  for (int i = 0; i < shape.rows; ++i)
+    for (int j = 0; j < shape.cols; ++j) {
+      const int b = shape.Vertex(i + 1, j), c = shape.Vertex(i + 1, j + 1),
+                d = shape.Vertex(i, j + 1);
+      const Eigen::Vector3d u_bc = unit(b, c), u_dc = unit(d, c);
+      Eigen::Matrix<double, 3, 2> m;
+      m.col(0) = u_bc;
+      m.col(1) = -u_dc;
+      const Eigen::Vector2d l = (m.transpose() * m).ldlt().solve(m.transpose() * (out[d] - out[b]));
+      out[c] = 0.5 * (out[b] + l[0] * u_bc + out[d] + l[1] * u_dc);
+    }
+  PolyMesh mesh = reference;
+  for (auto v : mesh.vertices()) {
+    const Eigen::Vector3d& p = out[v.idx()];
+    mesh.set_point(v, PolyMesh::Point(p.x(), p.y(), p.z()));
+  }
+  return mesh;
+}
+
+Problem MakeCombescureProblem(const PolyMesh& reference, const GridShape& shape,
+                              const CombescureLengths& lengths) {
+  CheckCombescureInput(reference, shape, lengths);
+  Problem problem;
+  const int block = problem.layout().AddBlock("vertices", shape.num_vertices(), 3);
+  problem.ResizeToLayout();
+  const Eigen::Vector3d shift = lengths.origin - Point(reference, 0);
+  for (int v = 0; v < shape.num_vertices(); ++v)
+    problem.x().segment<3>(problem.layout().ItemOffset(problem.layout().Item(block, v))) =
+        Point(reference, v) + shift;
+  auto item = [&](int v) { return problem.layout().Item(block, v); };
+  auto* parallel = problem.AddFamily<EdgeParallelism>();
+  for (auto e : reference.edges()) {
+    const auto h = reference.halfedge_handle(e, 0);
+    const int a = reference.from_vertex_handle(h).idx(), b = reference.to_vertex_handle(h).idx();
+    parallel->AddEdge(item(a), item(b), Point(reference, b) - Point(reference, a));
+  }
+  auto* guides = problem.AddFamily<EdgeVector>(1.0, "guide edges");
+  for (int j = 0; j < shape.cols; ++j) {
+    const int a = shape.Vertex(0, j), b = shape.Vertex(0, j + 1);
+    guides->AddEdge(item(a), item(b),
+                    lengths.row[j] * (Point(reference, b) - Point(reference, a)).normalized());
+  }
+  for (int i = 0; i < shape.rows; ++i) {
+    const int a = shape.Vertex(i, 0), b = shape.Vertex(i + 1, 0);
+    guides->AddEdge(item(a), item(b),
+                    lengths.column[i] * (Point(reference, b) - Point(reference, a)).normalized());
+  }
+  problem.AddFamily<PointAnchor>()->Add(item(0), lengths.origin);
+  return problem;
+}
+
+SolverOptions CombescureSolverOptions() {
+  SolverOptions options;
+  // Linear rows: each step solves the regularised least squares exactly, and the proximal
+  // term ε² shrinks the remaining error by ~ε² per step.
+  options.max_iterations = 5;
+  options.epsilon = 1e-6;
+  options.residual_tolerance = 1e-11;
+  options.step_tolerance = 0.0;
+  options.eliminate_auxiliaries = false;
+  return options;
+}
+
+PolyMesh CombescureResult(const PolyMesh& reference, const Problem& problem) {
+  PolyMesh mesh = reference;
+  for (auto v : mesh.vertices()) {
+    const Eigen::Vector3d p =
+        problem.x().segment<3>(problem.layout().ItemOffset(problem.layout().Item(0, v.idx())));
+    mesh.set_point(v, PolyMesh::Point(p.x(), p.y(), p.z()));
+  }
+  return mesh;
+}
+
+ParallelismMeasures MeasureParallelism(const PolyMesh& reference, const PolyMesh& mesh) {
+  ParallelismMeasures m;
+  m.min_length_ratio = std::numeric_limits<double>::infinity();
+  for (auto e : reference.edges()) {
+    const auto h = reference.halfedge_handle(e, 0);
+    const int a = reference.from_vertex_handle(h).idx(), b = reference.to_vertex_handle(h).idx();
+    const Eigen::Vector3d r = Point(reference, b) - Point(reference, a);
+    const Eigen::Vector3d s = Point(mesh, b) - Point(mesh, a);
+    const double angle = std::atan2(r.cross(s).norm(), std::abs(r.dot(s)));
+    if (angle > m.max_angle || m.worst_edge < 0) {
+      m.max_angle = angle;
+      m.worst_edge = e.idx();
+    }
+    m.min_length_ratio =
+        std::min(m.min_length_ratio, (r.dot(s) >= 0 ? 1.0 : -1.0) * s.norm() / r.norm());
+  }
+  return m;
+}
+
+}  // namespace gproj
