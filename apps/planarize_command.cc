@@ -26,10 +26,12 @@ struct PlanarizeArgs {
 };
 
 nlohmann::json MeasuresJson(const PlanarityMeasures& m) {
-  return {{"max_planarity", m.max_planarity},
-          {"mean_planarity", m.mean_planarity},
-          {"max_displacement", m.max_displacement},
-          {"mean_edge_length", m.mean_edge_length}};
+  nlohmann::json j = {{"max_planarity", m.max_planarity},
+                      {"mean_planarity", m.mean_planarity},
+                      {"max_displacement", m.max_displacement},
+                      {"mean_edge_length", m.mean_edge_length}};
+  if (m.max_concyclicity >= 0.0) j["max_concyclicity"] = m.max_concyclicity;
+  return j;
 }
 
 int RunPlanarize(const PlanarizeArgs& args) {
@@ -112,7 +114,7 @@ int RunPlanarize(const PlanarizeArgs& args) {
           return true;
         });
     const PlanarityMeasures m = pq->Measures();
-    converged = m.max_planarity <= options.tolerance;
+    converged = pq->MeetsTolerance(m);
     failed = summary.termination_type == ceres::FAILURE || !pq->problem().x().allFinite();
     message = "ceres " + std::string(ceres::TerminationTypeToString(summary.termination_type)) +
               ": " + summary.message;
@@ -168,6 +170,9 @@ int RunPlanarize(const PlanarizeArgs& args) {
   std::printf("final: max planarity %.3e, mean %.3e, max displacement %.3e of the bbox diagonal\n",
               final_measures.max_planarity, final_measures.mean_planarity,
               final_measures.max_displacement);
+  if (final_measures.max_concyclicity >= 0.0)
+    std::printf("       max concyclicity %.3e (distance to the fitted circle / mean edge)\n",
+                final_measures.max_concyclicity);
   if (failed) {
     std::fprintf(stderr, "gproj planarize: solver failed (%s); no mesh written\n", message.c_str());
     return kExitSolverFailure;
@@ -221,6 +226,10 @@ void RegisterPlanarizeCommand(CLI::App* app, int* exit_code) {
                   "omega_f: weight of the second-difference fairness along mesh polylines")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  cmd->add_flag(
+      "--circular", args->options.circular,
+      "Circular quads (planar and concyclic, 000 §2) instead of planar ones; the "
+      "tolerance also bounds the concyclicity (distance to the fitted circle / mean edge)");
   cmd->add_option("--fairness-order", args->options.fairness_order,
                   "2: second differences, 3: third differences")
       ->check(CLI::IsMember({2, 3}))

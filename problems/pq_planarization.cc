@@ -4,8 +4,10 @@
 #include <cmath>
 #include <vector>
 
+#include "constraints/circular_quad.h"
 #include "constraints/closeness.h"
 #include "constraints/quad_planarity.h"
+#include "geometry/circle.h"
 #include "problems/mesh_variables.h"
 
 namespace gproj {
@@ -88,23 +90,38 @@ PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOpti
 
   VariableLayout& layout = problem_.layout();
   vertex_block_ = layout.AddBlock("vertices", static_cast<int>(mesh.n_vertices()), 3);
-  normal_block_ =
-      layout.AddBlock("face_normals", static_cast<int>(mesh.n_faces()), 3, /*eliminable=*/true);
+  normal_block_ = options.circular
+                      ? layout.AddBlock("face_circles", static_cast<int>(mesh.n_faces()),
+                                        CircularQuad::kAuxiliaryDim, /*eliminable=*/true)
+                      : layout.AddBlock("face_normals", static_cast<int>(mesh.n_faces()), 3,
+                                        /*eliminable=*/true);
   problem_.ResizeToLayout();
   LoadVertices(mesh, norm_, vertex_block_, &problem_);
   Eigen::VectorXd& x = problem_.x();
 
-  auto* planarity = problem_.AddFamily<QuadPlanarity>(options.planarity_weight);
+  QuadPlanarity* planarity = nullptr;
+  CircularQuad* circularity = nullptr;
+  if (options.circular)
+    circularity = problem_.AddFamily<CircularQuad>(options.planarity_weight);
+  else
+    planarity = problem_.AddFamily<QuadPlanarity>(options.planarity_weight);
   for (auto f : mesh.faces()) {
     int v[4], k = 0;
     for (auto fv : mesh.fv_range(f)) v[k++] = fv.idx();
     Eigen::Vector3d p[4];
     for (int j = 0; j < 4; ++j) p[j] = x.segment<3>(layout.Index(vertex_block_, v[j], 0));
-    x.segment<3>(layout.Index(normal_block_, f.idx(), 0)) =
-        QuadPlanarity::InitialNormal(p[0], p[1], p[2], p[3]);
-    planarity->AddQuad(layout.Item(normal_block_, f.idx()), layout.Item(vertex_block_, v[0]),
-                       layout.Item(vertex_block_, v[1]), layout.Item(vertex_block_, v[2]),
-                       layout.Item(vertex_block_, v[3]));
+    const int aux = layout.Item(normal_block_, f.idx());
+    const int items[4] = {layout.Item(vertex_block_, v[0]), layout.Item(vertex_block_, v[1]),
+                          layout.Item(vertex_block_, v[2]), layout.Item(vertex_block_, v[3])};
+    if (circularity) {
+      x.segment<CircularQuad::kAuxiliaryDim>(layout.Index(normal_block_, f.idx(), 0)) =
+          CircularQuad::InitialAuxiliary({p[0], p[1], p[2], p[3]});
+      circularity->AddQuad(aux, items[0], items[1], items[2], items[3]);
+    } else {
+      x.segment<3>(layout.Index(normal_block_, f.idx(), 0)) =
+          QuadPlanarity::InitialNormal(p[0], p[1], p[2], p[3]);
+      planarity->AddQuad(aux, items[0], items[1], items[2], items[3]);
+    }
   }
   if (options.closeness_weight > 0.0) {
     auto* closeness = problem_.AddFamily<Closeness>(3, options.closeness_weight);
@@ -119,7 +136,13 @@ PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOpti
 
 PlanarityMeasures PQPlanarization::MeasuresAt(const Eigen::VectorXd& x) const {
   StoreVertices(x, problem_.layout(), vertex_block_, norm_, &current_);
-  return MeasurePlanarity(current_, input_);
+  PlanarityMeasures m = MeasurePlanarity(current_, input_);
+  if (options_.circular) m.max_concyclicity = MeasureCircularity(current_).max_concyclicity;
+  return m;
+}
+
+bool PQPlanarization::MeetsTolerance(const PlanarityMeasures& m) const {
+  return m.max_planarity <= options_.tolerance && m.max_concyclicity <= options_.tolerance;
 }
 
 PlanarityMeasures PQPlanarization::Measures() const { return MeasuresAt(problem_.x()); }
@@ -128,8 +151,7 @@ SolverSummary PQPlanarization::Solve(const Callback& callback) {
   return SolveWithMeasures<PlanarityMeasures>(
       options_.ToSolverOptions(), &problem_,
       [this](const Eigen::VectorXd& x) { return MeasuresAt(x); },
-      [this](const PlanarityMeasures& m) { return m.max_planarity <= options_.tolerance; },
-      callback);
+      [this](const PlanarityMeasures& m) { return MeetsTolerance(m); }, callback);
 }
 
 ceres::Solver::Summary PQPlanarization::SolveWithCeres(int max_iterations,
@@ -141,12 +163,11 @@ ceres::Solver::Summary PQPlanarization::SolveWithCeres(int max_iterations,
                                  ? options_.ceres_soft_scale
                                  : std::min(1.0, options_.tolerance * 1e-2);
   ceres_options.num_threads = std::max(1, options_.num_threads);
-  const double tolerance = options_.tolerance;
   return gproj::SolveWithCeres(ceres_options, &problem_,
                                [&](const ceres::IterationSummary& s, const Eigen::VectorXd& x) {
                                  const PlanarityMeasures m = MeasuresAt(x);
                                  if (callback && !callback(s, m)) return false;
-                                 return m.max_planarity > tolerance;
+                                 return !MeetsTolerance(m);
                                });
 }
 

@@ -21,6 +21,10 @@ struct PQPlanarizationOptions {
   double closeness_weight = 1.0;  // closeness to the input vertices (scaled mesh units)
   double fairness_weight = 1.0;   // ω_f of the second-difference fairness
   int fairness_order = 2;         // 2: second differences, 3: third differences
+  // Circular quads instead of planar ones (000 §2): every face planar and concyclic, with an
+  // auxiliary (normal, centre, squared radius) per face; the tolerance then also bounds the
+  // concyclicity measure.
+  bool circular = false;
   // Stop when the max planarity measure (diagonal distance / mean edge) is ≤ this.
   double tolerance = 1e-9;
   int max_iterations = 30;
@@ -44,6 +48,9 @@ struct PlanarityMeasures {
   double mean_planarity = 0.0;    // mean of the same
   double max_displacement = 0.0;  // max vertex displacement / bbox diagonal of the input
   double mean_edge_length = 0.0;  // of the measured mesh, in input units
+  // Max over faces of the vertices' distance to their fitted circle / mean edge length; only
+  // measured for circular problems (−1 otherwise).
+  double max_concyclicity = -1.0;
 };
 
 // Distance between the two diagonal lines of a quad.
@@ -74,6 +81,8 @@ class PQPlanarization {
   // Current vertices, in input units.
   PolyMesh Result() const;
   PlanarityMeasures Measures() const;
+  // Whether the measures meet the tolerance (planarity, and concyclicity when circular).
+  bool MeetsTolerance(const PlanarityMeasures& m) const;
   Problem& problem() { return problem_; }
   const PQPlanarizationOptions& options() const { return options_; }
 

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "geometry/circle.h"
+#include "geometry/parametric_grid.h"
 #include "geometry/quad_grid.h"
 #include "solver/linearized_system.h"
 
@@ -98,6 +100,30 @@ TEST(PQPlanarizationTest, GuidedProjectionAndCeresReachTheSameObjective) {
     ASSERT_EQ(pq->problem().family(0).name(), "planarity");
     EXPECT_LT(system.phi().head(rows).cwiseAbs().maxCoeff(), 1e-8);
   }
+}
+
+// Circular mode (000 §2): a jittered circular net of a surface of revolution becomes circular
+// again; plain planarisation leaves it planar but not concyclic.
+TEST(PQPlanarizationTest, CircularModeMakesQuadsConcyclic) {
+  ParametricGridOptions o;
+  o.nu = o.nv = 12;
+  o.jitter = 0.03;
+  const PolyMesh mesh = MakeParametricGrid(RevolutionSurface, o);
+  ASSERT_GT(MeasureCircularity(mesh).max_concyclicity, 1e-3);
+  PQPlanarizationOptions options;
+  options.circular = true;
+  PQPlanarization circular(mesh, options);
+  const SolverSummary s = circular.Solve();
+  ASSERT_TRUE(s.converged()) << s.FullReport();
+  const PlanarityMeasures m = circular.Measures();
+  EXPECT_LE(m.max_planarity, 1e-9);
+  EXPECT_LE(m.max_concyclicity, 1e-9);
+  EXPECT_LT(MeasureCircularity(circular.Result()).max_concyclicity, 1e-9);
+  EXPECT_LT(m.max_displacement, 0.02);
+
+  PQPlanarization planar(mesh, PQPlanarizationOptions{});
+  ASSERT_TRUE(planar.Solve().converged());
+  EXPECT_GT(MeasureCircularity(planar.Result()).max_concyclicity, 1e-5);
 }
 
 TEST(PQPlanarizationTest, RefusesNonQuadFaces) {
