@@ -2,7 +2,8 @@
 
 #include <cmath>
 
-#include "solver/constraint_family.h"
+#include "constraints/marionette_planarity.h"
+#include "constraints/scalar_target.h"
 
 namespace gproj {
 namespace {
@@ -11,50 +12,9 @@ double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return a.x() * b.y() - a.y() * b.x();
 }
 
-// z_C − z_A − α (z_B − z_A) − β (z_D − z_A) = 0; items {A, B, C, D} (heights).
-class MarionettePlanarity : public ConstraintFamily {
- public:
-  explicit MarionettePlanarity(double weight)
-      : ConstraintFamily("planarity", 1, FamilyRole::kConstraint, weight) {}
-  void Add(int a, int b, int c, int d, double alpha, double beta) {
-    alpha_.push_back(alpha);
-    beta_.push_back(beta);
-    AddElement({a, b, c, d});
-  }
-  void EvaluateElement(int e, const double* z, double* phi, double* jac) const override {
-    const double al = alpha_[e], be = beta_[e];
-    jac[0] = -1.0 + al + be;
-    jac[1] = -al;
-    jac[2] = 1.0;
-    jac[3] = -be;
-    phi[0] = jac[0] * z[0] + jac[1] * z[1] + jac[2] * z[2] + jac[3] * z[3];
-  }
-
- private:
-  std::vector<double> alpha_, beta_;
-};
-
-// z − h = 0; items {z}.
-class HeightTarget : public ConstraintFamily {
- public:
-  HeightTarget(std::string name, FamilyRole role, double weight)
-      : ConstraintFamily(std::move(name), 1, role, weight) {}
-  void Add(int item, double h) {
-    h_.push_back(h);
-    AddElement({item});
-  }
-  void EvaluateElement(int e, const double* z, double* phi, double* jac) const override {
-    phi[0] = z[0] - h_[e];
-    jac[0] = 1.0;
-  }
-
- private:
-  std::vector<double> h_;
-};
-
 }  // namespace
 
-MarionettePlan MakeMarionettePlan(const PolyMesh& mesh, const std::string& path) {
+void MarionetteGridSize(const PolyMesh& mesh, const std::string& path, int* rows, int* cols) {
   const std::string prefix = path.empty() ? "" : path + ": ";
   // (N + 1)(M + 1) = V and N M = F give N + M = V − F − 1.
   const long v = static_cast<long>(mesh.n_vertices()), f = static_cast<long>(mesh.n_faces());
@@ -64,24 +24,23 @@ MarionettePlan MakeMarionettePlan(const PolyMesh& mesh, const std::string& path)
   if (n <= 0 || n * (sum - n) != f)
     throw InputError(prefix + "not a regular quad grid (" + std::to_string(v) + " vertices, " +
                      std::to_string(f) + " faces)");
-  MarionettePlan plan;
   // Rows of faces: try N = n and N = sum − n, whichever matches the face order.
-  for (long rows : {n, sum - n}) {
-    plan.rows = static_cast<int>(rows);
-    plan.cols = static_cast<int>(sum - rows);
+  for (long r : {n, sum - n}) {
+    const int nr = static_cast<int>(r), nc = static_cast<int>(sum - r);
+    auto vertex = [nc](int i, int j) { return i * (nc + 1) + j; };
     bool ok = true;
     for (auto fh : mesh.faces()) {
-      const int i = fh.idx() / plan.cols, j = fh.idx() % plan.cols;
-      const int expected[4] = {plan.Vertex(i, j), plan.Vertex(i + 1, j), plan.Vertex(i + 1, j + 1),
-                               plan.Vertex(i, j + 1)};
+      const int i = fh.idx() / nc, j = fh.idx() % nc;
+      const int expected[4] = {vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1),
+                               vertex(i, j + 1)};
       int got[4], k = 0;
       for (auto fv : mesh.fv_range(fh)) got[k++ % 4] = fv.idx();
       bool match = false;
-      for (int r = 0; r < 4 && !match; ++r) {
+      for (int q = 0; q < 4 && !match; ++q) {
         bool same = true, reversed = true;
         for (int t = 0; t < 4; ++t) {
-          same = same && got[(r + t) % 4] == expected[t];
-          reversed = reversed && got[(r + 4 - t) % 4] == expected[t];
+          same = same && got[(q + t) % 4] == expected[t];
+          reversed = reversed && got[(q + 4 - t) % 4] == expected[t];
         }
         match = same || reversed;
       }
@@ -90,12 +49,21 @@ MarionettePlan MakeMarionettePlan(const PolyMesh& mesh, const std::string& path)
         break;
       }
     }
-    if (ok) break;
-    if (rows == sum - n)
-      throw InputError(prefix +
-                       "the faces are not in grid order: vertex (i, j) must have index "
-                       "i * (cols + 1) + j and face (i, j) index i * cols + j");
+    if (ok) {
+      *rows = nr;
+      *cols = nc;
+      return;
+    }
   }
+  throw InputError(prefix +
+                   "the faces are not in grid order: vertex (i, j) must have index "
+                   "i * (cols + 1) + j and face (i, j) index i * cols + j");
+}
+
+MarionettePlan MakeMarionettePlan(const PolyMesh& mesh, const std::string& path) {
+  const std::string prefix = path.empty() ? "" : path + ": ";
+  MarionettePlan plan;
+  MarionetteGridSize(mesh, path, &plan.rows, &plan.cols);
   for (auto vh : mesh.vertices()) {
     const auto& p = mesh.point(vh);
     plan.xy.emplace_back(p[0], p[1]);
@@ -183,21 +151,21 @@ Problem MakeMarionetteProblem(const MarionettePlan& plan, const std::vector<Mari
   for (int i = 0; i < plan.rows; ++i)
     for (int j = 0; j < plan.cols; ++j) {
       const int f = i * plan.cols + j;
-      planarity->Add(problem.layout().Item(block, plan.Vertex(i, j)),
-                     problem.layout().Item(block, plan.Vertex(i + 1, j)),
-                     problem.layout().Item(block, plan.Vertex(i + 1, j + 1)),
-                     problem.layout().Item(block, plan.Vertex(i, j + 1)), plan.alpha[f],
-                     plan.beta[f]);
+      planarity->AddQuad(problem.layout().Item(block, plan.Vertex(i, j)),
+                         problem.layout().Item(block, plan.Vertex(i + 1, j)),
+                         problem.layout().Item(block, plan.Vertex(i + 1, j + 1)),
+                         problem.layout().Item(block, plan.Vertex(i, j + 1)), plan.alpha[f],
+                         plan.beta[f]);
     }
   if (!hard.empty()) {
     auto* guides =
-        problem.AddFamily<HeightTarget>("prescribed_heights", FamilyRole::kConstraint, hard_weight);
-    for (const auto& t : hard) guides->Add(problem.layout().Item(block, t.vertex), t.height);
+        problem.AddFamily<ScalarTarget>("prescribed_heights", FamilyRole::kConstraint, hard_weight);
+    for (const auto& t : hard) guides->AddTarget(problem.layout().Item(block, t.vertex), t.height);
   }
   if (!soft.empty()) {
     auto* target =
-        problem.AddFamily<HeightTarget>("target_heights", FamilyRole::kSoft, soft_weight);
-    for (const auto& t : soft) target->Add(problem.layout().Item(block, t.vertex), t.height);
+        problem.AddFamily<ScalarTarget>("target_heights", FamilyRole::kSoft, soft_weight);
+    for (const auto& t : soft) target->AddTarget(problem.layout().Item(block, t.vertex), t.height);
   }
   return problem;
 }

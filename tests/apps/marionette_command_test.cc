@@ -1,0 +1,224 @@
+// `gproj marionette` beyond regular grids, run as a user runs it: plans with singularities and
+// guide files, other projections, closed strips; errors name the file line / patch / face, exit
+// code 1, nothing written.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace gproj {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kData = std::string(GPROJ_SOURCE_DIR) + "/examples/data/";
+
+class MarionetteMeshCommandTest : public ::testing::Test {
+ protected:
+  struct Run {
+    int exit_code = -1;
+    std::string out, err;
+  };
+
+  void SetUp() override {
+    dir_ = fs::path(::testing::TempDir()) /
+           ("gproj_marionette_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string Path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string Write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name) << text;
+    return Path(name);
+  }
+  static std::string Slurp(const fs::path& p) {
+    std::ifstream in(p);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+  // Runs `gproj marionette ARGS -o out.obj --report r.json`.
+  Run Marionette(const std::string& args) {
+    const std::string cmd = std::string(GPROJ_BINARY) + " marionette " + args + " -o " +
+                            Path("out.obj") + " --report " + Path("r.json") + " >" +
+                            Path("stdout") + " 2>" + Path("stderr");
+    const int status = std::system(cmd.c_str());
+    Run r;
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = Slurp(dir_ / "stdout");
+    r.err = Slurp(dir_ / "stderr");
+    return r;
+  }
+  nlohmann::json Report() const { return nlohmann::json::parse(Slurp(dir_ / "r.json")); }
+  // Exit 1, a one-line error containing `part`, nothing written.
+  void ExpectRefused(const std::string& args, const std::string& part) {
+    const Run r = Marionette(args);
+    EXPECT_EQ(r.exit_code, 1) << r.err << r.out;
+    EXPECT_NE(r.err.find(part), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "out.obj"));
+    EXPECT_FALSE(fs::exists(dir_ / "r.json"));
+  }
+  // Vertices of an OBJ file.
+  std::vector<std::array<double, 3>> Vertices(const std::string& name) const {
+    std::vector<std::array<double, 3>> v;
+    std::istringstream lines(Slurp(dir_ / name));
+    for (std::string line; std::getline(lines, line);)
+      if (line.rfind("v ", 0) == 0) {
+        std::istringstream in(line.substr(2));
+        std::array<double, 3> p;
+        in >> p[0] >> p[1] >> p[2];
+        v.push_back(p);
+      }
+    return v;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(MarionetteMeshCommandTest, LiftsTheValenceSixPlanFromItsSpokesWithBothSolvers) {
+  const std::string args = kData + "marionette_plan_valence6.obj --guides " + kData +
+                           "marionette_valence6_guides.txt --solver ";
+  std::vector<std::array<double, 3>> direct;
+  for (const char* solver : {"direct", "gp"}) {
+    const Run r = Marionette(args + solver);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("6 patches, 6 strips of patches (30 face strips, 0 closed): a lift "
+                         "needs 31 guide values, the guides give 31"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("wrote "), std::string::npos);
+    const nlohmann::json report = Report();
+    EXPECT_TRUE(report["converged"].get<bool>());
+    EXPECT_EQ(report["patches"].size(), 6u);
+    EXPECT_EQ(report["design_dimension"].get<int>(), 31);
+    EXPECT_EQ(report["patch_order"].size(), 6u);
+    EXPECT_LE(report["final"]["max_relative_det"].get<double>(), 1e-12);
+    EXPECT_EQ(report["iterations"].get<int>(), std::string(solver) == "gp" ? 1 : 0);
+    const auto v = Vertices("out.obj");
+    ASSERT_EQ(v.size(), 181u);
+    EXPECT_NEAR(v[0][2], 3.0, 1e-12);  // the guide height of the singular vertex
+    if (direct.empty()) {
+      direct = v;
+    } else {
+      for (size_t k = 0; k < v.size(); ++k) EXPECT_NEAR(v[k][2], direct[k][2], 1e-10) << k;
+    }
+  }
+}
+
+TEST_F(MarionetteMeshCommandTest, RefusesGuidesThatLeaveTwoPatchesUndetermined) {
+  // Five of the six spokes: spoke 5 (vertices 26..30) separates patches 4 and 5.
+  std::string guides;
+  for (int s = 0; s < 5; ++s) guides += "guide 0 " + std::to_string(1 + 5 * s) + " 3 2 1 0 1 2\n";
+  const std::string file = Write("g.txt", guides);
+  ExpectRefused(
+      kData + "marionette_plan_valence6.obj --guides " + file,
+      "the guides do not determine patches 4, 5: 55 vertices have no value (26, 27, 28, 29, "
+      "30, 131, ");
+  ExpectRefused(kData + "marionette_plan_valence6.obj --guides " + file,
+                "; no guide crosses strip of patches 4, 5 (a lift needs 31 values");
+  // Two different heights for the singular vertex.
+  const std::string clash = Write("c.txt", "# spokes\nguide 0 1 3 2 1 0 1 2\nvertex 0 2.5\n");
+  ExpectRefused(kData + "marionette_plan_valence6.obj --guides " + clash,
+                "incompatible guides: vertex 0 gets 3.000000 from " + clash + ":2");
+}
+
+TEST_F(MarionetteMeshCommandTest, GuideFileErrorsNameTheLine) {
+  const std::string plan = kData + "marionette_plan_valence6.obj --guides ";
+  ExpectRefused(plan + Write("a.txt", "\nguide 0 1 1 2 x\n"), "a.txt:2: 'x' is not a number");
+  ExpectRefused(plan + Write("b.txt", "guide 0 1 1 2 3 4 5 6 7\n"),
+                "b.txt:1: the polyline from vertex 0 through 1 has only 6 vertices");
+  ExpectRefused(plan + Write("c.txt", "vertex 181 1\n"), "c.txt:1: '181' is not a vertex id");
+  ExpectRefused(plan + Write("d.txt", "guide 0 1\n"), "d.txt:1: expected 'guide START NEXT");
+}
+
+std::string Repeat(const std::string& value, int count) {
+  std::string s;
+  for (int k = 0; k < count; ++k) s += (k ? "," : "") + value;
+  return s;
+}
+
+TEST_F(MarionetteMeshCommandTest, CylindricalTowerWithConstantRadiiIsACylinder) {
+  for (const char* solver : {"direct", "gp"}) {
+    const Run r = Marionette(kData + "marionette_tower_12x18.obj --projection cylindrical " +
+                             "--axis 0,0,-5,0,0,3 --row " + Repeat("7.5", 19) + " --column " +
+                             Repeat("7.5", 13) + " --solver " + solver);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto v = Vertices("out.obj");
+    ASSERT_EQ(v.size(), 247u);
+    for (const auto& p : v) EXPECT_NEAR(std::hypot(p[0], p[1]), 7.5, 1e-9);
+    EXPECT_LE(Report()["final"]["max_relative_det"].get<double>(), 1e-12);
+    EXPECT_EQ(Report()["projection"], "cylindrical");
+  }
+}
+
+TEST_F(MarionetteMeshCommandTest, RefusesBadProjectionOptions) {
+  const std::string tower = kData + "marionette_tower_12x18.obj --row " + Repeat("7", 19) +
+                            " --column " + Repeat("7", 13);
+  ExpectRefused(tower + " --projection cylindrical --axis 0,0,1", "--axis needs six numbers");
+  ExpectRefused(tower + " --projection conic", "--projection must be vertical, cylindrical");
+  ExpectRefused(tower + " --projection cylindrical --axis 0,0,0,0,0,0",
+                "the axis direction must not be zero");
+  // The tower's first vertex (10, 0, 0) at the centre: it has no line.
+  ExpectRefused(tower + " --projection central --centre 10,0,0",
+                "marionette_tower_12x18.obj: vertex 0 lies at the centre");
+}
+
+// Inner unit circle and an outer ellipse, optionally jittered (then a != 1).
+std::string RingFile(double jitter) {
+  std::ostringstream s;
+  s << "# ring\n";
+  for (int i = 0; i < 16; ++i) {
+    const double t = 2 * M_PI * i / 16, j = jitter * std::sin(7.3 * i + 1.0);
+    s << std::cos(t) << " " << std::sin(t) << " " << 0.2 * std::cos(t) + 0.1 * std::sin(3 * t)
+      << " " << 1.6 * std::cos(t + j) << " " << 1.9 * std::sin(t + j) << "\n";
+  }
+  return s.str();
+}
+
+TEST_F(MarionetteMeshCommandTest, ClosedStripReportsAAndTheClosingHeight) {
+  const Run r = Marionette("--closed-strip " + Write("s.txt", RingFile(0.1)));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  nlohmann::json report = Report();
+  EXPECT_FALSE(report["a_is_one"].get<bool>());
+  EXPECT_GT(std::abs(report["a"].get<double>() - 1.0), 1e-3);
+  EXPECT_LE(report["final"]["max_planarity"].get<double>(), 1e-12);
+  EXPECT_EQ(report["inner_curve_change"].get<double>(), 0.0);
+  auto v = Vertices("out.obj");
+  ASSERT_EQ(v.size(), 32u);
+  EXPECT_NEAR(v[16][2], report["closing_height"].get<double>(), 1e-12);
+  EXPECT_NE(r.out.find("(!= 1): one closing lift"), std::string::npos) << r.out;
+
+  // Mirror-symmetric plan: a = 1, the inner curve is projected, z0* is the given one.
+  const Run s =
+      Marionette("--closed-strip " + Write("e.txt", RingFile(0.0)) + " --outer-height 0.7");
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  report = Report();
+  EXPECT_TRUE(report["a_is_one"].get<bool>());
+  EXPECT_NEAR(report["closing_height"].get<double>(), 0.7, 1e-15);
+  EXPECT_LE(report["final"]["max_planarity"].get<double>(), 1e-12);
+  EXPECT_NE(s.out.find("the outer start height is free"), std::string::npos) << s.out;
+}
+
+TEST_F(MarionetteMeshCommandTest, ClosedStripRefusesBadLinesAndDegenerateQuads) {
+  ExpectRefused("--closed-strip " + Write("s.txt", "# x\n0 0 0 1 0\n1 0 0 2\n"),
+                "s.txt:3: expected 5 numbers (inner x y z, outer x y), got 4");
+  ExpectRefused("--closed-strip " + Write("n.txt", "0 0 0 1 nan\n1 0 0 2 0\n0 1 0 0 2\n"),
+                "n.txt:1: 'nan' is not finite");
+  // Pair 1's outer vertex on the line through inner 1 and inner 2.
+  ExpectRefused("--closed-strip " + Write("d.txt", "1 0 0 2 0\n0 1 0 1 2\n-1 0 0 -2 0\n"),
+                "d.txt:2: quad 1 (vertex pairs 1 and 2, lines 2 and 3) has a degenerate plan view");
+  ExpectRefused("--closed-strip " + Write("t.txt", "0 0 0 1 0\n1 0 0 2 0\n"),
+                "t.txt: a closed strip needs at least 3 vertex pairs, got 2");
+}
+
+}  // namespace
+}  // namespace gproj
