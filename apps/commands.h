@@ -20,5 +20,7 @@ void RegisterGridCommand(CLI::App* app, int* exit_code);
 void RegisterNetCommands(CLI::App* app, int* exit_code);
 // Registers `gproj marionette`.
 void RegisterMarionetteCommand(CLI::App* app, int* exit_code);
+// Registers `gproj combescure`, `gproj invert` and `gproj canal`.
+void RegisterSuperCanalCommands(CLI::App* app, int* exit_code);
 
 }  // namespace gproj

@@ -2,7 +2,6 @@
 // guide files, other projections, closed strips; errors name the file line / patch / face, exit
 // code 1, nothing written.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cmath>
 #include <filesystem>
@@ -11,6 +10,8 @@
 #include <sstream>
 #include <string>
 
+#include "apps/command_test_util.h"
+
 namespace gproj {
 namespace {
 
@@ -18,52 +19,18 @@ namespace fs = std::filesystem;
 
 const std::string kData = std::string(GPROJ_SOURCE_DIR) + "/examples/data/";
 
-class MarionetteMeshCommandTest : public ::testing::Test {
+class MarionetteMeshCommandTest : public CommandTest {
  protected:
-  struct Run {
-    int exit_code = -1;
-    std::string out, err;
-  };
+  using Run = CommandRun;
 
-  void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) /
-           ("gproj_marionette_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string Path(const std::string& name) const { return (dir_ / name).string(); }
-  std::string Write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name) << text;
-    return Path(name);
-  }
-  static std::string Slurp(const fs::path& p) {
-    std::ifstream in(p);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
   // Runs `gproj marionette ARGS -o out.obj --report r.json`.
   Run Marionette(const std::string& args) {
-    const std::string cmd = std::string(GPROJ_BINARY) + " marionette " + args + " -o " +
-                            Path("out.obj") + " --report " + Path("r.json") + " >" +
-                            Path("stdout") + " 2>" + Path("stderr");
-    const int status = std::system(cmd.c_str());
-    Run r;
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = Slurp(dir_ / "stdout");
-    r.err = Slurp(dir_ / "stderr");
-    return r;
+    return Gproj("marionette " + args + " -o " + Path("out.obj") + " --report " + Path("r.json"));
   }
-  nlohmann::json Report() const { return nlohmann::json::parse(Slurp(dir_ / "r.json")); }
+  nlohmann::json Report() const { return Json("r.json"); }
   // Exit 1, a one-line error containing `part`, nothing written.
   void ExpectRefused(const std::string& args, const std::string& part) {
-    const Run r = Marionette(args);
-    EXPECT_EQ(r.exit_code, 1) << r.err << r.out;
-    EXPECT_NE(r.err.find(part), std::string::npos) << r.err;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    ExpectOneLineError(Marionette(args), part);
     EXPECT_FALSE(fs::exists(dir_ / "out.obj"));
     EXPECT_FALSE(fs::exists(dir_ / "r.json"));
   }
@@ -80,8 +47,6 @@ class MarionetteMeshCommandTest : public ::testing::Test {
       }
     return v;
   }
-
-  fs::path dir_;
 };
 
 TEST_F(MarionetteMeshCommandTest, LiftsTheValenceSixPlanFromItsSpokesWithBothSolvers) {

@@ -1,7 +1,6 @@
 // The command line as a user runs it: bad input gives a one-line error naming the file and
 // the offending line / face / vertex, exit code 1, and no output file.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -9,48 +8,15 @@
 #include <sstream>
 #include <string>
 
+#include "apps/command_test_util.h"
+
 namespace gproj {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandRun {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-class PlanarizeCommandTest : public ::testing::Test {
+class PlanarizeCommandTest : public CommandTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) /
-           ("gproj_cli_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string Write(const std::string& name, const std::string& text) {
-    const fs::path p = dir_ / name;
-    std::ofstream(p) << text;
-    return p.string();
-  }
-  static std::string Slurp(const fs::path& p) {
-    std::ifstream in(p);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
-  CommandRun Gproj(const std::string& args) {
-    const std::string cmd = std::string(GPROJ_BINARY) + " " + args + " >" +
-                            (dir_ / "stdout").string() + " 2>" + (dir_ / "stderr").string();
-    const int status = std::system(cmd.c_str());
-    CommandRun r;
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = Slurp(dir_ / "stdout");
-    r.err = Slurp(dir_ / "stderr");
-    return r;
-  }
   // Runs planarize on `input`; expects exit 1, an error containing every `parts`, and no output.
   void ExpectRefused(const std::string& input, const std::vector<std::string>& parts,
                      const std::string& extra = "", const std::string& command = "planarize") {
@@ -64,8 +30,6 @@ class PlanarizeCommandTest : public ::testing::Test {
     // One line of error.
     EXPECT_LE(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }
-
-  fs::path dir_;
 };
 
 const char* kQuad2x1 =

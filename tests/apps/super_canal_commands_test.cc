@@ -1,0 +1,93 @@
+// `gproj combescure`, `gproj invert` and `gproj canal` as a user runs them, on the shipped data.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "apps/command_test_util.h"
+
+namespace gproj {
+namespace {
+
+class SuperCanalCommandTest : public CommandTest {};
+
+TEST_F(SuperCanalCommandTest, CombescureByBothMethodsKeepsEdgesParallelAndQuadsCircular) {
+  for (const std::string method : {"propagation", "gp"}) {
+    const CommandRun r =
+        Gproj("combescure " + Data("revolution_13x17.obj") + " -o " + Path("out.obj") +
+              " --method " + method +
+              " --row-lengths 0.1,0.12,0.14,0.16,0.18,0.2,0.2,0.18,0.16,0.14,0.12,0.1,0.1,0.1,"
+              "0.1,0.1 --column-scale 0.6 --report " +
+              Path("r.json"));
+    ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+    const nlohmann::json report = Json("r.json");
+    EXPECT_TRUE(report["converged"].get<bool>());
+    EXPECT_LT(report["final"]["max_edge_parallelism_angle"].get<double>(), 1e-10) << method;
+    EXPECT_LT(report["final"]["max_planarity"].get<double>(), 1e-10) << method;
+    EXPECT_LT(report["final"]["max_concyclicity"].get<double>(), 1e-10) << method;
+    EXPECT_NE(r.out.find("edge-parallelism angle"), std::string::npos) << r.out;
+  }
+}
+
+TEST_F(SuperCanalCommandTest, CombescureRefusesWrongLengthCountAndNonPlanarReference) {
+  ExpectOneLineError(Gproj("combescure " + Data("revolution_13x17.obj") + " -o " + Path("out.obj") +
+                           " --row-lengths 1,2,3"),
+                     "needs 16 edge lengths");
+  ExpectOneLineError(Gproj("combescure " + Data("noisy_grid_21x21.obj") + " -o " + Path("out.obj")),
+                     "not planar");
+  EXPECT_FALSE(Exists("out.obj"));
+}
+
+TEST_F(SuperCanalCommandTest, InvertKeepsCircularityAndSolvesTheMRevolutionCentre) {
+  CommandRun r = Gproj("invert " + Data("revolution_13x17.obj") + " -o " + Path("out.obj") +
+                       " --centre 4,0.5,0.3 --ratio 9 --report " + Path("r.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_LT(Json("r.json")["final"]["max_concyclicity"].get<double>(), 1e-10);
+  // Four points of the circle z = 1, r = 2 (a parallel of a surface of revolution).
+  r = Gproj("invert " + Data("revolution_13x17.obj") + " -o " + Path("out.obj") +
+            " --m-revolution 2,0,1,0,2,1,-2,0,1,0,-2,1 --t 0.5 --report " + Path("r.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json m = Json("r.json")["m_revolution"];
+  EXPECT_EQ(m["centres"].size(), 2u);
+  EXPECT_LT(m["image_side_angle"].get<double>(), 1e-10);
+  EXPECT_NEAR(m["image_diagonals"][0].get<double>(), m["image_diagonals"][1].get<double>(), 1e-10);
+  ExpectOneLineError(Gproj("invert " + Data("revolution_13x17.obj") + " -o " + Path("bad.obj") +
+                           " --m-revolution 2,0,1,0,2,1,-2,0,1.3,0,-2,1 --t 0.5"),
+                     "not coplanar");
+  EXPECT_FALSE(Exists("bad.obj"));
+}
+
+TEST_F(SuperCanalCommandTest, CanalBuildsACircularMeshAndSmoothingLowersTheEnergy) {
+  const std::string base =
+      "canal " + Data("canal_curve.txt") + " --first-point -0.5,0.5,2 --length 2 --segments 8 -o " +
+      Path("out.obj") + " --strip " + Path("strip.obj") + " --report " + Path("r.json");
+  CommandRun r = Gproj(base);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  nlohmann::json report = Json("r.json");
+  EXPECT_LT(report["final"]["max_concyclicity"].get<double>(), 1e-10);
+  EXPECT_LT(report["strip"]["max_concyclicity"].get<double>(), 1e-10);
+  EXPECT_TRUE(Exists("strip.obj"));
+  const double before = report["energy"]["final"].get<double>();
+  r = Gproj(base + " --smooth");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  report = Json("r.json");
+  EXPECT_LT(report["energy"]["final"].get<double>(), 0.5 * before);
+  EXPECT_GT(report["history"].size(), 1u);
+  EXPECT_LT(report["final"]["max_concyclicity"].get<double>(), 1e-10);
+}
+
+TEST_F(SuperCanalCommandTest, CanalRefusesBadCurveFilesAndLengths) {
+  const std::string curve = Write("curve.txt", "0 0 0\n1 0 0\n2 0.5 x\n");
+  ExpectOneLineError(
+      Gproj("canal " + curve + " --first-point 0,1,0 --length 1 -o " + Path("out.obj")),
+      "curve.txt:3: 'x' is not a number");
+  ExpectOneLineError(Gproj("canal " + Data("canal_curve.txt") +
+                           " --first-point -0.5,0.5,2 --lengths 1,2 -o " + Path("out.obj")),
+                     "one value per curve point (13)");
+  ExpectOneLineError(Gproj("canal " + Data("canal_curve.txt") +
+                           " --first-point -0.5,0.5,2 --length 50 -o " + Path("out.obj")),
+                     "shorter than the circle's diameter");
+  EXPECT_FALSE(Exists("out.obj"));
+}
+
+}  // namespace
+}  // namespace gproj
