@@ -27,6 +27,38 @@ COLUMN=$(awk 'BEGIN { for (i = 0; i <= 20; ++i) printf "%s%.4f", (i ? "," : ""),
 ./build/gproj marionette examples/data/marionette_plan_21x21.obj -o out/demo/marionette.obj \
   --row "$ROW" --column "$COLUMN" --report out/demo/marionette_report.json
 echo
+echo "== Marionette mesh with a valence-6 singularity, lifted patch by patch from six guides =="
+./build/gproj marionette examples/data/marionette_plan_valence6.obj \
+  --guides examples/data/marionette_valence6_guides.txt -o out/demo/marionette_valence6.obj \
+  --report out/demo/marionette_valence6_report.json
+echo
+echo "== Marionette tower: cylindrical projection, guide radii along one row and one column =="
+ROW=$(awk 'BEGIN { for (j = 0; j <= 18; ++j) printf "%s%.4f", (j ? "," : ""), 10 + 0.8 * sin(j / 3.0) }')
+COLUMN=$(awk 'BEGIN { for (i = 0; i <= 12; ++i) printf "%s%.4f", (i ? "," : ""), 10 - 3 * (i / 12.0)^2 }')
+./build/gproj marionette examples/data/marionette_tower_12x18.obj --projection cylindrical \
+  --axis 0,0,0,0,0,1 --row "$ROW" --column "$COLUMN" --solver gp \
+  -o out/demo/marionette_tower.obj --report out/demo/marionette_tower_report.json
+echo
+echo "== Marionette closed strip (closure condition of 002 eq. 8) =="
+./build/gproj marionette --closed-strip examples/data/marionette_closed_strip.txt \
+  -o out/demo/marionette_strip.obj --report out/demo/marionette_strip_report.json
+echo
+echo "== Canal surface from a circular strip on a shipped curve, smoothed (000 eq. 5, BFGS) =="
+./build/gproj canal examples/data/canal_curve.txt --first-point -0.5,0.5,2 --length 2 --smooth \
+  -o out/demo/canal.obj --strip out/demo/canal_strip.obj --picture out/demo/canal.svg \
+  --report out/demo/canal_report.json
+echo
+echo "== Combescure transformation of a circular surface of revolution (edge lengths along row 0 vary) =="
+LENGTHS=$(awk 'BEGIN { for (j = 0; j < 16; ++j) printf "%s%.4f", (j ? "," : ""), 0.09 + 0.05 * sin(j / 5.0) }')
+./build/gproj combescure examples/data/revolution_13x17.obj --row-lengths "$LENGTHS" \
+  --column-scale 0.8 -o out/demo/combescure.obj --picture out/demo/combescure.svg \
+  --report out/demo/combescure_report.json
+echo
+echo "== M-revolution surface: inversion whose centre maps a parallel's quad to an isosceles trapezoid =="
+./build/gproj invert examples/data/revolution_13x17.obj --m-revolution 2,0,1,0,2,1,-2,0,1,0,-2,1 --t 0.6 \
+  --ratio 40 -o out/demo/m_revolution.obj --picture out/demo/m_revolution.svg \
+  --report out/demo/m_revolution_report.json
+echo
 echo "Results in $(pwd)/out/demo (open the .obj files in any mesh viewer, e.g. MeshLab or Blender):"
 echo "  planarized.obj                planar-quad mesh (planarized.svg: a picture of it)"
 echo "  planarize_report.json         convergence history and final measures"
@@ -36,3 +68,7 @@ echo "  enneper_hnet_surface.obj      the smooth patchwork sampled as a triangle
 echo "  enneper_hnet.svg              a shaded picture of it (open in a web browser)"
 echo "  enneper_hnet_report.json      A-net and H-net history, tangent-plane angles, weights"
 echo "  marionette.obj                Marionette mesh (planar quads, plan view kept)"
+echo "  marionette_valence6.obj, marionette_tower.obj, marionette_strip.obj   and their reports"
+echo "  canal.obj, canal.svg          canal surface meshed by circular quads; canal_strip.obj its strip"
+echo "  combescure.obj, .svg          parallel mesh of the surface of revolution (still circular)"
+echo "  m_revolution.obj, .svg        the surface of revolution inverted (000 §5.1; still circular)"
