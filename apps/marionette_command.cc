@@ -14,6 +14,7 @@
 #include "apps/commands.h"
 #include "constraints/marionette_planarity.h"
 #include "geometry/mesh_io.h"
+#include "geometry/quad_grid.h"
 #include "problems/marionette.h"
 #include "problems/marionette_mesh.h"
 #include "problems/pq_planarization.h"
@@ -134,8 +135,8 @@ int RunMarionetteMesh(const MarionetteArgs& args) {
         throw InputError("give either --guides or --row/--column, not both");
       ReadGuides(args.guides, lines.num_vertices(), &guides, &single);
     } else if (!args.row.empty() && !args.column.empty()) {
-      int rows = 0, cols = 0;
-      MarionetteGridSize(mesh, args.plan, &rows, &cols);
+      const GridShape shape = DetectGridShape(mesh, args.plan);
+      const int rows = shape.rows, cols = shape.cols;
       if (static_cast<int>(args.row.size()) != cols + 1 ||
           static_cast<int>(args.column.size()) != rows + 1)
         throw InputError("guide curves need " + std::to_string(cols + 1) + " row values and " +

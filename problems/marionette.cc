@@ -4,6 +4,7 @@
 
 #include "constraints/marionette_planarity.h"
 #include "constraints/scalar_target.h"
+#include "geometry/quad_grid.h"
 
 namespace gproj {
 namespace {
@@ -14,56 +15,12 @@ double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
 
 }  // namespace
 
-void MarionetteGridSize(const PolyMesh& mesh, const std::string& path, int* rows, int* cols) {
-  const std::string prefix = path.empty() ? "" : path + ": ";
-  // (N + 1)(M + 1) = V and N M = F give N + M = V − F − 1.
-  const long v = static_cast<long>(mesh.n_vertices()), f = static_cast<long>(mesh.n_faces());
-  const long sum = v - f - 1;
-  const double disc = static_cast<double>(sum * sum - 4 * f);
-  const long n = disc >= 0 ? std::lround((sum + std::sqrt(disc)) / 2) : -1;
-  if (n <= 0 || n * (sum - n) != f)
-    throw InputError(prefix + "not a regular quad grid (" + std::to_string(v) + " vertices, " +
-                     std::to_string(f) + " faces)");
-  // Rows of faces: try N = n and N = sum − n, whichever matches the face order.
-  for (long r : {n, sum - n}) {
-    const int nr = static_cast<int>(r), nc = static_cast<int>(sum - r);
-    auto vertex = [nc](int i, int j) { return i * (nc + 1) + j; };
-    bool ok = true;
-    for (auto fh : mesh.faces()) {
-      const int i = fh.idx() / nc, j = fh.idx() % nc;
-      const int expected[4] = {vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1),
-                               vertex(i, j + 1)};
-      int got[4], k = 0;
-      for (auto fv : mesh.fv_range(fh)) got[k++ % 4] = fv.idx();
-      bool match = false;
-      for (int q = 0; q < 4 && !match; ++q) {
-        bool same = true, reversed = true;
-        for (int t = 0; t < 4; ++t) {
-          same = same && got[(q + t) % 4] == expected[t];
-          reversed = reversed && got[(q + 4 - t) % 4] == expected[t];
-        }
-        match = same || reversed;
-      }
-      if (!match) {
-        ok = false;
-        break;
-      }
-    }
-    if (ok) {
-      *rows = nr;
-      *cols = nc;
-      return;
-    }
-  }
-  throw InputError(prefix +
-                   "the faces are not in grid order: vertex (i, j) must have index "
-                   "i * (cols + 1) + j and face (i, j) index i * cols + j");
-}
-
 MarionettePlan MakeMarionettePlan(const PolyMesh& mesh, const std::string& path) {
   const std::string prefix = path.empty() ? "" : path + ": ";
   MarionettePlan plan;
-  MarionetteGridSize(mesh, path, &plan.rows, &plan.cols);
+  const GridShape shape = DetectGridShape(mesh, path);
+  plan.rows = shape.rows;
+  plan.cols = shape.cols;
   for (auto vh : mesh.vertices()) {
     const auto& p = mesh.point(vh);
     plan.xy.emplace_back(p[0], p[1]);

@@ -27,10 +27,6 @@ struct MarionettePlan {
   int Vertex(int i, int j) const { return i * (cols + 1) + j; }
 };
 
-// Checks that `mesh` is a regular grid in the vertex and face order above (topology only) and
-// returns its numbers of face rows and columns; throws InputError (prefixed by `path`) otherwise.
-void MarionetteGridSize(const PolyMesh& mesh, const std::string& path, int* rows, int* cols);
-
 // Builds the plan from x, y of a grid mesh in the vertex order above (as `gproj grid` writes).
 // Throws InputError naming the face when the mesh is not such a grid, or when a face's plan view
 // is degenerate (A, B, D collinear: no unique planar lift).
