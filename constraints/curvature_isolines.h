@@ -1,0 +1,175 @@
+#pragma once
+// Curvature isolines of a B-spline surface (003 §3.1–3.2). Per sample point one auxiliary item
+// a (dimension 12) holds
+//   n (3), E, F, G, Δ, L, M, N, K, H          (indices kN..kH below)
+// defined by twelve rows (003 §3.1.2; s_u, s_v, s_uu, s_uv, s_vv are linear in the control
+// points through fixed weights):
+//   n − s_u × s_v = 0,  E − s_u·s_u = 0,  F − s_u·s_v = 0,  G − s_v·s_v = 0,
+//   Δ − (E G − F²) = 0,
+//   L √Δᵏ − s_uu·n = 0,  M √Δᵏ − s_uv·n = 0,  N √Δᵏ − s_vv·n = 0   (√Δᵏ frozen at x^k),
+//   K Δ − (L N − M²) = 0,  2 H Δ − (L G − 2 M F + N E) = 0.
+// Isoline alignment (003 eq. 5 with central differences, eq. 10) at an inner sample:
+//   H_u K_v − H_v K_u = 0,  ψ_u = (ψ(a+1, b) − ψ(a−1, b)) / (u_{a+1} − u_{a−1}), likewise v.
+// Geodesic parallel isolines (003 §3.2.1, eq. 8): a second auxiliary item g (dimension 8)
+//   K_u², K_u K_v, K_v², H_u², H_u H_v, H_v², ‖∇K‖², ‖∇H‖²
+// with rows  K_u² − (K_u)² = 0, …  and  ‖∇ψ‖² Δᵏ − (G ψ_u² − 2 F ψ_u ψ_v + E ψ_v²) = 0
+// (003 eq. 7; §3.2.1 prints E and G swapped and √Δᵏ, which is not eq. 7), then
+//   (‖∇ψ‖²)_u ψ_v − (‖∇ψ‖²)_v ψ_u = 0 for ψ = H and K.
+// Linear Weingarten relation (003 §3.2.2): a H + b K + c = 0 per sample, (a, b, c) given or
+// fitted to the (H, K) points at x^k (orthogonal regression). B-spline curvature relation
+// (003 §3.2.3): each (H, K) point held to the tangent line of a curve γ at its closest point,
+// γ a cubic B-spline fitted to the points at x^k.
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "solver/constraint_family.h"
+
+namespace gproj {
+
+// Offsets inside the curvature auxiliary item.
+enum CurvatureAux {
+  kN = 0,
+  kE = 3,
+  kF = 4,
+  kG = 5,
+  kDelta = 6,
+  kL = 7,
+  kM = 8,
+  kNn = 9,
+  kK = 10,
+  kH = 11,
+  kCurvatureAuxDim = 12
+};
+// Offsets inside the geodesic-parallel auxiliary item.
+enum GeodesicAux {
+  kKuu = 0,
+  kKuv = 1,
+  kKvv = 2,
+  kHuu = 3,
+  kHuv = 4,
+  kHvv = 5,
+  kGradK = 6,
+  kGradH = 7,
+  kGeodesicAuxDim = 8
+};
+
+// Derivative weights of one sample: s_d = Σ_j w[d][j] c_j for d = u, v, uu, uv, vv.
+struct SampleStencil {
+  std::vector<int> control;                    // control point indices (into the control block)
+  std::array<std::vector<double>, 5> weights;  // per derivative, one weight per control point
+};
+
+class CurvatureAuxiliaries : public ConstraintFamily {
+ public:
+  explicit CurvatureAuxiliaries(double weight = 1.0, std::string name = "curvature definitions")
+      : ConstraintFamily(std::move(name), 12, FamilyRole::kConstraint, weight) {}
+
+  // `aux` the sample's auxiliary item; `control_items` the items of stencil.control.
+  int AddSample(int aux, const std::vector<int>& control_items, const SampleStencil& stencil);
+
+  void EvaluateElement(int e, const double* x, double* phi, double* jac) const override;
+  bool RowTouches(int e, int row, int local) const override;
+  void Update(const VariableLayout& layout, const Eigen::VectorXd& x) override;
+
+  // The exact auxiliary values for the given derivatives (s_u, s_v, s_uu, s_uv, s_vv):
+  // residuals vanish when √Δᵏ is the current √Δ.
+  static Eigen::Matrix<double, 12, 1> ExactAuxiliary(const std::array<Eigen::Vector3d, 5>& d);
+
+ private:
+  std::vector<std::array<std::vector<double>, 5>> weights_;
+  std::vector<double> sqrt_delta_;  // √Δᵏ per element
+};
+
+// H_u K_v − H_v K_u = 0; items {a(a+1,b), a(a−1,b), a(a,b+1), a(a,b−1)} (curvature items).
+class IsolineAlignment : public ConstraintFamily {
+ public:
+  explicit IsolineAlignment(double weight, std::string name = "isoline alignment")
+      : ConstraintFamily(std::move(name), 1, FamilyRole::kConstraint, weight) {}
+  // inv_du = 1 / (u_{a+1} − u_{a−1}), inv_dv likewise.
+  int AddSample(int up, int um, int vp, int vm, double inv_du, double inv_dv);
+  void EvaluateElement(int e, const double* x, double* phi, double* jac) const override;
+  bool RowTouches(int e, int row, int local) const override;
+
+ private:
+  std::vector<std::array<double, 2>> inv_;
+};
+
+// Definitions of the geodesic-parallel auxiliaries at an inner sample; items
+// {g (own), a (own), a(a+1,b), a(a−1,b), a(a,b+1), a(a,b−1)}. Eight rows.
+class GeodesicAuxiliaries : public ConstraintFamily {
+ public:
+  explicit GeodesicAuxiliaries(double weight = 1.0, std::string name = "gradient definitions")
+      : ConstraintFamily(std::move(name), 8, FamilyRole::kConstraint, weight) {}
+  int AddSample(int g, int a, int up, int um, int vp, int vm, double inv_du, double inv_dv);
+  void EvaluateElement(int e, const double* x, double* phi, double* jac) const override;
+  bool RowTouches(int e, int row, int local) const override;
+  void Update(const VariableLayout& layout, const Eigen::VectorXd& x) override;
+
+ private:
+  std::vector<std::array<double, 2>> inv_;
+  std::vector<double> delta_;  // Δᵏ per element
+};
+
+// (‖∇ψ‖²)_u ψ_v − (‖∇ψ‖²)_v ψ_u = 0 for ψ = K (row 0) and H (row 1); items
+// {g(a+1,b), g(a−1,b), g(a,b+1), g(a,b−1), a(a+1,b), a(a−1,b), a(a,b+1), a(a,b−1)}.
+class GeodesicParallelIsolines : public ConstraintFamily {
+ public:
+  explicit GeodesicParallelIsolines(double weight, std::string name = "geodesic parallel")
+      : ConstraintFamily(std::move(name), 2, FamilyRole::kConstraint, weight) {}
+  int AddSample(const std::array<int, 4>& g, const std::array<int, 4>& a, double inv_du,
+                double inv_dv);
+  void EvaluateElement(int e, const double* x, double* phi, double* jac) const override;
+  bool RowTouches(int e, int row, int local) const override;
+
+ private:
+  std::vector<std::array<double, 2>> inv_;
+};
+
+// a H + b K + c = 0 per sample; items {a (curvature item)}.
+class LinearWeingarten : public ConstraintFamily {
+ public:
+  // fixed: use `coefficients` (a, b, c) throughout; otherwise fit them at every Update.
+  LinearWeingarten(double weight, bool fixed, const Eigen::Vector3d& coefficients,
+                   std::string name = "linear relation");
+  int AddSample(int aux) { return AddElement({aux}); }
+  void EvaluateElement(int e, const double* x, double* phi, double* jac) const override;
+  bool RowTouches(int e, int row, int local) const override { return local == kH || local == kK; }
+  void Update(const VariableLayout& layout, const Eigen::VectorXd& x) override;
+  const Eigen::Vector3d& coefficients() const { return abc_; }
+  // Orthogonal regression of the line a H + b K + c = 0 (a² + b² = 1) through the points.
+  static Eigen::Vector3d FitLine(const std::vector<double>& h, const std::vector<double>& k);
+
+ private:
+  bool fixed_;
+  Eigen::Vector3d abc_;
+};
+
+// (H, K) held to the tangent line of a fitted curve γ at its closest point (frozen at x^k).
+class CurvatureCurveRelation : public ConstraintFamily {
+ public:
+  explicit CurvatureCurveRelation(double weight, int curve_control_points = 6,
+                                  std::string name = "B-spline relation");
+  int AddSample(int aux) { return AddElement({aux}); }
+  void EvaluateElement(int e, const double* x, double* phi, double* jac) const override;
+  bool RowTouches(int e, int row, int local) const override { return local == kH || local == kK; }
+  void Update(const VariableLayout& layout, const Eigen::VectorXd& x) override;
+
+  // A uniform clamped cubic B-spline curve in the (H, K) plane fitted to the points by least
+  // squares, parameters from the projection onto the points' principal axis.
+  struct Curve {
+    std::vector<Eigen::Vector2d> control;
+    Eigen::Vector2d Point(double t) const;
+    Eigen::Vector2d Tangent(double t) const;
+    double ClosestParameter(const Eigen::Vector2d& p) const;
+  };
+  static Curve FitCurve(const std::vector<double>& h, const std::vector<double>& k,
+                        int control_points);
+
+ private:
+  int curve_control_points_;
+  std::vector<Eigen::Vector2d> foot_, normal_;  // per element
+};
+
+}  // namespace gproj
