@@ -22,5 +22,7 @@ void RegisterNetCommands(CLI::App* app, int* exit_code);
 void RegisterMarionetteCommand(CLI::App* app, int* exit_code);
 // Registers `gproj combescure`, `gproj invert` and `gproj canal`.
 void RegisterSuperCanalCommands(CLI::App* app, int* exit_code);
+// Registers `gproj weingarten`.
+void RegisterWeingartenCommand(CLI::App* app, int* exit_code);
 
 }  // namespace gproj

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   gproj::RegisterNetCommands(&app, &exit_code);
   gproj::RegisterMarionetteCommand(&app, &exit_code);
   gproj::RegisterSuperCanalCommands(&app, &exit_code);
+  gproj::RegisterWeingartenCommand(&app, &exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

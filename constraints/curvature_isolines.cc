@@ -25,10 +25,16 @@ double Value(const VariableLayout& layout, const Eigen::VectorXd& x, int item, i
 
 // ---------------------------------------------------------------------------------------------
 int CurvatureAuxiliaries::AddSample(int aux, const std::vector<int>& control_items,
-                                    const SampleStencil& stencil) {
+                                    const SampleStencil& stencil,
+                                    const std::array<double, 12>* row_scale) {
   std::vector<int> items = {aux};
   items.insert(items.end(), control_items.begin(), control_items.end());
   weights_.push_back(stencil.weights);
+  std::array<double, 12> inverse;
+  inverse.fill(1.0);
+  if (row_scale)
+    for (int r = 0; r < 12; ++r) inverse[r] = (*row_scale)[r] > 0.0 ? 1.0 / (*row_scale)[r] : 1.0;
+  inverse_scale_.push_back(inverse);
   sqrt_delta_.push_back(1.0);
   return AddElement(items);
 }
@@ -107,6 +113,30 @@ void CurvatureAuxiliaries::EvaluateElement(int e, const double* x, double* phi, 
   J(11, kF) = 2.0 * M;
   J(11, kNn) = -E;
   J(11, kE) = -N;
+  for (int r = 0; r < 12; ++r) {
+    const double f = inverse_scale_[e][r];
+    if (f == 1.0) continue;
+    phi[r] *= f;
+    for (int l = 0; l < dim; ++l) J(r, l) *= f;
+  }
+}
+
+std::array<double, 12> CurvatureAuxiliaries::RowMagnitudes(const Eigen::Matrix<double, 12, 1>& a,
+                                                           double curvature) {
+  const double eg = std::abs(a[kE]) + std::abs(a[kG]), d = std::max(std::abs(a[kDelta]), 1e-300);
+  const double n = std::sqrt(d);
+  return {n,
+          n,
+          n,
+          eg,
+          eg,
+          eg,
+          d,
+          n * curvature * eg,
+          n * curvature * eg,
+          n * curvature * eg,
+          d * curvature * curvature,
+          2.0 * d * curvature};
 }
 
 bool CurvatureAuxiliaries::RowTouches(int, int row, int local) const {
@@ -158,20 +188,44 @@ Eigen::Matrix<double, 12, 1> CurvatureAuxiliaries::ExactAuxiliary(
 // ---------------------------------------------------------------------------------------------
 int IsolineAlignment::AddSample(int up, int um, int vp, int vm, double inv_du, double inv_dv) {
   inv_.push_back({inv_du, inv_dv});
+  row_scale_.push_back(1.0);
   return AddElement({up, um, vp, vm});
+}
+
+void IsolineAlignment::Update(const VariableLayout& layout, const Eigen::VectorXd& x) {
+  if (!normalized_) return;
+  const int n = num_elements();
+  std::vector<double> product(n);
+  double sum = 0.0;
+  for (int e = 0; e < n; ++e) {
+    const int* it = element_items(e);
+    auto d = [&](int p, int m, int off, double c) {
+      return c * (Value(layout, x, it[p], off) - Value(layout, x, it[m], off));
+    };
+    const double hu = d(0, 1, kH, inv_[e][0]), ku = d(0, 1, kK, inv_[e][0]);
+    const double hv = d(2, 3, kH, inv_[e][1]), kv = d(2, 3, kK, inv_[e][1]);
+    product[e] = std::hypot(hu, hv) * std::hypot(ku, kv);
+    sum += product[e] * product[e];
+  }
+  const double delta = n > 0 ? 0.1 * std::sqrt(sum / n) : 0.0;
+  for (int e = 0; e < n; ++e)
+    row_scale_[e] = product[e] + delta > 0.0 ? 1.0 / (product[e] + delta) : 1.0;
 }
 
 void IsolineAlignment::EvaluateElement(int e, const double* x, double* phi, double* jac) const {
   constexpr int kDim = 48;
   std::fill(jac, jac + kDim, 0.0);
-  const double cu = inv_[e][0], cv = inv_[e][1];
+  double cu = inv_[e][0], cv = inv_[e][1];
   const double* up = x;
   const double* um = x + 12;
   const double* vp = x + 24;
   const double* vm = x + 36;
   const double hu = cu * (up[kH] - um[kH]), ku = cu * (up[kK] - um[kK]);
   const double hv = cv * (vp[kH] - vm[kH]), kv = cv * (vp[kK] - vm[kK]);
-  phi[0] = hu * kv - hv * ku;
+  const double f = row_scale_[e];
+  phi[0] = f * (hu * kv - hv * ku);
+  cu *= f;
+  cv *= f;
   jac[kH] = cu * kv;
   jac[12 + kH] = -cu * kv;
   jac[kK] = -cu * hv;

@@ -67,7 +67,14 @@ class CurvatureAuxiliaries : public ConstraintFamily {
       : ConstraintFamily(std::move(name), 12, FamilyRole::kConstraint, weight) {}
 
   // `aux` the sample's auxiliary item; `control_items` the items of stencil.control.
-  int AddSample(int aux, const std::vector<int>& control_items, const SampleStencil& stencil);
+  // `row_scale` (12 values, optional) divides each row, e.g. by the row's natural magnitude at
+  // the start so that every definition is weighed as a relative error.
+  int AddSample(int aux, const std::vector<int>& control_items, const SampleStencil& stencil,
+                const std::array<double, 12>* row_scale = nullptr);
+  // Natural magnitudes of the twelve rows for auxiliary values `a` and a curvature scale κ:
+  // |n|, E + G (three rows), Δ, √Δ κ (E + G) (three rows), Δ κ², 2 Δ κ.
+  static std::array<double, 12> RowMagnitudes(const Eigen::Matrix<double, 12, 1>& a,
+                                              double curvature);
 
   void EvaluateElement(int e, const double* x, double* phi, double* jac) const override;
   bool RowTouches(int e, int row, int local) const override;
@@ -80,20 +87,30 @@ class CurvatureAuxiliaries : public ConstraintFamily {
  private:
   std::vector<std::array<std::vector<double>, 5>> weights_;
   std::vector<double> sqrt_delta_;  // √Δᵏ per element
+  std::vector<std::array<double, 12>> inverse_scale_;
 };
 
 // H_u K_v − H_v K_u = 0; items {a(a+1,b), a(a−1,b), a(a,b+1), a(a,b−1)} (curvature items).
+// With `normalized`, each row is divided by (|∇H| |∇K| + δ) at x^k (frozen, refreshed by
+// Update; δ = 0.1 × the RMS of |∇H| |∇K| over the samples), so it measures the sine of the angle
+// between the gradients. The raw residual scales with the cube of the curvature, so without
+// this the cheapest way to lower it is to flatten the surface.
 class IsolineAlignment : public ConstraintFamily {
  public:
-  explicit IsolineAlignment(double weight, std::string name = "isoline alignment")
-      : ConstraintFamily(std::move(name), 1, FamilyRole::kConstraint, weight) {}
+  explicit IsolineAlignment(double weight, bool normalized = true,
+                            std::string name = "isoline alignment")
+      : ConstraintFamily(std::move(name), 1, FamilyRole::kConstraint, weight),
+        normalized_(normalized) {}
   // inv_du = 1 / (u_{a+1} − u_{a−1}), inv_dv likewise.
   int AddSample(int up, int um, int vp, int vm, double inv_du, double inv_dv);
   void EvaluateElement(int e, const double* x, double* phi, double* jac) const override;
   bool RowTouches(int e, int row, int local) const override;
+  void Update(const VariableLayout& layout, const Eigen::VectorXd& x) override;
 
  private:
+  bool normalized_;
   std::vector<std::array<double, 2>> inv_;
+  std::vector<double> row_scale_;
 };
 
 // Definitions of the geodesic-parallel auxiliaries at an inner sample; items

@@ -32,6 +32,7 @@ struct BSplineSurface {
   double v_min() const { return knots_v[degree_v]; }
   double v_max() const { return knots_v[knots_v.size() - degree_v - 1]; }
 
+  // (u, v) outside the domain is clamped to it.
   Eigen::Vector3d Point(double u, double v) const;
   // Derivatives at (u, v): [0] s, [1] s_u, [2] s_v, [3] s_uu, [4] s_uv, [5] s_vv.
   std::array<Eigen::Vector3d, 6> Derivatives(double u, double v) const;
@@ -47,6 +48,8 @@ void ValidateBSpline(const BSplineSurface& surface, const std::string& where = "
 // JSON field (e.g. "control_points[3][2]").
 BSplineSurface ParseBSplineJson(const std::string& text, const std::string& path = "");
 BSplineSurface ReadBSplineJson(const std::string& path);
+// BSplineToJson validates first; numbers are written in the shortest form that reads back
+// exactly.
 std::string BSplineToJson(const BSplineSurface& surface);
 // Atomic (temporary file, then rename), via WriteTextFileAtomically.
 void WriteBSplineJson(const BSplineSurface& surface, const std::string& path);
@@ -58,7 +61,8 @@ std::vector<double> UniformClampedKnots(int count, int degree);
 // (u_a, v_b), a = 0..su−1, b = 0..sv−1, sample index a * sv + b. The samples are the centres of
 // a uniform su × sv subdivision of the parameter domain: u_a = u_min + (a + ½)(u_max − u_min)/su.
 // Each map is (su·sv) × (nu·nv); applying it to `control` (nu·nv × 3) gives the derivative at
-// every sample. Built once; they do not change while the control points move.
+// every sample. Built once; they do not change while the control points move. Every row stores
+// (du + 1)(dv + 1) entries, explicit zeros included (e.g. s_uu when du = 1).
 struct SampleMaps {
   int su = 0, sv = 0;
   std::vector<double> u, v;  // su and sv parameter values
@@ -80,7 +84,7 @@ BSplineSurface FitBSpline(const std::function<Eigen::Vector3d(double, double)>& 
 BSplineSurface RefitBSpline(const BSplineSurface& surface, int nu, int nv);
 
 // Inserts `per_span` uniformly spaced knots inside every non-empty knot span in both directions
-// (Boehm's algorithm): the same surface with more control points.
+// (knot refinement, NURBS Book A5.4): the same surface with more control points.
 BSplineSurface InsertKnotsUniform(const BSplineSurface& surface, int per_span);
 
 // The control net as a quad mesh (vertex i * nv + j), for pictures and `gproj` outputs.

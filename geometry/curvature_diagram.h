@@ -18,13 +18,17 @@ struct MoldClustering {
   std::vector<int> cluster_size;
 };
 
-// h, k: one value per sample (same length, finite). max_clusters ≥ 1. Throws std::invalid_argument
-// on empty or mismatched input.
+// h, k: one value per sample (same length, finite). max_clusters ≥ 1. The search stops at the first
+// grid with more than max_clusters occupied cells, once every distinct (H, √K) pair has a cell of
+// its own, or at 4096 cells per axis; the grid before the stop is returned. More allowed clusters
+// never give a coarser grid, but grids of n and n + 1 cells are not nested, so the finer grid may
+// occupy fewer cells. Cost: O(#samples) per grid tried. Throws std::invalid_argument on empty,
+// mismatched or non-finite input, or max_clusters < 1.
 MoldClustering ClusterMolds(const std::vector<double>& h, const std::vector<double>& k,
                             int max_clusters);
 
 struct DiagramSeries {
-  std::string label;  // e.g. "before", "after"
+  std::string label;   // e.g. "before", "after"
   std::string colour;  // SVG colour, e.g. "#c0392b"
   std::vector<double> h, k;
 };
@@ -34,8 +38,11 @@ struct DiagramOptions {
   std::string title;
 };
 
-// An SVG scatter plot of the series in the (H, K) plane with axes, ticks, labels and a legend.
-// Non-finite points are skipped.
+// An SVG scatter plot of the series in the (H, K) plane: 1-2-5 ticks with labels, axis titles, the
+// H = 0 and K = 0 lines when in range, a legend with each label and its count of finite points,
+// the title on top. Non-finite points are skipped; a series with more than 20000 finite points is
+// drawn as a uniform subsample of 20000. Text and colours are XML-escaped. Throws
+// std::invalid_argument if a series' h and k differ in length or the canvas is below 200 × 150.
 std::string RenderCurvatureDiagramSvg(const std::vector<DiagramSeries>& series,
                                       const DiagramOptions& options = {});
 

@@ -1,0 +1,273 @@
+// `gproj weingarten`: Weingarten surfaces on B-splines (003).
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "apps/commands.h"
+#include "geometry/bspline_surface.h"
+#include "geometry/curvature_diagram.h"
+#include "geometry/svg_render.h"
+#include "problems/weingarten.h"
+
+namespace gproj {
+namespace {
+
+struct WeingartenArgs {
+  std::string input, output, preset = "fig1", relation, report, diagram, curvature, picture,
+                             surface_mesh;
+  std::vector<int> samples;
+  std::vector<double> linear;
+  int refine = 0, max_iterations = 0, molds = 0;
+  double alignment = -1, closeness = -1, shape = -1, geodesic = -1, boundary = -1, epsilon = -1,
+         fairness = -1, definitions = -1;
+};
+
+std::string CurvatureCsv(const SampleMaps& maps, const WeingartenMeasures& before,
+                         const WeingartenMeasures& after, const MoldClustering* molds) {
+  std::ostringstream out;
+  out.precision(10);
+  out << "sample,u,v,H_before,K_before,H_after,K_after" << (molds ? ",mold" : "") << "\n";
+  for (int a = 0; a < maps.su; ++a)
+    for (int b = 0; b < maps.sv; ++b) {
+      const int s = maps.Index(a, b);
+      out << s << "," << maps.u[a] << "," << maps.v[b] << "," << before.h[s] << "," << before.k[s]
+          << "," << after.h[s] << "," << after.k[s];
+      if (molds) out << "," << molds->cluster[s];
+      out << "\n";
+    }
+  return out.str();
+}
+
+int RunWeingarten(const WeingartenArgs& args) {
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    WeingartenOptions options = WeingartenPreset(args.preset);
+    if (args.samples.size() == 2) {
+      options.samples_u = args.samples[0];
+      options.samples_v = args.samples[1];
+    } else if (!args.samples.empty()) {
+      throw InputError("--samples needs two numbers: NU NV");
+    }
+    if (!args.relation.empty()) {
+      const double w = args.relation == "none" ? 0.0 : 1.0;
+      options.linear_relation_weight = args.relation == "linear" ? w : 0.0;
+      options.bspline_relation_weight = args.relation == "bspline" ? 10.0 * w : 0.0;
+    }
+    if (!args.linear.empty()) {
+      if (args.linear.size() != 3) throw InputError("--linear needs a,b,c");
+      options.fixed_linear_relation = true;
+      options.linear_coefficients = Eigen::Vector3d(args.linear[0], args.linear[1], args.linear[2]);
+      if (options.linear_relation_weight == 0.0) options.linear_relation_weight = 1.0;
+      options.bspline_relation_weight = 0.0;
+    }
+    if (args.alignment >= 0) options.alignment_weight = args.alignment;
+    if (args.closeness >= 0) options.closeness_weight = args.closeness;
+    if (args.shape >= 0) options.shape_weight = args.shape;
+    if (args.geodesic >= 0) options.geodesic_parallel_weight = args.geodesic;
+    if (args.boundary >= 0) options.boundary_weight = args.boundary;
+    if (args.epsilon > 0) options.epsilon = args.epsilon;
+    if (args.fairness >= 0) options.fairness_weight = args.fairness;
+    if (args.definitions > 0) options.definition_weight = args.definitions;
+    if (args.max_iterations > 0) options.max_iterations = args.max_iterations;
+    options.refine_levels = args.refine;
+    std::string why;
+    if (!options.IsValid(&why)) throw InputError(why);
+
+    const BSplineSurface input = ReadBSplineJson(args.input);
+    BSplineSurface current = input;
+    nlohmann::json history = nlohmann::json::array(), levels = nlohmann::json::array();
+    bool converged = true, failed = false;
+    int iterations = 0, variables = 0, su = 0, sv = 0;
+    std::string message;
+    WeingartenMeasures before;
+    for (int level = 0; level <= options.refine_levels; ++level) {
+      if (level > 0) current = InsertKnotsUniform(current, 1);
+      WeingartenProblem problem(current, options);
+      su = problem.maps().su;
+      sv = problem.maps().sv;
+      variables = problem.num_variables();
+      if (level == 0) before = MeasureWeingarten(input, input, su, sv);
+      const WeingartenMeasures start_measures = problem.Measures();
+      std::printf(
+          "gproj weingarten: %s%s: %d x %d control points, bi-degree (%d, %d), %d x %d samples, "
+          "%d unknowns; preset %s\n",
+          args.input.c_str(), level > 0 ? (" (level " + std::to_string(level) + ")").c_str() : "",
+          current.nu, current.nv, current.degree_u, current.degree_v, su, sv, variables,
+          args.preset.c_str());
+      std::printf("start: misalignment %.4e, mean |principal curvature| %.4g (scaled by %.4g)\n",
+                  start_measures.misalignment, start_measures.mean_abs_principal_curvature,
+                  problem.scale());
+      std::printf("%5s %13s %12s %11s %10s\n", "iter", "energy", "max_constr", "step", "seconds");
+      const SolverSummary summary = problem.Solve([&](const IterationRecord& r) {
+        std::printf(
+            "%5d %13.6e %12.4e %11.3e %10.3f\n", r.iteration, r.energy, r.max_constraint,
+            r.step_norm,
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        nlohmann::json families = nlohmann::json::object();
+        for (const auto& f : r.families) families[f.name] = {{"max", f.max_abs}, {"rms", f.rms}};
+        history.push_back({{"level", level},
+                           {"iteration", r.iteration},
+                           {"energy", r.energy},
+                           {"max_constraint", r.max_constraint},
+                           {"step", r.step_norm},
+                           {"families", families}});
+        return CallbackResult::kContinue;
+      });
+      iterations += summary.num_steps();
+      message = summary.message;
+      if (summary.termination == TerminationType::kFailure || !problem.problem().x().allFinite()) {
+        failed = true;
+        break;
+      }
+      current = problem.Result();
+      const WeingartenMeasures m = problem.Measures();
+      levels.push_back({{"level", level},
+                        {"control_points", {current.nu, current.nv}},
+                        {"samples", {su, sv}},
+                        {"variables", variables},
+                        {"iterations", summary.num_steps()},
+                        {"misalignment", m.misalignment}});
+      converged = converged && summary.termination != TerminationType::kFailure;
+    }
+    if (failed) {
+      std::cerr << "gproj weingarten: solver failed: " << message << "; nothing written\n";
+      return kExitSolverFailure;
+    }
+    const WeingartenMeasures after = MeasureWeingarten(current, input, su, sv);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    nlohmann::json report = {
+        {"command", "weingarten"},
+        {"input", args.input},
+        {"output", args.output},
+        {"preset", args.preset},
+        {"converged", converged},
+        {"iterations", iterations},
+        {"seconds", seconds},
+        {"variables", variables},
+        {"samples", {su, sv}},
+        {"levels", levels},
+        {"history", history},
+        {"initial", {{"misalignment", before.misalignment}}},
+        {"final",
+         {{"misalignment", after.misalignment},
+          {"max_deviation", after.max_deviation},
+          {"mean_deviation", after.mean_deviation},
+          {"worst_sample", {after.worst_sample / sv, after.worst_sample % sv}},
+          {"misalignment_ratio", before.misalignment / std::max(after.misalignment, 1e-300)}}}};
+    if (!history.empty()) report["final"]["families"] = history.back()["families"];
+    std::unique_ptr<MoldClustering> molds;
+    if (args.molds > 0) {
+      std::vector<double> k = after.k;
+      molds = std::make_unique<MoldClustering>(ClusterMolds(after.h, k, args.molds));
+      const MoldClustering molds_before = ClusterMolds(before.h, before.k, args.molds);
+      report["molds"] = {{"asked", args.molds},
+                         {"clusters", molds->num_clusters},
+                         {"cells_per_axis", molds->cells_per_axis},
+                         {"cluster_sizes", molds->cluster_size},
+                         {"before_cells_per_axis", molds_before.cells_per_axis}};
+    }
+    WriteBSplineJson(current, args.output);
+    const SampleMaps maps = MakeSampleMaps(current, su, sv);
+    if (!args.curvature.empty())
+      WriteTextFileAtomically(args.curvature, CurvatureCsv(maps, before, after, molds.get()));
+    if (!args.diagram.empty()) {
+      DiagramOptions d;
+      char title[160];
+      std::snprintf(title, sizeof(title), "Curvature diagram: misalignment %.3g -> %.3g",
+                    before.misalignment, after.misalignment);
+      d.title = title;
+      WriteTextFileAtomically(args.diagram,
+                              RenderCurvatureDiagramSvg({{"before", "#c0392b", before.h, before.k},
+                                                         {"after", "#2c6fbb", after.h, after.k}},
+                                                        d));
+    }
+    if (!args.surface_mesh.empty())
+      WriteMeshAtomically(SampleSurfaceMesh(current, 4 * current.nu, 4 * current.nv),
+                          args.surface_mesh);
+    if (!args.picture.empty()) {
+      SvgOptions svg;
+      svg.title = "Weingarten surface (" + std::to_string(current.nu) + " x " +
+                  std::to_string(current.nv) + " control points)";
+      WriteTextFileAtomically(args.picture, RenderMeshSvg(SampleSurfaceMesh(current, 60, 60), svg));
+    }
+    if (!args.report.empty()) WriteTextFileAtomically(args.report, report.dump(2) + "\n");
+    std::printf(
+        "misalignment %.4e -> %.4e (%.1fx lower), deviation max %.3e (sample %d, %d) / "
+        "mean %.3e of the bbox diagonal, %d iterations, %.2f s\n",
+        before.misalignment, after.misalignment,
+        before.misalignment / std::max(after.misalignment, 1e-300), after.max_deviation,
+        after.worst_sample / sv, after.worst_sample % sv, after.mean_deviation, iterations,
+        seconds);
+    if (molds)
+      std::printf("molds: %d clusters in the (H, sqrt K) plane (grid %d x %d)\n",
+                  molds->num_clusters, molds->cells_per_axis, molds->cells_per_axis);
+    std::printf("wrote %s", args.output.c_str());
+    for (const std::string* f :
+         {&args.report, &args.diagram, &args.curvature, &args.surface_mesh, &args.picture})
+      if (!f->empty()) std::printf(", %s", f->c_str());
+    std::printf("\n");
+    return kExitOk;
+  } catch (const InputError& e) {
+    std::cerr << "gproj weingarten: " << e.what() << "\n";
+    return kExitInputError;
+  }
+}
+
+}  // namespace
+
+void RegisterWeingartenCommand(CLI::App* app, int* exit_code) {
+  auto args = std::make_shared<WeingartenArgs>();
+  std::string presets;
+  for (const auto& n : WeingartenPresetNames()) presets += (presets.empty() ? "" : ", ") + n;
+  CLI::App* cmd = app->add_subcommand(
+      "weingarten",
+      "Weingarten surface (003): moves the control points of a B-spline (JSON, SPEC §4) so that "
+      "the isolines of H and K align, keeping it close to the input. Exit codes as for "
+      "planarize.");
+  cmd->add_option("input", args->input, "B-spline surface (.json)")->required();
+  cmd->add_option("-o,--output", args->output, "Optimised B-spline (.json)")->required();
+  cmd->add_option("--preset", args->preset, "Weights of 003 Table 1: " + presets)
+      ->capture_default_str();
+  cmd->add_option("--samples", args->samples,
+                  "Samples NU NV (default: 2 per control point and direction, as in Table 2)")
+      ->expected(2);
+  cmd->add_option("--relation", args->relation,
+                  "Curvature relation: none, linear (fitted each iteration) or bspline")
+      ->check(CLI::IsMember({"none", "linear", "bspline"}));
+  cmd->add_option("--linear", args->linear,
+                  "Fixed linear relation a,b,c: a H + b K + c = 0 in input units (e.g. 0,1,0: "
+                  "developable; 1,0,0: minimal; 1,0,-c: H = c)")
+      ->delimiter(',');
+  cmd->add_option("--alignment", args->alignment, "Override ω_al (isoline alignment)");
+  cmd->add_option("--closeness", args->closeness, "Override ω_cl (closeness to the input)");
+  cmd->add_option("--shape", args->shape, "Override ω_sh (control-net lengths)");
+  cmd->add_option("--geodesic-parallel", args->geodesic, "Override ω_gp (eq. 8)");
+  cmd->add_option("--epsilon", args->epsilon, "Override ε of eq. 11 (proximal weight)");
+  cmd->add_option("--fairness", args->fairness, "Override ω_f of eq. 11 (control-net fairness)");
+  cmd->add_option("--definitions", args->definitions,
+                  "Weight of the rows defining the auxiliaries (relative errors; default 1)");
+  cmd->add_option("--boundary", args->boundary,
+                  "Weight of boundary gliding along the input's boundary control polygon");
+  cmd->add_option("--refine", args->refine,
+                  "Multiresolution levels: insert a knot in every span and re-optimise")
+      ->check(CLI::Range(0, 4))
+      ->capture_default_str();
+  cmd->add_option("--max-iterations", args->max_iterations,
+                  "Guided-projection iterations per level (default 10)");
+  cmd->add_option("--molds", args->molds,
+                  "Cluster the samples into at most this many molds in the (H, sqrt K) plane");
+  cmd->add_option("--diagram", args->diagram, "Curvature diagram before/after (.svg)");
+  cmd->add_option("--curvature", args->curvature, "H, K per sample before/after (.csv)");
+  cmd->add_option("--surface-mesh", args->surface_mesh, "The result sampled as a quad mesh");
+  cmd->add_option("--picture", args->picture, "A shaded picture of the result (.svg)");
+  cmd->add_option("--report", args->report, "Write a JSON report");
+  cmd->callback([args, exit_code]() { *exit_code = RunWeingarten(*args); });
+}
+
+}  // namespace gproj

@@ -1,0 +1,495 @@
+#include "problems/weingarten.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "constraints/closeness.h"
+#include "constraints/control_net.h"
+#include "constraints/curvature_isolines.h"
+#include "constraints/polyline_fairness.h"
+
+namespace gproj {
+namespace {
+
+// Derivatives (s_u, s_v, s_uu, s_uv, s_vv) of every sample for control points `c` (nC × 3).
+std::vector<std::array<Eigen::Vector3d, 5>> SampleDerivatives(const SampleMaps& maps,
+                                                              const Eigen::MatrixX3d& c) {
+  std::array<Eigen::MatrixX3d, 5> d;
+  for (int k = 0; k < 5; ++k) d[k] = maps.d[k + 1] * c;
+  std::vector<std::array<Eigen::Vector3d, 5>> out(maps.num_samples());
+  for (int s = 0; s < maps.num_samples(); ++s)
+    for (int k = 0; k < 5; ++k) out[s][k] = d[k].row(s).transpose();
+  return out;
+}
+
+double MeanAbsPrincipalCurvature(const std::vector<double>& h, const std::vector<double>& k) {
+  double sum = 0.0;
+  for (size_t i = 0; i < h.size(); ++i) {
+    const double r = std::sqrt(std::max(0.0, h[i] * h[i] - k[i]));
+    sum += std::abs(h[i] + r) + std::abs(h[i] - r);
+  }
+  return h.empty() ? 0.0 : sum / (2.0 * h.size());
+}
+
+double BoundingBoxDiagonal(const Eigen::MatrixX3d& points) {
+  return (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
+}
+
+}  // namespace
+
+CurvatureRelation WeingartenOptions::relation() const {
+  if (linear_relation_weight > 0.0) return CurvatureRelation::kLinear;
+  if (bspline_relation_weight > 0.0) return CurvatureRelation::kBSpline;
+  return CurvatureRelation::kNone;
+}
+
+bool WeingartenOptions::IsValid(std::string* why) const {
+  const double weights[] = {
+      alignment_weight,         bspline_relation_weight, linear_relation_weight,
+      geodesic_parallel_weight, closeness_weight,        shape_weight,
+      fairness_weight,          definition_weight,       boundary_weight};
+  for (double w : weights)
+    if (!(w >= 0.0) || !std::isfinite(w)) {
+      *why = "weights must be finite and ≥ 0";
+      return false;
+    }
+  if (linear_relation_weight > 0.0 && bspline_relation_weight > 0.0) {
+    *why = "choose one curvature relation: linear or B-spline, not both";
+    return false;
+  }
+  if (!(epsilon > 0.0)) {
+    *why = "epsilon must be > 0";
+    return false;
+  }
+  if (definition_weight <= 0.0) {
+    *why = "the auxiliary definitions need a positive weight";
+    return false;
+  }
+  if (samples_u < 0 || samples_v < 0 || samples_per_control < 1) {
+    *why = "sample counts must be positive";
+    return false;
+  }
+  if ((samples_u > 0 && samples_u < 5) || (samples_v > 0 && samples_v < 5)) {
+    *why = "at least 5 samples per direction are needed (central differences of gradients)";
+    return false;
+  }
+  if (max_iterations < 1 || refine_levels < 0) {
+    *why = "max_iterations must be ≥ 1 and refine_levels ≥ 0";
+    return false;
+  }
+  if (fixed_linear_relation && !(linear_coefficients.head<2>().norm() > 0.0)) {
+    *why = "the linear relation needs a or b non-zero";
+    return false;
+  }
+  if (!(target_mean_curvature > 0.0)) {
+    *why = "target_mean_curvature must be > 0";
+    return false;
+  }
+  return true;
+}
+
+std::vector<std::string> WeingartenPresetNames() {
+  return {"fig1", "fig2b", "fig2c", "fig2d", "fig3", "fig4b", "fig4c", "fig9b", "fig9c", "fig10"};
+}
+
+WeingartenOptions WeingartenPreset(const std::string& name) {
+  WeingartenOptions o;  // fig1: ω_al 0.1, ω_cl 0.1 (also Figs. 7, 8, 12, 13)
+  if (name == "fig1") return o;
+  if (name == "fig2b") return o;
+  if (name == "fig2c") {
+    o.alignment_weight = 0.0;
+    o.bspline_relation_weight = 10.0;
+    return o;
+  }
+  if (name == "fig2d") {
+    o.alignment_weight = 0.0;
+    o.linear_relation_weight = 1.0;
+    return o;
+  }
+  if (name == "fig3") {
+    o.alignment_weight = 0.0;
+    o.linear_relation_weight = 1.0;
+    o.closeness_weight = 0.001;
+    o.shape_weight = 0.001;
+    o.boundary_weight = 10.0;
+    return o;
+  }
+  if (name == "fig4b" || name == "fig4c") {
+    o.geodesic_parallel_weight = name == "fig4c" ? 0.2 : 0.0;
+    o.closeness_weight = 0.001;
+    o.shape_weight = 0.01;
+    return o;
+  }
+  if (name == "fig9b" || name == "fig9c") {
+    o.geodesic_parallel_weight = name == "fig9c" ? 0.05 : 0.0;
+    return o;
+  }
+  if (name == "fig10") {
+    o.geodesic_parallel_weight = 0.01;
+    o.closeness_weight = 0.05;
+    o.shape_weight = 0.001;
+    return o;
+  }
+  std::string known;
+  for (const auto& n : WeingartenPresetNames()) known += (known.empty() ? "" : ", ") + n;
+  throw InputError("unknown preset '" + name + "' (known: " + known + ")");
+}
+
+int WeingartenVariableCount(int nu, int nv, int su, int sv, bool geodesic_parallel) {
+  return 3 * nu * nv + (geodesic_parallel ? 20 : 12) * su * sv;
+}
+
+void SampleCurvatures(const BSplineSurface& surface, const SampleMaps& maps, std::vector<double>* h,
+                      std::vector<double>* k) {
+  const auto d = SampleDerivatives(maps, surface.control);
+  h->resize(d.size());
+  k->resize(d.size());
+  for (size_t s = 0; s < d.size(); ++s) {
+    const auto a = CurvatureAuxiliaries::ExactAuxiliary(d[s]);
+    (*h)[s] = a[kH];
+    (*k)[s] = a[kK];
+  }
+}
+
+WeingartenMeasures MeasureWeingarten(const BSplineSurface& surface, const BSplineSurface& reference,
+                                     int su, int sv) {
+  const SampleMaps maps = MakeSampleMaps(surface, su, sv);
+  WeingartenMeasures m;
+  SampleCurvatures(surface, maps, &m.h, &m.k);
+  m.mean_abs_principal_curvature = MeanAbsPrincipalCurvature(m.h, m.k);
+  double num = 0.0, den = 0.0;
+  for (int a = 1; a + 1 < su; ++a)
+    for (int b = 1; b + 1 < sv; ++b) {
+      const double cu = 1.0 / (maps.u[a + 1] - maps.u[a - 1]);
+      const double cv = 1.0 / (maps.v[b + 1] - maps.v[b - 1]);
+      const double hu = cu * (m.h[maps.Index(a + 1, b)] - m.h[maps.Index(a - 1, b)]);
+      const double ku = cu * (m.k[maps.Index(a + 1, b)] - m.k[maps.Index(a - 1, b)]);
+      const double hv = cv * (m.h[maps.Index(a, b + 1)] - m.h[maps.Index(a, b - 1)]);
+      const double kv = cv * (m.k[maps.Index(a, b + 1)] - m.k[maps.Index(a, b - 1)]);
+      num += std::abs(hu * kv - hv * ku);
+      den += std::hypot(hu, hv) * std::hypot(ku, kv);
+    }
+  m.misalignment = den > 0.0 ? num / den : 0.0;
+  const SampleMaps ref_maps = MakeSampleMaps(reference, su, sv);
+  const Eigen::MatrixX3d p = maps.d[0] * surface.control, q = ref_maps.d[0] * reference.control;
+  const Eigen::VectorXd deviation =
+      (p - q).rowwise().norm() / std::max(BoundingBoxDiagonal(q), 1e-300);
+  m.max_deviation = deviation.maxCoeff(&m.worst_sample);
+  m.mean_deviation = deviation.mean();
+  return m;
+}
+
+WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const WeingartenOptions& options)
+    : options_(options), reference_(input) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("invalid Weingarten options: " + why);
+  ValidateBSpline(input);
+  const int su = options.samples_u > 0 ? options.samples_u : options.samples_per_control * input.nu;
+  const int sv = options.samples_v > 0 ? options.samples_v : options.samples_per_control * input.nv;
+  if (su < 5 || sv < 5)
+    throw InputError("at least 5 samples per direction are needed; got " + std::to_string(su) +
+                     " x " + std::to_string(sv));
+  maps_ = MakeSampleMaps(input, su, sv);
+
+  // Scale: mean |principal curvature| at the samples = target (003 Table 1 note).
+  std::vector<double> h0, k0;
+  SampleCurvatures(input, maps_, &h0, &k0);
+  for (int s = 0; s < maps_.num_samples(); ++s)
+    if (!std::isfinite(h0[s]) || !std::isfinite(k0[s]))
+      throw InputError("the surface is degenerate (s_u × s_v = 0) at sample " + std::to_string(s) +
+                       " (u = " + std::to_string(maps_.u[s / sv]) +
+                       ", v = " + std::to_string(maps_.v[s % sv]) + ")");
+  const double mean = MeanAbsPrincipalCurvature(h0, k0);
+  centre_ = input.control.colwise().mean().transpose();
+  const double diagonal = BoundingBoxDiagonal(input.control);
+  scale_ = mean > 1e-12 / std::max(diagonal, 1e-300) ? mean / options.target_mean_curvature
+                                                     : 1.0 / std::max(diagonal, 1e-300);
+  scaled_ = input;
+  scaled_.control = (input.control.rowwise() - centre_.transpose()) * scale_;
+
+  VariableLayout& layout = problem_.layout();
+  const int nc = input.num_control_points(), ns = maps_.num_samples();
+  const bool gp = options.geodesic_parallel_weight > 0.0;
+  control_block_ = layout.AddBlock("control points", nc, 3);
+  curvature_block_ = layout.AddBlock("curvature auxiliaries", ns, kCurvatureAuxDim);
+  if (gp) gradient_block_ = layout.AddBlock("gradient auxiliaries", ns, kGeodesicAuxDim);
+  problem_.ResizeToLayout();
+  Eigen::VectorXd& x = problem_.x();
+  for (int i = 0; i < nc; ++i)
+    x.segment<3>(layout.ItemOffset(layout.Item(control_block_, i))) =
+        scaled_.control.row(i).transpose();
+  // Parameters are rescaled so that the mean speeds |s_u|, |s_v| are 1: E, F, G, Δ and n are
+  // then O(1) and the definition rows are equally well conditioned for any knot domain.
+  // H and K do not depend on the parametrisation.
+  auto derivatives = SampleDerivatives(maps_, scaled_.control);
+  double speed_u = 0.0, speed_v = 0.0;
+  for (const auto& d : derivatives) {
+    speed_u += d[0].norm() / ns;
+    speed_v += d[1].norm() / ns;
+  }
+  speed_u = speed_u > 0.0 ? speed_u : 1.0;
+  speed_v = speed_v > 0.0 ? speed_v : 1.0;
+  const double derivative_scale[5] = {1.0 / speed_u, 1.0 / speed_v, 1.0 / (speed_u * speed_u),
+                                      1.0 / (speed_u * speed_v), 1.0 / (speed_v * speed_v)};
+  for (auto& d : derivatives)
+    for (int k = 0; k < 5; ++k) d[k] *= derivative_scale[k];
+  auto inv_du = [&](int a) { return 1.0 / ((maps_.u[a + 1] - maps_.u[a - 1]) * speed_u); };
+  auto inv_dv = [&](int b) { return 1.0 / ((maps_.v[b + 1] - maps_.v[b - 1]) * speed_v); };
+  auto aux = [&](int a, int b) { return layout.Item(curvature_block_, maps_.Index(a, b)); };
+
+  // Auxiliary definitions, one element per sample.
+  // Rows are multiplied by the weights of Table 1 (003 §3.3), so a family's weight on φ² is ω².
+  auto squared = [](double w) { return w * w; };
+  auto* definitions = problem_.AddFamily<CurvatureAuxiliaries>(squared(options.definition_weight));
+  for (int s = 0; s < ns; ++s) {
+    std::set<int> support;
+    for (int k = 0; k < 6; ++k)
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(maps_.d[k], s); it; ++it)
+        support.insert(static_cast<int>(it.col()));
+    SampleStencil stencil;
+    stencil.control.assign(support.begin(), support.end());
+    std::map<int, int> position;
+    for (size_t j = 0; j < stencil.control.size(); ++j) position[stencil.control[j]] = j;
+    for (int k = 0; k < 5; ++k) {
+      stencil.weights[k].assign(stencil.control.size(), 0.0);
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(maps_.d[k + 1], s); it;
+           ++it)
+        stencil.weights[k][position[static_cast<int>(it.col())]] = it.value() * derivative_scale[k];
+    }
+    std::vector<int> items;
+    for (int c : stencil.control) items.push_back(layout.Item(control_block_, c));
+    const int item = layout.Item(curvature_block_, s);
+    const Eigen::Matrix<double, 12, 1> exact = CurvatureAuxiliaries::ExactAuxiliary(derivatives[s]);
+    const auto magnitudes =
+        CurvatureAuxiliaries::RowMagnitudes(exact, options.target_mean_curvature);
+    definitions->AddSample(item, items, stencil, &magnitudes);
+    x.segment<kCurvatureAuxDim>(layout.ItemOffset(item)) = exact;
+  }
+
+  // The alignment rows H_u K_v − H_v K_u are normalised by the RMS of |∇H| |∇K| over the inner
+  // samples of the input (scaled units), so that ω_al weighs a dimensionless misalignment
+  // against closeness and the auxiliary definitions whatever the parameter domain.
+  double gradient_product = 0.0;
+  int inner = 0;
+  for (int a = 1; a + 1 < su; ++a)
+    for (int b = 1; b + 1 < sv; ++b) {
+      auto value = [&](int aa, int bb, int off) { return x[layout.ItemOffset(aux(aa, bb)) + off]; };
+      const double cu = inv_du(a);
+      const double cv = inv_dv(b);
+      const double hu = cu * (value(a + 1, b, kH) - value(a - 1, b, kH));
+      const double hv = cv * (value(a, b + 1, kH) - value(a, b - 1, kH));
+      const double ku = cu * (value(a + 1, b, kK) - value(a - 1, b, kK));
+      const double kv = cv * (value(a, b + 1, kK) - value(a, b - 1, kK));
+      gradient_product += squared(std::hypot(hu, hv) * std::hypot(ku, kv));
+      ++inner;
+    }
+  alignment_scale_ =
+      inner > 0 && gradient_product > 0.0 ? 1.0 / std::sqrt(gradient_product / inner) : 1.0;
+  if (options.alignment_weight > 0.0) {
+    auto* alignment = problem_.AddFamily<IsolineAlignment>(
+        squared(options.alignment_weight * (options.normalize_alignment ? 1.0 : alignment_scale_)),
+        options.normalize_alignment);
+    for (int a = 1; a + 1 < su; ++a)
+      for (int b = 1; b + 1 < sv; ++b)
+        alignment->AddSample(aux(a + 1, b), aux(a - 1, b), aux(a, b + 1), aux(a, b - 1), inv_du(a),
+                             inv_dv(b));
+  }
+  if (gp) {
+    auto* definitions2 =
+        problem_.AddFamily<GeodesicAuxiliaries>(squared(options.definition_weight));
+    auto grad = [&](int a, int b) { return layout.Item(gradient_block_, maps_.Index(a, b)); };
+    for (int a = 1; a + 1 < su; ++a)
+      for (int b = 1; b + 1 < sv; ++b) {
+        const double cu = inv_du(a);
+        const double cv = inv_dv(b);
+        definitions2->AddSample(grad(a, b), aux(a, b), aux(a + 1, b), aux(a - 1, b), aux(a, b + 1),
+                                aux(a, b - 1), cu, cv);
+        // Exact initial values from the auxiliaries just set.
+        auto value = [&](int aa, int bb, int off) {
+          return x[layout.ItemOffset(aux(aa, bb)) + off];
+        };
+        Eigen::Matrix<double, kGeodesicAuxDim, 1> g;
+        const double E = value(a, b, kE), F = value(a, b, kF), G = value(a, b, kG),
+                     D = value(a, b, kDelta);
+        for (int p = 0; p < 2; ++p) {
+          const int off = p == 0 ? kK : kH;
+          const double du = cu * (value(a + 1, b, off) - value(a - 1, b, off));
+          const double dv = cv * (value(a, b + 1, off) - value(a, b - 1, off));
+          g[3 * p] = du * du;
+          g[3 * p + 1] = du * dv;
+          g[3 * p + 2] = dv * dv;
+          g[6 + p] = (G * du * du - 2 * F * du * dv + E * dv * dv) / D;
+        }
+        x.segment<kGeodesicAuxDim>(layout.ItemOffset(grad(a, b))) = g;
+      }
+    // Normalised like the alignment rows, by the RMS of |∇‖∇ψ‖²| |∇ψ| at the start.
+    double product = 0.0;
+    int count = 0;
+    for (int a = 2; a + 2 < su; ++a)
+      for (int b = 2; b + 2 < sv; ++b)
+        for (int p = 0; p < 2; ++p) {
+          const int off = p == 0 ? kK : kH, goff = p == 0 ? kGradK : kGradH;
+          auto at = [&](int item, int o) { return x[layout.ItemOffset(item) + o]; };
+          const double cu = inv_du(a);
+          const double cv = inv_dv(b);
+          const double qu = cu * (at(grad(a + 1, b), goff) - at(grad(a - 1, b), goff));
+          const double qv = cv * (at(grad(a, b + 1), goff) - at(grad(a, b - 1), goff));
+          const double pu = cu * (at(aux(a + 1, b), off) - at(aux(a - 1, b), off));
+          const double pv = cv * (at(aux(a, b + 1), off) - at(aux(a, b - 1), off));
+          product += squared(std::hypot(qu, qv) * std::hypot(pu, pv));
+          ++count;
+        }
+    const double gp_scale = count > 0 && product > 0.0 ? 1.0 / std::sqrt(product / count) : 1.0;
+    auto* parallel = problem_.AddFamily<GeodesicParallelIsolines>(
+        squared(options.geodesic_parallel_weight * gp_scale));
+    for (int a = 2; a + 2 < su; ++a)
+      for (int b = 2; b + 2 < sv; ++b)
+        parallel->AddSample({grad(a + 1, b), grad(a - 1, b), grad(a, b + 1), grad(a, b - 1)},
+                            {aux(a + 1, b), aux(a - 1, b), aux(a, b + 1), aux(a, b - 1)}, inv_du(a),
+                            inv_dv(b));
+  }
+  if (options.linear_relation_weight > 0.0) {
+    // Input units → scaled: κ_scaled = κ / scale, so a H + b K + c = 0 becomes
+    // (a scale) H' + (b scale²) K' + c = 0.
+    Eigen::Vector3d abc = options.linear_coefficients;
+    abc = Eigen::Vector3d(abc[0] * scale_, abc[1] * scale_ * scale_, abc[2]);
+    abc /= abc.head<2>().norm();
+    linear_ = problem_.AddFamily<LinearWeingarten>(squared(options.linear_relation_weight),
+                                                   options.fixed_linear_relation, abc);
+    for (int s = 0; s < ns; ++s) linear_->AddSample(layout.Item(curvature_block_, s));
+  }
+  if (options.bspline_relation_weight > 0.0) {
+    auto* curve = problem_.AddFamily<CurvatureCurveRelation>(
+        squared(options.bspline_relation_weight), options.bspline_relation_control_points);
+    for (int s = 0; s < ns; ++s) curve->AddSample(layout.Item(curvature_block_, s));
+  }
+  auto control = [&](int i, int j) { return layout.Item(control_block_, scaled_.Index(i, j)); };
+  if (options.closeness_weight > 0.0) {
+    // Measured in units of the control net's mean edge length, so ω_cl does not depend on the
+    // surface's size or on the net's resolution.
+    double edge_sum = 0.0;
+    int edges = 0;
+    for (int i = 0; i < input.nu; ++i)
+      for (int j = 0; j < input.nv; ++j) {
+        const Eigen::RowVector3d c = scaled_.control.row(scaled_.Index(i, j));
+        if (i + 1 < input.nu) edge_sum += (scaled_.control.row(scaled_.Index(i + 1, j)) - c).norm();
+        if (j + 1 < input.nv) edge_sum += (scaled_.control.row(scaled_.Index(i, j + 1)) - c).norm();
+        edges += (i + 1 < input.nu) + (j + 1 < input.nv);
+      }
+    const double mean_edge = edges > 0 && edge_sum > 0.0 ? edge_sum / edges : 1.0;
+    auto* closeness =
+        problem_.AddFamily<Closeness>(3, squared(options.closeness_weight / mean_edge));
+    for (int i = 0; i < nc; ++i) {
+      const Eigen::Vector3d p = scaled_.control.row(i).transpose();
+      closeness->AddTarget(layout.Item(control_block_, i), p.data());
+    }
+  }
+  if (options.shape_weight > 0.0) {
+    auto* shape = problem_.AddFamily<EdgeLengthPreservation>(squared(options.shape_weight));
+    auto add = [&](int i0, int j0, int i1, int j1) {
+      const double l =
+          (scaled_.control.row(scaled_.Index(i0, j0)) - scaled_.control.row(scaled_.Index(i1, j1)))
+              .norm();
+      if (l > 0.0) shape->AddEdge(control(i0, j0), control(i1, j1), l);
+    };
+    for (int i = 0; i < input.nu; ++i)
+      for (int j = 0; j < input.nv; ++j) {
+        if (i + 1 < input.nu) add(i, j, i + 1, j);
+        if (j + 1 < input.nv) add(i, j, i, j + 1);
+        if (i + 1 < input.nu && j + 1 < input.nv) {
+          add(i, j, i + 1, j + 1);
+          add(i + 1, j, i, j + 1);
+        }
+      }
+  }
+  if (options.fairness_weight > 0.0) {
+    // 003 §3.3: ‖c_ij − (c_i,j−1 + c_i,j+1)/2‖² = ¼ ‖second difference‖², both directions.
+    auto* fairness = problem_.AddFamily<PolylineFairness>(2, 3, 0.25);
+    for (int i = 0; i < input.nu; ++i)
+      for (int j = 1; j + 1 < input.nv; ++j)
+        fairness->AddElement({control(i, j - 1), control(i, j), control(i, j + 1)});
+    for (int j = 0; j < input.nv; ++j)
+      for (int i = 1; i + 1 < input.nu; ++i)
+        fairness->AddElement({control(i - 1, j), control(i, j), control(i + 1, j)});
+  }
+  if (options.boundary_weight > 0.0) {
+    auto* glide = problem_.AddFamily<PolylineGliding>(squared(options.boundary_weight));
+    auto* corners =
+        problem_.AddFamily<Closeness>(3, squared(options.boundary_weight), "boundary corners");
+    auto row = [&](int i0, int j0, int di, int dj, int count) {
+      std::vector<Eigen::Vector3d> line;
+      for (int t = 0; t < count; ++t)
+        line.push_back(scaled_.control.row(scaled_.Index(i0 + t * di, j0 + t * dj)).transpose());
+      return line;
+    };
+    const int nu = input.nu, nv = input.nv;
+    const std::vector<Eigen::Vector3d> sides[4] = {row(0, 0, 0, 1, nv), row(nu - 1, 0, 0, 1, nv),
+                                                   row(0, 0, 1, 0, nu), row(0, nv - 1, 1, 0, nu)};
+    for (int j = 1; j + 1 < nv; ++j) {
+      glide->AddPoint(control(0, j), sides[0]);
+      glide->AddPoint(control(nu - 1, j), sides[1]);
+    }
+    for (int i = 1; i + 1 < nu; ++i) {
+      glide->AddPoint(control(i, 0), sides[2]);
+      glide->AddPoint(control(i, nv - 1), sides[3]);
+    }
+    for (auto [i, j] : {std::pair{0, 0}, {0, nv - 1}, {nu - 1, 0}, {nu - 1, nv - 1}}) {
+      const Eigen::Vector3d p = scaled_.control.row(scaled_.Index(i, j)).transpose();
+      corners->AddTarget(control(i, j), p.data());
+    }
+  }
+}
+
+SolverOptions WeingartenProblem::ToSolverOptions() const {
+  SolverOptions s;
+  s.max_iterations = options_.max_iterations;
+  s.epsilon = options_.epsilon;
+  s.fairness_weight = options_.fairness_weight;
+  s.residual_tolerance = 0.0;  // the alignment is minimised, not driven to zero
+  s.step_tolerance = 1e-12;
+  s.linear_solver = options_.linear_solver;
+  s.eliminate_auxiliaries = false;
+  return s;
+}
+
+SolverSummary WeingartenProblem::Solve(const Callback& callback) {
+  return gproj::Solve(ToSolverOptions(), &problem_,
+                      [&](const IterationRecord& r, const Eigen::VectorXd&) {
+                        return callback ? callback(r) : CallbackResult::kContinue;
+                      });
+}
+
+BSplineSurface WeingartenProblem::ScaledToInput(const Eigen::VectorXd& x) const {
+  BSplineSurface out = reference_;
+  const VariableLayout& layout = problem_.layout();
+  for (int i = 0; i < out.num_control_points(); ++i)
+    out.control.row(i) =
+        (x.segment<3>(layout.ItemOffset(layout.Item(control_block_, i))) / scale_ + centre_)
+            .transpose();
+  return out;
+}
+
+BSplineSurface WeingartenProblem::Result() const { return ScaledToInput(problem_.x()); }
+
+Eigen::Vector3d WeingartenProblem::LinearRelation() const {
+  if (!linear_) return Eigen::Vector3d::Zero();
+  const Eigen::Vector3d abc = linear_->coefficients();
+  Eigen::Vector3d input(abc[0] / scale_, abc[1] / (scale_ * scale_), abc[2]);
+  return input / input.head<2>().norm();
+}
+
+WeingartenMeasures WeingartenProblem::Measures() const {
+  WeingartenMeasures m = MeasureWeingarten(Result(), reference_, maps_.su, maps_.sv);
+  if (linear_) {
+    const Eigen::Vector3d abc = LinearRelation();
+    for (size_t s = 0; s < m.h.size(); ++s)
+      m.max_relation_residual =
+          std::max(m.max_relation_residual, std::abs(abc[0] * m.h[s] + abc[1] * m.k[s] + abc[2]));
+  }
+  return m;
+}
+
+}  // namespace gproj

@@ -1,0 +1,123 @@
+#pragma once
+// Weingarten surfaces on B-splines (003 §3–4): the control points of a tensor-product B-spline
+// move so that the isolines of mean curvature H and Gaussian curvature K align
+// (H_u K_v − H_v K_u = 0 at the samples), optionally with geodesic parallel isolines, a linear
+// relation a H + b K + c = 0 or a B-spline curve relation in the (H, K) plane, while closeness,
+// shape preservation, boundary gliding and control-net fairness keep the shape.
+//
+// Unknowns (003 Table 2): 3 per control point, 12 per sample (n, E, F, G, Δ, L, M, N, K, H),
+// plus 8 per sample with geodesic parallel isolines. Before solving, the surface is centred
+// and scaled so that the mean |principal curvature| at the samples is 5 (Table 1 note); results
+// and measures are reported in input units.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "geometry/bspline_surface.h"
+#include "solver/guided_projection.h"
+#include "solver/problem.h"
+
+namespace gproj {
+
+enum class CurvatureRelation { kNone, kLinear, kBSpline };
+
+struct WeingartenOptions {
+  // Weights of 003 Table 1.
+  double alignment_weight = 0.1;          // ω_al, isoline alignment (eq. 5)
+  double bspline_relation_weight = 0.0;   // ω_bs, B-spline curvature relation (§3.2.3)
+  double linear_relation_weight = 0.0;    // ω_ln, linear Weingarten relation (§3.2.2)
+  double geodesic_parallel_weight = 0.0;  // ω_gp, geodesic parallel isolines (eq. 8)
+  double closeness_weight = 0.1;          // ω_cl, closeness to the reference control points
+  double shape_weight = 0.0;              // ω_sh, control-net edge and diagonal lengths
+  double fairness_weight = 0.2;           // ω_f of eq. 11 (control-net second differences)
+  double epsilon = 1e-3;                  // ε of eq. 11
+  double definition_weight = 1.0;         // rows defining the auxiliaries
+  // Alignment rows divided by |∇H| |∇K| at x^k (sine of the gradients' angle; see
+  // IsolineAlignment). false: the paper's raw residual, divided once by its RMS at the start.
+  bool normalize_alignment = true;
+  // Boundary control points glide along the reference boundary polygon, corners held (0: off).
+  double boundary_weight = 0.0;
+  // Linear relation: fitted to (H, K) at every iteration unless coefficients are given;
+  // given coefficients (a, b, c) are in input units and converted to the scaled problem.
+  bool fixed_linear_relation = false;
+  Eigen::Vector3d linear_coefficients = Eigen::Vector3d(0.0, 1.0, 0.0);
+  int bspline_relation_control_points = 6;
+  // Samples per direction; 0: samples_per_control × control points (Table 2: 2).
+  int samples_u = 0, samples_v = 0;
+  int samples_per_control = 2;
+  int max_iterations = 10;
+  // Multiresolution (003 §4.1.1): after the first solve, each level inserts one knot in every
+  // span (Boehm) and solves again. 0: off.
+  int refine_levels = 0;
+  double target_mean_curvature = 5.0;
+  LinearSolverType linear_solver = LinearSolverType::kCholmod;
+
+  CurvatureRelation relation() const;
+  bool IsValid(std::string* why) const;
+};
+
+// Named settings of 003 Table 1: fig1 (also 7, 8, 12, 13), fig2b, fig2c, fig2d, fig3, fig4b,
+// fig4c, fig9b, fig9c, fig10. Throws InputError for other names (listing the known ones).
+WeingartenOptions WeingartenPreset(const std::string& name);
+std::vector<std::string> WeingartenPresetNames();
+
+// Number of unknowns as counted in 003 Table 2.
+int WeingartenVariableCount(int nu, int nv, int su, int sv, bool geodesic_parallel);
+
+struct WeingartenMeasures {
+  // Σ |H_u K_v − H_v K_u| / Σ |∇H| |∇K| over the inner samples (central differences of the
+  // surface's own H and K; 0 for a Weingarten surface).
+  double misalignment = 0.0;
+  double max_deviation = 0.0;   // max |s − s_ref| over the samples / bbox diagonal of s_ref
+  double mean_deviation = 0.0;  // mean of the same
+  int worst_sample = -1;        // where the max deviation is
+  // max |a H + b K + c| over samples for the relation in use (a² + b² = 1), 0 if none.
+  double max_relation_residual = 0.0;
+  std::vector<double> h, k;  // per sample, input units
+  double mean_abs_principal_curvature = 0.0;
+};
+
+// H and K of `surface` at the samples of `maps` (from the derivatives; exact, no auxiliaries).
+void SampleCurvatures(const BSplineSurface& surface, const SampleMaps& maps, std::vector<double>* h,
+                      std::vector<double>* k);
+// Misalignment and deviation of `surface` against `reference` (same control-net size).
+WeingartenMeasures MeasureWeingarten(const BSplineSurface& surface, const BSplineSurface& reference,
+                                     int su, int sv);
+
+class WeingartenProblem {
+ public:
+  // Throws InputError if the options are invalid or the surface is degenerate at a sample.
+  WeingartenProblem(const BSplineSurface& input, const WeingartenOptions& options);
+
+  using Callback = std::function<CallbackResult(const IterationRecord&)>;
+  SolverSummary Solve(const Callback& callback = nullptr);
+
+  // Current surface in input units.
+  BSplineSurface Result() const;
+  WeingartenMeasures Measures() const;
+  Problem& problem() { return problem_; }
+  const SampleMaps& maps() const { return maps_; }
+  int num_variables() const { return problem_.layout().num_variables(); }
+  double scale() const { return scale_; }  // scaled = (input − centre) · scale
+  const WeingartenOptions& options() const { return options_; }
+  SolverOptions ToSolverOptions() const;
+  // The linear relation's coefficients in input units (a² + b² = 1), when one is in use.
+  Eigen::Vector3d LinearRelation() const;
+
+ private:
+  BSplineSurface ScaledToInput(const Eigen::VectorXd& x) const;
+
+  WeingartenOptions options_;
+  BSplineSurface reference_;  // input units
+  BSplineSurface scaled_;     // scaled reference
+  SampleMaps maps_;
+  Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();
+  double scale_ = 1.0;
+  double alignment_scale_ = 1.0;  // 1 / RMS |∇H| |∇K| of the input, scaled units
+  Problem problem_;
+  int control_block_ = -1, curvature_block_ = -1, gradient_block_ = -1;
+  class LinearWeingarten* linear_ = nullptr;
+};
+
+}  // namespace gproj
