@@ -24,7 +24,7 @@ struct WeingartenArgs {
   std::vector<double> linear;
   int refine = 0, max_iterations = 0, molds = 0;
   double alignment = -1, closeness = -1, shape = -1, geodesic = -1, boundary = -1, epsilon = -1,
-         fairness = -1, definitions = -1;
+         fairness = -1, definitions = -1, soft_start = -1;
 };
 
 std::string CurvatureCsv(const SampleMaps& maps, const WeingartenMeasures& before,
@@ -73,6 +73,7 @@ int RunWeingarten(const WeingartenArgs& args) {
     if (args.epsilon > 0) options.epsilon = args.epsilon;
     if (args.fairness >= 0) options.fairness_weight = args.fairness;
     if (args.definitions > 0) options.definition_weight = args.definitions;
+    if (args.soft_start >= 1) options.soft_start = args.soft_start;
     if (args.max_iterations > 0) options.max_iterations = args.max_iterations;
     options.refine_levels = args.refine;
     std::string why;
@@ -85,6 +86,7 @@ int RunWeingarten(const WeingartenArgs& args) {
     int iterations = 0, variables = 0, su = 0, sv = 0;
     std::string message;
     WeingartenMeasures before;
+    Eigen::Vector3d relation = Eigen::Vector3d::Zero();
     for (int level = 0; level <= options.refine_levels; ++level) {
       if (level > 0) current = InsertKnotsUniform(current, 1);
       WeingartenProblem problem(current, options);
@@ -125,6 +127,7 @@ int RunWeingarten(const WeingartenArgs& args) {
         break;
       }
       current = problem.Result();
+      relation = problem.LinearRelation();
       const WeingartenMeasures m = problem.Measures();
       levels.push_back({{"level", level},
                         {"control_points", {current.nu, current.nv}},
@@ -161,6 +164,16 @@ int RunWeingarten(const WeingartenArgs& args) {
           {"worst_sample", {after.worst_sample / sv, after.worst_sample % sv}},
           {"misalignment_ratio", before.misalignment / std::max(after.misalignment, 1e-300)}}}};
     if (!history.empty()) report["final"]["families"] = history.back()["families"];
+    if (options.linear_relation_weight > 0.0) {
+      double worst = 0.0;
+      for (size_t i = 0; i < after.h.size(); ++i)
+        worst = std::max(
+            worst, std::abs(relation[0] * after.h[i] + relation[1] * after.k[i] + relation[2]));
+      report["final"]["linear_relation"] = {relation[0], relation[1], relation[2]};
+      report["final"]["max_relation_residual"] = worst;
+      std::printf("linear relation %.6g H + %.6g K + %.6g = 0 (input units): max residual %.3e\n",
+                  relation[0], relation[1], relation[2], worst);
+    }
     std::unique_ptr<MoldClustering> molds;
     if (args.molds > 0) {
       std::vector<double> k = after.k;
@@ -249,6 +262,8 @@ void RegisterWeingartenCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--shape", args->shape, "Override ω_sh (control-net lengths)");
   cmd->add_option("--geodesic-parallel", args->geodesic, "Override ω_gp (eq. 8)");
   cmd->add_option("--epsilon", args->epsilon, "Override ε of eq. 11 (proximal weight)");
+  cmd->add_option("--soft-start", args->soft_start,
+                  "Soft terms start this many times stronger and relax to their weights (≥ 1)");
   cmd->add_option("--fairness", args->fairness, "Override ω_f of eq. 11 (control-net fairness)");
   cmd->add_option("--definitions", args->definitions,
                   "Weight of the rows defining the auxiliaries (relative errors; default 1)");

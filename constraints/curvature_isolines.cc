@@ -346,16 +346,24 @@ bool GeodesicParallelIsolines::RowTouches(int, int row, int local) const {
 
 // ---------------------------------------------------------------------------------------------
 LinearWeingarten::LinearWeingarten(double weight, bool fixed, const Eigen::Vector3d& coefficients,
-                                   std::string name)
+                                   double curvature_scale, std::string name)
     : ConstraintFamily(std::move(name), 1, FamilyRole::kConstraint, weight),
       fixed_(fixed),
-      abc_(coefficients) {}
+      abc_(coefficients),
+      curvature_scale_(curvature_scale) {}
+
+double LinearWeingarten::RowScale() const {
+  const double k = curvature_scale_;
+  const double s = std::abs(abc_[0]) * k + std::abs(abc_[1]) * k * k;
+  return s > 0.0 ? 1.0 / s : 1.0;
+}
 
 void LinearWeingarten::EvaluateElement(int, const double* x, double* phi, double* jac) const {
   std::fill(jac, jac + 12, 0.0);
-  phi[0] = abc_[0] * x[kH] + abc_[1] * x[kK] + abc_[2];
-  jac[kH] = abc_[0];
-  jac[kK] = abc_[1];
+  const double f = RowScale();
+  phi[0] = f * (abc_[0] * x[kH] + abc_[1] * x[kK] + abc_[2]);
+  jac[kH] = f * abc_[0];
+  jac[kK] = f * abc_[1];
 }
 
 void LinearWeingarten::Update(const VariableLayout& layout, const Eigen::VectorXd& x) {

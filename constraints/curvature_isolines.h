@@ -148,8 +148,10 @@ class GeodesicParallelIsolines : public ConstraintFamily {
 class LinearWeingarten : public ConstraintFamily {
  public:
   // fixed: use `coefficients` (a, b, c) throughout; otherwise fit them at every Update.
+  // `curvature_scale` κ (typical |principal curvature|): rows are divided by |a| κ + |b| κ², so
+  // they are relative errors like the auxiliary definitions.
   LinearWeingarten(double weight, bool fixed, const Eigen::Vector3d& coefficients,
-                   std::string name = "linear relation");
+                   double curvature_scale = 1.0, std::string name = "linear relation");
   int AddSample(int aux) { return AddElement({aux}); }
   void EvaluateElement(int e, const double* x, double* phi, double* jac) const override;
   bool RowTouches(int e, int row, int local) const override { return local == kH || local == kK; }
@@ -159,8 +161,10 @@ class LinearWeingarten : public ConstraintFamily {
   static Eigen::Vector3d FitLine(const std::vector<double>& h, const std::vector<double>& k);
 
  private:
+  double RowScale() const;
   bool fixed_;
   Eigen::Vector3d abc_;
+  double curvature_scale_;
 };
 
 // (H, K) held to the tangent line of a fitted curve γ at its closest point (frozen at x^k).

@@ -76,6 +76,10 @@ bool WeingartenOptions::IsValid(std::string* why) const {
     *why = "at least 5 samples per direction are needed (central differences of gradients)";
     return false;
   }
+  if (!(soft_start >= 1.0) || !(soft_decay > 0.0 && soft_decay <= 1.0)) {
+    *why = "soft_start must be ≥ 1 and soft_decay in (0, 1]";
+    return false;
+  }
   if (max_iterations < 1 || refine_levels < 0) {
     *why = "max_iterations must be ≥ 1 and refine_levels ≥ 0";
     return false;
@@ -115,6 +119,8 @@ WeingartenOptions WeingartenPreset(const std::string& name) {
     o.closeness_weight = 0.001;
     o.shape_weight = 0.001;
     o.boundary_weight = 10.0;
+    o.soft_start = 30.0;  // the relation moves the surface far: short first steps
+    o.max_iterations = 30;
     return o;
   }
   if (name == "fig4b" || name == "fig4c") {
@@ -358,7 +364,8 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
     abc = Eigen::Vector3d(abc[0] * scale_, abc[1] * scale_ * scale_, abc[2]);
     abc /= abc.head<2>().norm();
     linear_ = problem_.AddFamily<LinearWeingarten>(squared(options.linear_relation_weight),
-                                                   options.fixed_linear_relation, abc);
+                                                   options.fixed_linear_relation, abc,
+                                                   options.target_mean_curvature);
     for (int s = 0; s < ns; ++s) linear_->AddSample(layout.Item(curvature_block_, s));
   }
   if (options.bspline_relation_weight > 0.0) {
@@ -367,28 +374,29 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
     for (int s = 0; s < ns; ++s) curve->AddSample(layout.Item(curvature_block_, s));
   }
   auto control = [&](int i, int j) { return layout.Item(control_block_, scaled_.Index(i, j)); };
+  // Closeness and gliding are measured in units of the control net's mean edge length, so their
+  // weights do not depend on the surface's size or on the net's resolution.
+  double edge_sum = 0.0;
+  int edges = 0;
+  for (int i = 0; i < input.nu; ++i)
+    for (int j = 0; j < input.nv; ++j) {
+      const Eigen::RowVector3d c = scaled_.control.row(scaled_.Index(i, j));
+      if (i + 1 < input.nu) edge_sum += (scaled_.control.row(scaled_.Index(i + 1, j)) - c).norm();
+      if (j + 1 < input.nv) edge_sum += (scaled_.control.row(scaled_.Index(i, j + 1)) - c).norm();
+      edges += (i + 1 < input.nu) + (j + 1 < input.nv);
+    }
+  const double mean_edge = edges > 0 && edge_sum > 0.0 ? edge_sum / edges : 1.0;
   if (options.closeness_weight > 0.0) {
-    // Measured in units of the control net's mean edge length, so ω_cl does not depend on the
-    // surface's size or on the net's resolution.
-    double edge_sum = 0.0;
-    int edges = 0;
-    for (int i = 0; i < input.nu; ++i)
-      for (int j = 0; j < input.nv; ++j) {
-        const Eigen::RowVector3d c = scaled_.control.row(scaled_.Index(i, j));
-        if (i + 1 < input.nu) edge_sum += (scaled_.control.row(scaled_.Index(i + 1, j)) - c).norm();
-        if (j + 1 < input.nv) edge_sum += (scaled_.control.row(scaled_.Index(i, j + 1)) - c).norm();
-        edges += (i + 1 < input.nu) + (j + 1 < input.nv);
-      }
-    const double mean_edge = edges > 0 && edge_sum > 0.0 ? edge_sum / edges : 1.0;
-    auto* closeness =
-        problem_.AddFamily<Closeness>(3, squared(options.closeness_weight / mean_edge));
+    auto* closeness = problem_.AddFamily<Closeness>(
+        3, squared(options.soft_start * options.closeness_weight / mean_edge));
     for (int i = 0; i < nc; ++i) {
       const Eigen::Vector3d p = scaled_.control.row(i).transpose();
       closeness->AddTarget(layout.Item(control_block_, i), p.data());
     }
   }
   if (options.shape_weight > 0.0) {
-    auto* shape = problem_.AddFamily<EdgeLengthPreservation>(squared(options.shape_weight));
+    auto* shape = problem_.AddFamily<EdgeLengthPreservation>(
+        squared(options.soft_start * options.shape_weight));
     auto add = [&](int i0, int j0, int i1, int j1) {
       const double l =
           (scaled_.control.row(scaled_.Index(i0, j0)) - scaled_.control.row(scaled_.Index(i1, j1)))
@@ -416,9 +424,9 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
         fairness->AddElement({control(i - 1, j), control(i, j), control(i + 1, j)});
   }
   if (options.boundary_weight > 0.0) {
-    auto* glide = problem_.AddFamily<PolylineGliding>(squared(options.boundary_weight));
-    auto* corners =
-        problem_.AddFamily<Closeness>(3, squared(options.boundary_weight), "boundary corners");
+    auto* glide = problem_.AddFamily<PolylineGliding>(squared(options.boundary_weight / mean_edge));
+    auto* corners = problem_.AddFamily<Closeness>(3, squared(options.boundary_weight / mean_edge),
+                                                  "boundary corners");
     auto row = [&](int i0, int j0, int di, int dj, int count) {
       std::vector<Eigen::Vector3d> line;
       for (int t = 0; t < count; ++t)
@@ -447,7 +455,11 @@ SolverOptions WeingartenProblem::ToSolverOptions() const {
   SolverOptions s;
   s.max_iterations = options_.max_iterations;
   s.epsilon = options_.epsilon;
-  s.fairness_weight = options_.fairness_weight;
+  s.fairness_weight = options_.soft_start * options_.fairness_weight;
+  if (options_.soft_start > 1.0) {
+    s.soft_weight_decay = options_.soft_decay;
+    s.soft_weight_floor = 1.0 / (options_.soft_start * options_.soft_start);
+  }
   s.residual_tolerance = 0.0;  // the alignment is minimised, not driven to zero
   s.step_tolerance = 1e-12;
   s.linear_solver = options_.linear_solver;

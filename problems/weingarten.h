@@ -47,6 +47,11 @@ struct WeingartenOptions {
   int samples_u = 0, samples_v = 0;
   int samples_per_control = 2;
   int max_iterations = 10;
+  // Continuation: the soft terms (closeness, shape, fairness) start soft_start times stronger
+  // and relax by soft_decay per iteration (on the squared weights) to the values above, so
+  // early steps are short while the auxiliaries adapt. 1: off (fixed weights).
+  double soft_start = 1.0;
+  double soft_decay = 0.5;
   // Multiresolution (003 §4.1.1): after the first solve, each level inserts one knot in every
   // span (Boehm) and solves again. 0: off.
   int refine_levels = 0;

@@ -1,0 +1,47 @@
+// `gproj weingarten` as a user runs it, on the shipped B-spline.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "apps/command_test_util.h"
+
+namespace gproj {
+namespace {
+
+class WeingartenCommandTest : public CommandTest {};
+
+TEST_F(WeingartenCommandTest, OptimisesTheShippedSurfaceAndWritesEveryOutput) {
+  const CommandRun r =
+      Gproj("weingarten " + Data("freeform_10x10.json") + " -o " + Path("out.json") +
+            " --max-iterations 6 --molds 12 --diagram " + Path("d.svg") + " --curvature " +
+            Path("c.csv") + " --report " + Path("r.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const nlohmann::json report = Json("r.json");
+  EXPECT_EQ(report["variables"].get<int>(), 3 * 100 + 12 * 400);
+  EXPECT_LT(report["final"]["misalignment"].get<double>(),
+            0.5 * report["initial"]["misalignment"].get<double>());
+  EXPECT_LE(report["molds"]["clusters"].get<int>(), 12);
+  EXPECT_EQ(report["history"].size(), 7u);
+  EXPECT_NE(Slurp(dir_ / "d.svg").find("<svg"), std::string::npos);
+  EXPECT_NE(Slurp(dir_ / "c.csv").find("H_before,K_before,H_after,K_after,mold"),
+            std::string::npos);
+  // The output is a valid B-spline the command reads back.
+  const CommandRun again =
+      Gproj("weingarten " + Path("out.json") + " -o " + Path("out2.json") + " --max-iterations 1");
+  EXPECT_EQ(again.exit_code, 0) << again.err;
+}
+
+TEST_F(WeingartenCommandTest, RefusesBadSplinesAndPresets) {
+  const std::string bad = Write(
+      "bad.json", R"({"degree": [2, 2], "knots_u": [0, 0, 0, 1, 1], "knots_v": [0, 0, 0, 1, 1, 1],)"
+                  R"( "control_points": [[[0,0,0],[0,1,0],[0,2,0]],[[1,0,0],[1,1,0],[1,2,0]],)"
+                  R"([[2,0,0],[2,1,0],[2,2,0]]]})");
+  ExpectOneLineError(Gproj("weingarten " + bad + " -o " + Path("out.json")), "knots_u");
+  ExpectOneLineError(Gproj("weingarten " + Data("freeform_10x10.json") + " -o " + Path("out.json") +
+                           " --preset fig99"),
+                     "unknown preset 'fig99'");
+  EXPECT_FALSE(Exists("out.json"));
+}
+
+}  // namespace
+}  // namespace gproj
