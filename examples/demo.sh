@@ -59,6 +59,12 @@ echo "== M-revolution surface: inversion whose centre maps a parallel's quad to 
   --ratio 40 -o out/demo/m_revolution.obj --picture out/demo/m_revolution.svg \
   --report out/demo/m_revolution_report.json
 echo
+echo "== Weingarten surface: align the curvature isolines of a shipped bi-degree (4,4) B-spline (003) =="
+./build/gproj weingarten examples/data/freeform_10x10.json -o out/demo/weingarten.json \
+  --diagram out/demo/weingarten_diagram.svg --curvature out/demo/weingarten_curvature.csv \
+  --molds 20 --picture out/demo/weingarten.svg --surface-mesh out/demo/weingarten_surface.obj \
+  --report out/demo/weingarten_report.json
+echo
 echo "Results in $(pwd)/out/demo (open the .obj files in any mesh viewer, e.g. MeshLab or Blender):"
 echo "  planarized.obj                planar-quad mesh (planarized.svg: a picture of it)"
 echo "  planarize_report.json         convergence history and final measures"
@@ -71,4 +77,7 @@ echo "  marionette.obj                Marionette mesh (planar quads, plan view k
 echo "  marionette_valence6.obj, marionette_tower.obj, marionette_strip.obj   and their reports"
 echo "  canal.obj, canal.svg          canal surface meshed by circular quads; canal_strip.obj its strip"
 echo "  combescure.obj, .svg          parallel mesh of the surface of revolution (still circular)"
+echo "  weingarten.json               the optimised B-spline (SPEC §4 JSON); weingarten_surface.obj sampled"
+echo "  weingarten_diagram.svg        curvature diagram (H, K) before and after: a curve after"
+echo "  weingarten_curvature.csv      H, K per sample before/after and the mold of each sample"
 echo "  m_revolution.obj, .svg        the surface of revolution inverted (000 §5.1; still circular)"
