@@ -286,6 +286,11 @@ void GeodesicAuxiliaries::EvaluateElement(int e, const double* x, double* phi, d
     J(row, 8 + kG) = -g[r0];
     J(row, 8 + kF) = 2.0 * g[r0 + 1];
     J(row, 8 + kE) = -g[r0 + 2];
+    const double f = inverse_scale_[p];
+    for (int r : {r0, r0 + 1, r0 + 2, row}) {
+      phi[r] *= f;
+      for (int l = 0; l < kDim; ++l) J(r, l) *= f;
+    }
   }
 }
 
@@ -311,7 +316,30 @@ void GeodesicAuxiliaries::Update(const VariableLayout& layout, const Eigen::Vect
 int GeodesicParallelIsolines::AddSample(const std::array<int, 4>& g, const std::array<int, 4>& a,
                                         double inv_du, double inv_dv) {
   inv_.push_back({inv_du, inv_dv});
+  row_scale_.push_back({1.0, 1.0});
   return AddElement({g[0], g[1], g[2], g[3], a[0], a[1], a[2], a[3]});
+}
+
+void GeodesicParallelIsolines::Update(const VariableLayout& layout, const Eigen::VectorXd& x) {
+  const int n = num_elements();
+  for (int p = 0; p < 2; ++p) {
+    const int grad = p == 0 ? kGradK : kGradH, off = p == 0 ? kK : kH;
+    std::vector<double> product(n);
+    double sum = 0.0;
+    for (int e = 0; e < n; ++e) {
+      const int* it = element_items(e);
+      auto d = [&](int i, int j, int o, double c) {
+        return c * (Value(layout, x, it[i], o) - Value(layout, x, it[j], o));
+      };
+      const double qu = d(0, 1, grad, inv_[e][0]), qv = d(2, 3, grad, inv_[e][1]);
+      const double pu = d(4, 5, off, inv_[e][0]), pv = d(6, 7, off, inv_[e][1]);
+      product[e] = std::hypot(qu, qv) * std::hypot(pu, pv);
+      sum += product[e] * product[e];
+    }
+    const double delta = n > 0 ? 0.1 * std::sqrt(sum / n) : 0.0;
+    for (int e = 0; e < n; ++e)
+      row_scale_[e][p] = product[e] + delta > 0.0 ? 1.0 / (product[e] + delta) : 1.0;
+  }
 }
 
 // Local layout: g(a+1,b) g(a−1,b) g(a,b+1) g(a,b−1) (8 each) | a(a+1,b) … (12 each).
@@ -319,23 +347,24 @@ void GeodesicParallelIsolines::EvaluateElement(int e, const double* x, double* p
                                                double* jac) const {
   constexpr int kDim = 4 * 8 + 4 * 12;
   std::fill(jac, jac + 2 * kDim, 0.0);
-  const double cu = inv_[e][0], cv = inv_[e][1];
   for (int p = 0; p < 2; ++p) {
+    const double cu = inv_[e][0] * row_scale_[e][p], cv = inv_[e][1] * row_scale_[e][p];
     const int grad = p == 0 ? kGradK : kGradH, off = p == 0 ? kK : kH;
     const int gi[4] = {grad, 8 + grad, 16 + grad, 24 + grad};
     const int ai[4] = {32 + off, 44 + off, 56 + off, 68 + off};
+    // One factor of the row scale: q carries it, p uses the plain differences.
     const double qu = cu * (x[gi[0]] - x[gi[1]]), qv = cv * (x[gi[2]] - x[gi[3]]);
-    const double pu = cu * (x[ai[0]] - x[ai[1]]), pv = cv * (x[ai[2]] - x[ai[3]]);
+    const double pu = inv_[e][0] * (x[ai[0]] - x[ai[1]]), pv = inv_[e][1] * (x[ai[2]] - x[ai[3]]);
     phi[p] = qu * pv - qv * pu;
     double* row = jac + p * kDim;
     row[gi[0]] = cu * pv;
     row[gi[1]] = -cu * pv;
     row[gi[2]] = -cv * pu;
     row[gi[3]] = cv * pu;
-    row[ai[0]] = -cu * qv;
-    row[ai[1]] = cu * qv;
-    row[ai[2]] = cv * qu;
-    row[ai[3]] = -cv * qu;
+    row[ai[0]] = -inv_[e][0] * qv;
+    row[ai[1]] = inv_[e][0] * qv;
+    row[ai[2]] = inv_[e][1] * qu;
+    row[ai[3]] = -inv_[e][1] * qu;
   }
 }
 

@@ -120,6 +120,11 @@ class GeodesicAuxiliaries : public ConstraintFamily {
   explicit GeodesicAuxiliaries(double weight = 1.0, std::string name = "gradient definitions")
       : ConstraintFamily(std::move(name), 8, FamilyRole::kConstraint, weight) {}
   int AddSample(int g, int a, int up, int um, int vp, int vm, double inv_du, double inv_dv);
+  // Typical |∇K|² and |∇H|²: the K rows are divided by the first, the H rows by the second, so
+  // the definitions are relative errors (default 1: raw rows).
+  void SetGradientScales(double k_scale, double h_scale) {
+    inverse_scale_ = {1.0 / k_scale, 1.0 / h_scale};
+  }
   void EvaluateElement(int e, const double* x, double* phi, double* jac) const override;
   bool RowTouches(int e, int row, int local) const override;
   void Update(const VariableLayout& layout, const Eigen::VectorXd& x) override;
@@ -127,10 +132,12 @@ class GeodesicAuxiliaries : public ConstraintFamily {
  private:
   std::vector<std::array<double, 2>> inv_;
   std::vector<double> delta_;  // Δᵏ per element
+  std::array<double, 2> inverse_scale_ = {1.0, 1.0};
 };
 
 // (‖∇ψ‖²)_u ψ_v − (‖∇ψ‖²)_v ψ_u = 0 for ψ = K (row 0) and H (row 1); items
 // {g(a+1,b), g(a−1,b), g(a,b+1), g(a,b−1), a(a+1,b), a(a−1,b), a(a,b+1), a(a,b−1)}.
+// Rows are divided by |∇‖∇ψ‖²| |∇ψ| at x^k (+ δ, as for IsolineAlignment).
 class GeodesicParallelIsolines : public ConstraintFamily {
  public:
   explicit GeodesicParallelIsolines(double weight, std::string name = "geodesic parallel")
@@ -139,9 +146,11 @@ class GeodesicParallelIsolines : public ConstraintFamily {
                 double inv_dv);
   void EvaluateElement(int e, const double* x, double* phi, double* jac) const override;
   bool RowTouches(int e, int row, int local) const override;
+  void Update(const VariableLayout& layout, const Eigen::VectorXd& x) override;
 
  private:
   std::vector<std::array<double, 2>> inv_;
+  std::vector<std::array<double, 2>> row_scale_;
 };
 
 // a H + b K + c = 0 per sample; items {a (curvature item)}.

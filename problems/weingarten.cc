@@ -307,6 +307,7 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
     auto* definitions2 =
         problem_.AddFamily<GeodesicAuxiliaries>(squared(options.definition_weight));
     auto grad = [&](int a, int b) { return layout.Item(gradient_block_, maps_.Index(a, b)); };
+    double k_scale = 0.0, h_scale = 0.0;
     for (int a = 1; a + 1 < su; ++a)
       for (int b = 1; b + 1 < sv; ++b) {
         const double cu = inv_du(a);
@@ -330,7 +331,10 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
           g[6 + p] = (G * du * du - 2 * F * du * dv + E * dv * dv) / D;
         }
         x.segment<kGeodesicAuxDim>(layout.ItemOffset(grad(a, b))) = g;
+        k_scale += (g[0] + g[2]) / ((su - 2) * (sv - 2));
+        h_scale += (g[3] + g[5]) / ((su - 2) * (sv - 2));
       }
+    definitions2->SetGradientScales(k_scale > 0.0 ? k_scale : 1.0, h_scale > 0.0 ? h_scale : 1.0);
     // Normalised like the alignment rows, by the RMS of |∇‖∇ψ‖²| |∇ψ| at the start.
     double product = 0.0;
     int count = 0;
