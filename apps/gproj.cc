@@ -7,7 +7,8 @@ int main(int argc, char** argv) {
   CLI::App app{
       "gproj: guided projection for architectural geometry.\n"
       "Makes freeform meshes buildable by solving systems of quadratic constraints\n"
-      "(planar and circular quads, ...) with Gauss-Newton-style guided projection and sparse Cholesky."};
+      "(planar and circular quads, ...) with Gauss-Newton-style guided projection and sparse "
+      "Cholesky."};
   app.require_subcommand(1);
   int exit_code = gproj::kExitOk;
   gproj::RegisterPlanarizeCommand(&app, &exit_code);

@@ -6,8 +6,6 @@
 //   BM_WeingartenIteration/<row of Table 2>
 #include <benchmark/benchmark.h>
 
-#include <cmath>
-
 #include "bench/solver_counters.h"
 #include "problems/weingarten.h"
 
@@ -45,23 +43,6 @@ constexpr TableRow kTable2[] = {
     {"12", 10, 10, 4, 20, 20, false, 5100, 0.59},
 };
 
-BSplineSurface Freeform(int nu, int nv, int degree) {
-  BSplineSurface s;
-  s.degree_u = s.degree_v = degree;
-  s.nu = nu;
-  s.nv = nv;
-  s.knots_u = UniformClampedKnots(nu, degree);
-  s.knots_v = UniformClampedKnots(nv, degree);
-  s.control.resize(nu * nv, 3);
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      const double x = -1.0 + 2.0 * i / (nu - 1), y = -1.0 + 2.0 * j / (nv - 1);
-      s.control.row(s.Index(i, j)) << x, y,
-          0.3 * std::sin(2.0 * x) * std::cos(1.5 * y) + 0.2 * x * y + 0.15 * x * x;
-    }
-  return s;
-}
-
 void BM_WeingartenIteration(benchmark::State& state) {
   const TableRow& row = kTable2[state.range(0)];
   state.SetLabel(std::string("Fig. ") + row.figure);
@@ -71,7 +52,7 @@ void BM_WeingartenIteration(benchmark::State& state) {
   o.max_iterations = 3;
   SolverSummary summary;
   for (auto _ : state) {
-    WeingartenProblem problem(Freeform(row.nu, row.nv, row.degree), o);
+    WeingartenProblem problem(MakeWavyBSpline(row.nu, row.nv, row.degree), o);
     summary = problem.Solve();
   }
   const PhaseMeans m = SetSolverCounters(summary, &state);

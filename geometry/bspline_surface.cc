@@ -565,4 +565,22 @@ PolyMesh SampleSurfaceMesh(const BSplineSurface& surface, int m, int n) {
   return mesh;
 }
 
+BSplineSurface MakeWavyBSpline(int nu, int nv, int degree, double amplitude) {
+  BSplineSurface s;
+  s.degree_u = s.degree_v = degree;
+  s.nu = nu;
+  s.nv = nv;
+  s.knots_u = UniformClampedKnots(nu, degree);
+  s.knots_v = UniformClampedKnots(nv, degree);
+  s.control.resize(nu * nv, 3);
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const double x = -1.0 + 2.0 * i / (nu - 1), y = -1.0 + 2.0 * j / (nv - 1);
+      s.control.row(s.Index(i, j)) << x, y,
+          amplitude * (0.3 * std::sin(2.0 * x) * std::cos(1.5 * y) + 0.2 * x * y + 0.15 * x * x);
+    }
+  ValidateBSpline(s);
+  return s;
+}
+
 }  // namespace gproj

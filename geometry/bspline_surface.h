@@ -87,6 +87,11 @@ BSplineSurface RefitBSpline(const BSplineSurface& surface, int nu, int nv);
 // (knot refinement, NURBS Book A5.4): the same surface with more control points.
 BSplineSurface InsertKnotsUniform(const BSplineSurface& surface, int per_span);
 
+// A freeform test and benchmark surface: bi-degree (degree, degree), uniform clamped knots,
+// control point (i, j) at (x, y, a (0.3 sin 2x cos 1.5y + 0.2 x y + 0.15 x²)) on a uniform grid
+// of [−1, 1]², a = amplitude.
+BSplineSurface MakeWavyBSpline(int nu, int nv, int degree, double amplitude = 1.0);
+
 // The control net as a quad mesh (vertex i * nv + j), for pictures and `gproj` outputs.
 PolyMesh ControlNetMesh(const BSplineSurface& surface);
 // The surface sampled on an (m + 1) × (n + 1) grid of the domain as a quad mesh.

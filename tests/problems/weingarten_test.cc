@@ -9,23 +9,7 @@
 namespace gproj {
 namespace {
 
-// A freeform bi-degree (d, d) B-spline: control points on a wavy height field over [−1, 1]².
-BSplineSurface Freeform(int nu, int nv, int degree = 4, double amplitude = 1.0) {
-  BSplineSurface s;
-  s.degree_u = s.degree_v = degree;
-  s.nu = nu;
-  s.nv = nv;
-  s.knots_u = UniformClampedKnots(nu, degree);
-  s.knots_v = UniformClampedKnots(nv, degree);
-  s.control.resize(nu * nv, 3);
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      const double x = -1.0 + 2.0 * i / (nu - 1), y = -1.0 + 2.0 * j / (nv - 1);
-      s.control.row(s.Index(i, j)) << x, y,
-          amplitude * (0.3 * std::sin(2.0 * x) * std::cos(1.5 * y) + 0.2 * x * y + 0.15 * x * x);
-    }
-  return s;
-}
+BSplineSurface Freeform(int nu, int nv, int degree = 4) { return MakeWavyBSpline(nu, nv, degree); }
 
 // 003 Table 2: the rows whose variable count is 3 × control points + 12 × samples (or 20 ×
 // samples with geodesic parallel isolines). The other rows (2, 6b–6e, 7, 10c) do not fit either
