@@ -260,22 +260,23 @@ void GeodesicAuxiliaries::EvaluateElement(int e, const double* x, double* phi, d
   const double E = own[kE], F = own[kF], G = own[kG];
   for (int p = 0; p < 2; ++p) {  // p = 0: K, p = 1: H
     const int off = p == 0 ? kK : kH;
-    const double du = cu * (x[up + off] - x[um + off]);
-    const double dv = cv * (x[vp + off] - x[vm + off]);
+    const double su = cu * inverse_sqrt_scale_[p], sv = cv * inverse_sqrt_scale_[p];
+    const double du = su * (x[up + off] - x[um + off]);
+    const double dv = sv * (x[vp + off] - x[vm + off]);
     const int r0 = 3 * p;
     // ψ_u² , ψ_u ψ_v, ψ_v².
     phi[r0] = g[r0] - du * du;
     phi[r0 + 1] = g[r0 + 1] - du * dv;
     phi[r0 + 2] = g[r0 + 2] - dv * dv;
     for (int k = 0; k < 3; ++k) J(r0 + k, r0 + k) = 1.0;
-    J(r0, up + off) = -2.0 * du * cu;
-    J(r0, um + off) = 2.0 * du * cu;
-    J(r0 + 1, up + off) = -dv * cu;
-    J(r0 + 1, um + off) = dv * cu;
-    J(r0 + 1, vp + off) = -du * cv;
-    J(r0 + 1, vm + off) = du * cv;
-    J(r0 + 2, vp + off) = -2.0 * dv * cv;
-    J(r0 + 2, vm + off) = 2.0 * dv * cv;
+    J(r0, up + off) = -2.0 * du * su;
+    J(r0, um + off) = 2.0 * du * su;
+    J(r0 + 1, up + off) = -dv * su;
+    J(r0 + 1, um + off) = dv * su;
+    J(r0 + 1, vp + off) = -du * sv;
+    J(r0 + 1, vm + off) = du * sv;
+    J(r0 + 2, vp + off) = -2.0 * dv * sv;
+    J(r0 + 2, vm + off) = 2.0 * dv * sv;
     // ‖∇ψ‖² Δᵏ − (G ψ_u² − 2 F ψ_u ψ_v + E ψ_v²).
     const int row = 6 + p, grad = p == 0 ? kGradK : kGradH;
     phi[row] = g[grad] * delta_[e] - (G * g[r0] - 2.0 * F * g[r0 + 1] + E * g[r0 + 2]);
@@ -286,11 +287,6 @@ void GeodesicAuxiliaries::EvaluateElement(int e, const double* x, double* phi, d
     J(row, 8 + kG) = -g[r0];
     J(row, 8 + kF) = 2.0 * g[r0 + 1];
     J(row, 8 + kE) = -g[r0 + 2];
-    const double f = inverse_scale_[p];
-    for (int r : {r0, r0 + 1, r0 + 2, row}) {
-      phi[r] *= f;
-      for (int l = 0; l < kDim; ++l) J(r, l) *= f;
-    }
   }
 }
 

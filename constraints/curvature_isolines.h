@@ -22,6 +22,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "solver/constraint_family.h"
@@ -120,10 +121,11 @@ class GeodesicAuxiliaries : public ConstraintFamily {
   explicit GeodesicAuxiliaries(double weight = 1.0, std::string name = "gradient definitions")
       : ConstraintFamily(std::move(name), 8, FamilyRole::kConstraint, weight) {}
   int AddSample(int g, int a, int up, int um, int vp, int vm, double inv_du, double inv_dv);
-  // Typical |∇K|² and |∇H|²: the K rows are divided by the first, the H rows by the second, so
-  // the definitions are relative errors (default 1: raw rows).
+  // Typical |∇K|² and |∇H|² (default 1). The auxiliaries are stored in these units
+  // (K_u² / scale, …, ‖∇K‖² / scale), so they are O(1) like the other unknowns and the
+  // proximal term ε² treats them alike.
   void SetGradientScales(double k_scale, double h_scale) {
-    inverse_scale_ = {1.0 / k_scale, 1.0 / h_scale};
+    inverse_sqrt_scale_ = {1.0 / std::sqrt(k_scale), 1.0 / std::sqrt(h_scale)};
   }
   void EvaluateElement(int e, const double* x, double* phi, double* jac) const override;
   bool RowTouches(int e, int row, int local) const override;
@@ -132,7 +134,7 @@ class GeodesicAuxiliaries : public ConstraintFamily {
  private:
   std::vector<std::array<double, 2>> inv_;
   std::vector<double> delta_;  // Δᵏ per element
-  std::array<double, 2> inverse_scale_ = {1.0, 1.0};
+  std::array<double, 2> inverse_sqrt_scale_ = {1.0, 1.0};
 };
 
 // (‖∇ψ‖²)_u ψ_v − (‖∇ψ‖²)_v ψ_u = 0 for ψ = K (row 0) and H (row 1); items

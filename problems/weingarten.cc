@@ -334,7 +334,18 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
         k_scale += (g[0] + g[2]) / ((su - 2) * (sv - 2));
         h_scale += (g[3] + g[5]) / ((su - 2) * (sv - 2));
       }
-    definitions2->SetGradientScales(k_scale > 0.0 ? k_scale : 1.0, h_scale > 0.0 ? h_scale : 1.0);
+    k_scale = k_scale > 0.0 ? k_scale : 1.0;
+    h_scale = h_scale > 0.0 ? h_scale : 1.0;
+    definitions2->SetGradientScales(k_scale, h_scale);
+    // Store the auxiliaries in those units.
+    for (int a = 1; a + 1 < su; ++a)
+      for (int b = 1; b + 1 < sv; ++b) {
+        auto g = x.segment<kGeodesicAuxDim>(layout.ItemOffset(grad(a, b)));
+        g.segment<3>(0) /= k_scale;
+        g[kGradK] /= k_scale;
+        g.segment<3>(3) /= h_scale;
+        g[kGradH] /= h_scale;
+      }
     // Normalised like the alignment rows, by the RMS of |∇‖∇ψ‖²| |∇ψ| at the start.
     double product = 0.0;
     int count = 0;
