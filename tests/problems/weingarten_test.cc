@@ -107,6 +107,25 @@ TEST(WeingartenTest, FixedLinearRelationMakesABumpDevelopable) {
   EXPECT_LE(m.max_relation_residual, 1e-4) << "from " << start;
 }
 
+// Geodesic parallel isolines (003 §3.2.1, preset fig9c: ω_gp = 0.05) on top of the alignment:
+// the solve stays stable (the surface moves little) and the isolines still align.
+TEST(WeingartenTest, GeodesicParallelPresetIsStable) {
+  const BSplineSurface input = Freeform(10, 10);
+  WeingartenProblem problem(input, WeingartenPreset("fig9c"));
+  EXPECT_EQ(problem.num_variables(), WeingartenVariableCount(10, 10, 20, 20, true));
+  const double before = problem.Measures().misalignment;
+  const SolverSummary s = problem.Solve();
+  ASSERT_NE(s.termination, TerminationType::kFailure) << s.FullReport();
+  const WeingartenMeasures after = problem.Measures();
+  EXPECT_LT(after.misalignment, 0.5 * before);
+  EXPECT_LT(after.max_deviation, 0.05);
+  double gradient_definitions = -1.0;
+  for (const auto& f : s.iterations.back().families)
+    if (f.name == "gradient definitions") gradient_definitions = f.rms;
+  EXPECT_GE(gradient_definitions, 0.0);
+  EXPECT_LT(gradient_definitions, 0.05);  // RMS, in units of the typical gradient
+}
+
 // The guided-projection fixed point is a minimum of the same weighted objective for Ceres:
 // started there, Ceres' Levenberg–Marquardt lowers it by less than 1e-6 relative.
 TEST(WeingartenTest, CeresFindsNothingBetterAtTheGuidedProjectionSolution) {
