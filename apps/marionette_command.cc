@@ -101,6 +101,19 @@ void ReadGuides(const std::string& path, int num_vertices, std::vector<Marionett
 }
 
 // Plan (a quad mesh of any connectivity) + guides → lift on the lines of the projection.
+// Writes the mesh and the optional report atomically; on failure prints the one-line error.
+bool WriteMeshAndReport(const PolyMesh& mesh, const MarionetteArgs& args,
+                        const nlohmann::json& report) {
+  try {
+    WriteMeshAtomically(mesh, args.output);
+    if (!args.report.empty()) WriteTextFileAtomically(args.report, report.dump(2) + "\n");
+    return true;
+  } catch (const InputError& e) {
+    std::cerr << "gproj marionette: " << e.what() << "\n";
+    return false;
+  }
+}
+
 int RunMarionetteMesh(const MarionetteArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   MarionetteLines lines;
@@ -244,13 +257,7 @@ int RunMarionetteMesh(const MarionetteArgs& args) {
                             {{"max_planarity", m.max_planarity},
                              {"mean_planarity", m.mean_planarity},
                              {"max_relative_det", max_det}}}};
-  try {
-    WriteMeshAtomically(out, args.output);
-    if (!args.report.empty()) WriteTextFileAtomically(args.report, report.dump(2) + "\n");
-  } catch (const InputError& e) {
-    std::cerr << "gproj marionette: " << e.what() << "\n";
-    return kExitInputError;
-  }
+  if (!WriteMeshAndReport(out, args, report)) return kExitInputError;
   std::printf(
       "solved in %.4f s (%s, %d iterations); max planarity %.3e (diagonal distance / mean edge), "
       "max |det| / edge lengths %.3e\nwrote %s%s%s\n",
@@ -352,13 +359,7 @@ int RunClosedStrip(const MarionetteArgs& args) {
       {"v_dot_z", lift.v.dot(z0)},
       {"inner_curve_change", inner_change},
       {"final", {{"max_planarity", m.max_planarity}, {"mean_planarity", m.mean_planarity}}}};
-  try {
-    WriteMeshAtomically(out, args.output);
-    if (!args.report.empty()) WriteTextFileAtomically(args.report, report.dump(2) + "\n");
-  } catch (const InputError& e) {
-    std::cerr << "gproj marionette: " << e.what() << "\n";
-    return kExitInputError;
-  }
+  if (!WriteMeshAndReport(out, args, report)) return kExitInputError;
   std::printf("max planarity %.3e (diagonal distance / mean edge)\nwrote %s%s%s\n", m.max_planarity,
               args.output.c_str(), args.report.empty() ? "" : " and ", args.report.c_str());
   return kExitOk;
@@ -467,13 +468,7 @@ int RunMarionette(const MarionetteArgs& args) {
       {"final", {{"max_planarity", m.max_planarity}, {"mean_planarity", m.mean_planarity}}}};
   if (z0.size() > 0)
     report["final"]["rms_distance_to_target"] = std::sqrt((z - z0).squaredNorm() / z.size());
-  try {
-    WriteMeshAtomically(out, args.output);
-    if (!args.report.empty()) WriteTextFileAtomically(args.report, report.dump(2) + "\n");
-  } catch (const InputError& e) {
-    std::cerr << "gproj marionette: " << e.what() << "\n";
-    return kExitInputError;
-  }
+  if (!WriteMeshAndReport(out, args, report)) return kExitInputError;
   std::printf(
       "solved in %.4f s; max planarity %.3e (diagonal distance / mean edge)\nwrote %s%s%s\n",
       solve_seconds, m.max_planarity, args.output.c_str(), args.report.empty() ? "" : " and ",
