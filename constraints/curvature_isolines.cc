@@ -424,17 +424,16 @@ namespace {
 void CubicBasis(int count, double t, int* first, double value[4], double derivative[4]) {
   const int degree = std::min(3, count - 1);
   const int spans = count - degree;
-  std::vector<double> knots(count + degree + 1);
-  for (int i = 0; i < static_cast<int>(knots.size()); ++i)
-    knots[i] = std::clamp(static_cast<double>(i - degree) / spans, 0.0, 1.0);
+  // Uniform clamped knots, computed in place (no allocation: called for every curve sample).
+  auto knot = [&](int i) { return std::clamp(static_cast<double>(i - degree) / spans, 0.0, 1.0); };
   t = std::clamp(t, 0.0, 1.0);
   int span = std::min(degree + static_cast<int>(t * spans), count - 1);
   // Cox–de Boor with derivatives (degree ≤ 3).
   double left[4], right[4], ndu[4][4];
   ndu[0][0] = 1.0;
   for (int j = 1; j <= degree; ++j) {
-    left[j] = t - knots[span + 1 - j];
-    right[j] = knots[span + j] - t;
+    left[j] = t - knot(span + 1 - j);
+    right[j] = knot(span + j) - t;
     double saved = 0.0;
     for (int r = 0; r < j; ++r) {
       ndu[j][r] = right[r + 1] + left[j - r];
