@@ -19,7 +19,7 @@ namespace {
 
 struct WeingartenArgs {
   std::string input, output, preset = "fig1", relation, report, diagram, curvature, picture,
-                             surface_mesh;
+                             surface_mesh, steps, relation_on;
   std::vector<int> samples;
   std::vector<double> linear;
   int refine = 0, max_iterations = 0, molds = 0;
@@ -75,6 +75,11 @@ int RunWeingarten(const WeingartenArgs& args) {
     if (args.definitions > 0) options.definition_weight = args.definitions;
     if (args.soft_start >= 1) options.soft_start = args.soft_start;
     if (args.max_iterations > 0) options.max_iterations = args.max_iterations;
+    if (!args.steps.empty()) {
+      options.monotone = args.steps != "plain";
+      options.project_auxiliaries = args.steps == "projected";
+    }
+    if (!args.relation_on.empty()) options.relation_on_surface = args.relation_on == "surface";
     options.refine_levels = args.refine;
     std::string why;
     if (!options.IsValid(&why)) throw InputError(why);
@@ -149,6 +154,9 @@ int RunWeingarten(const WeingartenArgs& args) {
         {"input", args.input},
         {"output", args.output},
         {"preset", args.preset},
+        {"steps", options.project_auxiliaries ? "projected"
+                  : options.monotone          ? "monotone"
+                                              : "plain"},
         {"converged", converged},
         {"iterations", iterations},
         {"seconds", seconds},
@@ -257,6 +265,15 @@ void RegisterWeingartenCommand(CLI::App* app, int* exit_code) {
                   "Fixed linear relation a,b,c: a H + b K + c = 0 in input units (e.g. 0,1,0: "
                   "developable; 1,0,0: minimal; 1,0,-c: H = c)")
       ->delimiter(',');
+  cmd->add_option("--relation-on", args->relation_on,
+                  "A fixed relation's rows use H, K of the surface itself (default) or the "
+                  "auxiliaries (003 §3.2.2)")
+      ->check(CLI::IsMember({"surface", "auxiliaries"}));
+  cmd->add_option("--steps", args->steps,
+                  "plain: every step kept (default); monotone: a step is kept only if it lowers "
+                  "the energy, else ε grows; projected: monotone, and the auxiliaries are reset "
+                  "to their exact values after each step (default of preset fig3)")
+      ->check(CLI::IsMember({"plain", "monotone", "projected"}));
   cmd->add_option("--alignment", args->alignment, "Override ω_al (isoline alignment)");
   cmd->add_option("--closeness", args->closeness, "Override ω_cl (closeness to the input)");
   cmd->add_option("--shape", args->shape, "Override ω_sh (control-net lengths)");

@@ -1,5 +1,7 @@
 #include "constraints/curvature_isolines.h"
 
+#include <ceres/jet.h>
+
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -399,6 +401,49 @@ void LinearWeingarten::Update(const VariableLayout& layout, const Eigen::VectorX
     k.push_back(Value(layout, x, element_items(e)[0], kK));
   }
   abc_ = FitLine(h, k);
+}
+
+SurfaceLinearWeingarten::SurfaceLinearWeingarten(double weight, const Eigen::Vector3d& coefficients,
+                                                 double curvature_scale, std::string name)
+    : ConstraintFamily(std::move(name), 1, FamilyRole::kConstraint, weight), abc_(coefficients) {
+  const double k = curvature_scale;
+  const double s = std::abs(abc_[0]) * k + std::abs(abc_[1]) * k * k;
+  row_scale_ = s > 0.0 ? 1.0 / s : 1.0;
+}
+
+int SurfaceLinearWeingarten::AddSample(const std::vector<int>& control_items,
+                                       const SampleStencil& stencil) {
+  weights_.push_back(stencil.weights);
+  return AddElement(control_items);
+}
+
+void SurfaceLinearWeingarten::EvaluateElement(int e, const double* x, double* phi,
+                                              double* jac) const {
+  // The 15 derivative scalars (s_u, s_v, s_uu, s_uv, s_vv) as Jets seeded with the identity.
+  using Jet = ceres::Jet<double, 15>;
+  const auto& w = weights_[e];
+  const int m = static_cast<int>(w[0].size());
+  Eigen::Matrix<Jet, 3, 1> d[5];
+  for (int k = 0; k < 5; ++k)
+    for (int c = 0; c < 3; ++c) {
+      double value = 0.0;
+      for (int j = 0; j < m; ++j) value += w[k][j] * x[3 * j + c];
+      d[k][c] = Jet(value, 3 * k + c);
+    }
+  const Eigen::Matrix<Jet, 3, 1> cross = d[0].cross(d[1]);
+  const Jet E = d[0].dot(d[0]), F = d[0].dot(d[1]), G = d[1].dot(d[1]);
+  const Jet delta = E * G - F * F, root = ceres::sqrt(delta);
+  const Jet L = d[2].dot(cross) / root, M = d[3].dot(cross) / root, N = d[4].dot(cross) / root;
+  const Jet K = (L * N - M * M) / delta;
+  const Jet H = (L * G - 2.0 * M * F + N * E) / (2.0 * delta);
+  const Jet r = (abc_[0] * H + abc_[1] * K + abc_[2]) * row_scale_;
+  phi[0] = r.a;
+  for (int j = 0; j < m; ++j)
+    for (int c = 0; c < 3; ++c) {
+      double g = 0.0;
+      for (int k = 0; k < 5; ++k) g += r.v[3 * k + c] * w[k][j];
+      jac[3 * j + c] = g;
+    }
 }
 
 Eigen::Vector3d LinearWeingarten::FitLine(const std::vector<double>& h,

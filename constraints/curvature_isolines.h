@@ -178,6 +178,25 @@ class LinearWeingarten : public ConstraintFamily {
   double curvature_scale_;
 };
 
+// a H + b K + c = 0 per sample, with H and K those of the surface itself: computed from the
+// control points of the sample's stencil (s_u … s_vv) with their exact Jacobian (forward-mode
+// automatic differentiation), not from the auxiliaries. Items: the stencil's control items.
+// Rows are divided by |a| κ + |b| κ² like LinearWeingarten's. Newton-like on the relation: the
+// definitions cannot absorb the residual, so a fixed relation is met on the surface.
+class SurfaceLinearWeingarten : public ConstraintFamily {
+ public:
+  SurfaceLinearWeingarten(double weight, const Eigen::Vector3d& coefficients,
+                          double curvature_scale = 1.0, std::string name = "linear relation");
+  int AddSample(const std::vector<int>& control_items, const SampleStencil& stencil);
+  void EvaluateElement(int e, const double* x, double* phi, double* jac) const override;
+  const Eigen::Vector3d& coefficients() const { return abc_; }
+
+ private:
+  Eigen::Vector3d abc_;
+  double row_scale_;
+  std::vector<std::array<std::vector<double>, 5>> weights_;
+};
+
 // (H, K) held to the tangent line of a fitted curve γ at its closest point (frozen at x^k).
 class CurvatureCurveRelation : public ConstraintFamily {
  public:

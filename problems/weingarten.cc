@@ -121,6 +121,13 @@ WeingartenOptions WeingartenPreset(const std::string& name) {
     o.boundary_weight = 10.0;
     o.soft_start = 30.0;  // the relation moves the surface far: short first steps
     o.max_iterations = 30;
+    // Far targets: keep only steps that lower the energy and reset the auxiliaries after each
+    // step, so every step is a damped Gauss–Newton step on the surface's own H and K.
+    o.monotone = true;
+    o.project_auxiliaries = true;
+    // ε is only the floor of the adaptive damping here; at 1e-3 the nearly free tangential
+    // motion of the control points makes the last digits converge very slowly.
+    o.epsilon = 1e-4;
     return o;
   }
   if (name == "fig4b" || name == "fig4c") {
@@ -238,18 +245,24 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
   }
   speed_u = speed_u > 0.0 ? speed_u : 1.0;
   speed_v = speed_v > 0.0 ? speed_v : 1.0;
-  const double derivative_scale[5] = {1.0 / speed_u, 1.0 / speed_v, 1.0 / (speed_u * speed_u),
-                                      1.0 / (speed_u * speed_v), 1.0 / (speed_v * speed_v)};
+  derivative_scale_ = {1.0 / speed_u, 1.0 / speed_v, 1.0 / (speed_u * speed_u),
+                       1.0 / (speed_u * speed_v), 1.0 / (speed_v * speed_v)};
+  const auto& derivative_scale = derivative_scale_;
   for (auto& d : derivatives)
     for (int k = 0; k < 5; ++k) d[k] *= derivative_scale[k];
-  auto inv_du = [&](int a) { return 1.0 / ((maps_.u[a + 1] - maps_.u[a - 1]) * speed_u); };
-  auto inv_dv = [&](int b) { return 1.0 / ((maps_.v[b + 1] - maps_.v[b - 1]) * speed_v); };
+  inv_du_.assign(su, 0.0);
+  inv_dv_.assign(sv, 0.0);
+  for (int a = 1; a + 1 < su; ++a) inv_du_[a] = 1.0 / ((maps_.u[a + 1] - maps_.u[a - 1]) * speed_u);
+  for (int b = 1; b + 1 < sv; ++b) inv_dv_[b] = 1.0 / ((maps_.v[b + 1] - maps_.v[b - 1]) * speed_v);
+  auto inv_du = [&](int a) { return inv_du_[a]; };
+  auto inv_dv = [&](int b) { return inv_dv_[b]; };
   auto aux = [&](int a, int b) { return layout.Item(curvature_block_, maps_.Index(a, b)); };
 
   // Auxiliary definitions, one element per sample.
   // Rows are multiplied by the weights of Table 1 (003 §3.3), so a family's weight on φ² is ω².
   auto squared = [](double w) { return w * w; };
   auto* definitions = problem_.AddFamily<CurvatureAuxiliaries>(squared(options.definition_weight));
+  std::vector<std::pair<std::vector<int>, SampleStencil>> stencils;  // per sample
   for (int s = 0; s < ns; ++s) {
     std::set<int> support;
     for (int k = 0; k < 6; ++k)
@@ -272,6 +285,7 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
     const auto magnitudes =
         CurvatureAuxiliaries::RowMagnitudes(exact, options.target_mean_curvature);
     definitions->AddSample(item, items, stencil, &magnitudes);
+    stencils.emplace_back(items, stencil);
     x.segment<kCurvatureAuxDim>(layout.ItemOffset(item)) = exact;
   }
 
@@ -307,45 +321,27 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
     auto* definitions2 =
         problem_.AddFamily<GeodesicAuxiliaries>(squared(options.definition_weight));
     auto grad = [&](int a, int b) { return layout.Item(gradient_block_, maps_.Index(a, b)); };
-    double k_scale = 0.0, h_scale = 0.0;
     for (int a = 1; a + 1 < su; ++a)
       for (int b = 1; b + 1 < sv; ++b) {
         const double cu = inv_du(a);
         const double cv = inv_dv(b);
         definitions2->AddSample(grad(a, b), aux(a, b), aux(a + 1, b), aux(a - 1, b), aux(a, b + 1),
                                 aux(a, b - 1), cu, cv);
-        // Exact initial values from the auxiliaries just set.
-        auto value = [&](int aa, int bb, int off) {
-          return x[layout.ItemOffset(aux(aa, bb)) + off];
-        };
-        Eigen::Matrix<double, kGeodesicAuxDim, 1> g;
-        const double E = value(a, b, kE), F = value(a, b, kF), G = value(a, b, kG),
-                     D = value(a, b, kDelta);
-        for (int p = 0; p < 2; ++p) {
-          const int off = p == 0 ? kK : kH;
-          const double du = cu * (value(a + 1, b, off) - value(a - 1, b, off));
-          const double dv = cv * (value(a, b + 1, off) - value(a, b - 1, off));
-          g[3 * p] = du * du;
-          g[3 * p + 1] = du * dv;
-          g[3 * p + 2] = dv * dv;
-          g[6 + p] = (G * du * du - 2 * F * du * dv + E * dv * dv) / D;
-        }
-        x.segment<kGeodesicAuxDim>(layout.ItemOffset(grad(a, b))) = g;
-        k_scale += (g[0] + g[2]) / ((su - 2) * (sv - 2));
-        h_scale += (g[3] + g[5]) / ((su - 2) * (sv - 2));
       }
-    k_scale = k_scale > 0.0 ? k_scale : 1.0;
-    h_scale = h_scale > 0.0 ? h_scale : 1.0;
-    definitions2->SetGradientScales(k_scale, h_scale);
-    // Store the auxiliaries in those units.
+    // Exact initial values from the curvature auxiliaries, stored in units of the typical
+    // |∇K|² and |∇H|².
+    gradient_scales_ = {1.0, 1.0};
+    SetGradientAuxiliaries(&x);
+    double k_scale = 0.0, h_scale = 0.0;
     for (int a = 1; a + 1 < su; ++a)
       for (int b = 1; b + 1 < sv; ++b) {
-        auto g = x.segment<kGeodesicAuxDim>(layout.ItemOffset(grad(a, b)));
-        g.segment<3>(0) /= k_scale;
-        g[kGradK] /= k_scale;
-        g.segment<3>(3) /= h_scale;
-        g[kGradH] /= h_scale;
+        const auto g = x.segment<kGeodesicAuxDim>(layout.ItemOffset(grad(a, b)));
+        k_scale += (g[kKuu] + g[kKvv]) / ((su - 2) * (sv - 2));
+        h_scale += (g[kHuu] + g[kHvv]) / ((su - 2) * (sv - 2));
       }
+    gradient_scales_ = {k_scale > 0.0 ? k_scale : 1.0, h_scale > 0.0 ? h_scale : 1.0};
+    definitions2->SetGradientScales(gradient_scales_[0], gradient_scales_[1]);
+    SetGradientAuxiliaries(&x);
     // Normalised like the alignment rows, by the RMS of |∇‖∇ψ‖²| |∇ψ| at the start.
     double product = 0.0;
     int count = 0;
@@ -378,10 +374,16 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
     Eigen::Vector3d abc = options.linear_coefficients;
     abc = Eigen::Vector3d(abc[0] * scale_, abc[1] * scale_ * scale_, abc[2]);
     abc /= abc.head<2>().norm();
-    linear_ = problem_.AddFamily<LinearWeingarten>(squared(options.linear_relation_weight),
-                                                   options.fixed_linear_relation, abc,
-                                                   options.target_mean_curvature);
-    for (int s = 0; s < ns; ++s) linear_->AddSample(layout.Item(curvature_block_, s));
+    if (options.fixed_linear_relation && options.relation_on_surface) {
+      surface_linear_ = problem_.AddFamily<SurfaceLinearWeingarten>(
+          squared(options.linear_relation_weight), abc, options.target_mean_curvature);
+      for (const auto& [items, stencil] : stencils) surface_linear_->AddSample(items, stencil);
+    } else {
+      linear_ = problem_.AddFamily<LinearWeingarten>(squared(options.linear_relation_weight),
+                                                     options.fixed_linear_relation, abc,
+                                                     options.target_mean_curvature);
+      for (int s = 0; s < ns; ++s) linear_->AddSample(layout.Item(curvature_block_, s));
+    }
   }
   if (options.bspline_relation_weight > 0.0) {
     auto* curve = problem_.AddFamily<CurvatureCurveRelation>(
@@ -466,6 +468,46 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
   }
 }
 
+void WeingartenProblem::SetCurvatureAuxiliaries(Eigen::VectorXd* x) const {
+  const VariableLayout& layout = problem_.layout();
+  const int nc = reference_.num_control_points();
+  Eigen::MatrixX3d control(nc, 3);
+  for (int i = 0; i < nc; ++i)
+    control.row(i) = x->segment<3>(layout.ItemOffset(layout.Item(control_block_, i))).transpose();
+  auto derivatives = SampleDerivatives(maps_, control);
+  for (int s = 0; s < maps_.num_samples(); ++s) {
+    for (int k = 0; k < 5; ++k) derivatives[s][k] *= derivative_scale_[k];
+    x->segment<kCurvatureAuxDim>(layout.ItemOffset(layout.Item(curvature_block_, s))) =
+        CurvatureAuxiliaries::ExactAuxiliary(derivatives[s]);
+  }
+}
+
+void WeingartenProblem::SetGradientAuxiliaries(Eigen::VectorXd* x) const {
+  if (gradient_block_ < 0) return;
+  const VariableLayout& layout = problem_.layout();
+  auto value = [&](int a, int b, int off) {
+    return (*x)[layout.ItemOffset(layout.Item(curvature_block_, maps_.Index(a, b))) + off];
+  };
+  for (int a = 1; a + 1 < maps_.su; ++a)
+    for (int b = 1; b + 1 < maps_.sv; ++b) {
+      const double E = value(a, b, kE), F = value(a, b, kF), G = value(a, b, kG),
+                   D = value(a, b, kDelta);
+      Eigen::Matrix<double, kGeodesicAuxDim, 1> g;
+      for (int p = 0; p < 2; ++p) {
+        const int off = p == 0 ? kK : kH;
+        const double du = inv_du_[a] * (value(a + 1, b, off) - value(a - 1, b, off));
+        const double dv = inv_dv_[b] * (value(a, b + 1, off) - value(a, b - 1, off));
+        const double unit = gradient_scales_[p];
+        g[3 * p] = du * du / unit;
+        g[3 * p + 1] = du * dv / unit;
+        g[3 * p + 2] = dv * dv / unit;
+        g[6 + p] = (G * du * du - 2 * F * du * dv + E * dv * dv) / (D * unit);
+      }
+      x->segment<kGeodesicAuxDim>(
+          layout.ItemOffset(layout.Item(gradient_block_, maps_.Index(a, b)))) = g;
+    }
+}
+
 SolverOptions WeingartenProblem::ToSolverOptions() const {
   SolverOptions s;
   s.max_iterations = options_.max_iterations;
@@ -479,6 +521,12 @@ SolverOptions WeingartenProblem::ToSolverOptions() const {
   s.step_tolerance = 1e-12;
   s.linear_solver = options_.linear_solver;
   s.eliminate_auxiliaries = false;
+  s.monotone = options_.monotone;
+  if (options_.project_auxiliaries)
+    s.project_trial = [this](Eigen::VectorXd* x) {
+      SetCurvatureAuxiliaries(x);
+      SetGradientAuxiliaries(x);
+    };
   return s;
 }
 
@@ -502,15 +550,15 @@ BSplineSurface WeingartenProblem::ScaledToInput(const Eigen::VectorXd& x) const 
 BSplineSurface WeingartenProblem::Result() const { return ScaledToInput(problem_.x()); }
 
 Eigen::Vector3d WeingartenProblem::LinearRelation() const {
-  if (!linear_) return Eigen::Vector3d::Zero();
-  const Eigen::Vector3d abc = linear_->coefficients();
+  if (!linear_ && !surface_linear_) return Eigen::Vector3d::Zero();
+  const Eigen::Vector3d abc = linear_ ? linear_->coefficients() : surface_linear_->coefficients();
   Eigen::Vector3d input(abc[0] / scale_, abc[1] / (scale_ * scale_), abc[2]);
   return input / input.head<2>().norm();
 }
 
 WeingartenMeasures WeingartenProblem::Measures() const {
   WeingartenMeasures m = MeasureWeingarten(Result(), reference_, maps_.su, maps_.sv);
-  if (linear_) {
+  if (linear_ || surface_linear_) {
     const Eigen::Vector3d abc = LinearRelation();
     for (size_t s = 0; s < m.h.size(); ++s)
       m.max_relation_residual =

@@ -10,6 +10,7 @@
 // and scaled so that the mean |principal curvature| at the samples is 5 (Table 1 note); results
 // and measures are reported in input units.
 
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
@@ -42,6 +43,10 @@ struct WeingartenOptions {
   // given coefficients (a, b, c) are in input units and converted to the scaled problem.
   bool fixed_linear_relation = false;
   Eigen::Vector3d linear_coefficients = Eigen::Vector3d(0.0, 1.0, 0.0);
+  // A fixed relation is imposed on the surface's own H and K (SurfaceLinearWeingarten, exact
+  // Jacobian in the control points) instead of on the auxiliaries: the auxiliary rows of
+  // 003 §3.2.2 let the definitions absorb a far target, so the surface stalls short of it.
+  bool relation_on_surface = true;
   int bspline_relation_control_points = 6;
   // Samples per direction; 0: samples_per_control × control points (Table 2: 2).
   int samples_u = 0, samples_v = 0;
@@ -56,6 +61,12 @@ struct WeingartenOptions {
   // span (Boehm) and solves again. 0: off.
   int refine_levels = 0;
   double target_mean_curvature = 5.0;
+  // Keep only steps that lower the energy, growing ε otherwise (SolverOptions::monotone).
+  bool monotone = false;
+  // After every step the auxiliaries are set to their exact values from the control points
+  // (the definitions then hold at every x^k and each step is a Gauss–Newton step on the
+  // surface itself).
+  bool project_auxiliaries = false;
   LinearSolverType linear_solver = LinearSolverType::kCholmod;
 
   CurvatureRelation relation() const;
@@ -112,6 +123,10 @@ class WeingartenProblem {
 
  private:
   BSplineSurface ScaledToInput(const Eigen::VectorXd& x) const;
+  // Exact auxiliaries from the control points in x (curvature) or from the curvature
+  // auxiliaries in x (geodesic parallel; nothing without them).
+  void SetCurvatureAuxiliaries(Eigen::VectorXd* x) const;
+  void SetGradientAuxiliaries(Eigen::VectorXd* x) const;
 
   WeingartenOptions options_;
   BSplineSurface reference_;  // input units
@@ -119,10 +134,15 @@ class WeingartenProblem {
   SampleMaps maps_;
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();
   double scale_ = 1.0;
-  double alignment_scale_ = 1.0;  // 1 / RMS |∇H| |∇K| of the input, scaled units
+  double alignment_scale_ = 1.0;
+  std::array<double, 5> derivative_scale_{};         // parameters rescaled to unit mean speed
+  std::vector<double> inv_du_, inv_dv_;              // central-difference factors per sample row
+  std::array<double, 2> gradient_scales_{1.0, 1.0};  // units of the K and H gradient auxiliaries //
+                                                     // 1 / RMS |∇H| |∇K| of the input, scaled units
   Problem problem_;
   int control_block_ = -1, curvature_block_ = -1, gradient_block_ = -1;
   class LinearWeingarten* linear_ = nullptr;
+  class SurfaceLinearWeingarten* surface_linear_ = nullptr;
 };
 
 }  // namespace gproj

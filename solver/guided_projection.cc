@@ -61,6 +61,7 @@ bool SolverOptions::IsValid(std::string* why) const {
   if (!(epsilon_growth > 1.0) || !std::isfinite(epsilon_growth))
     return fail("epsilon_growth must be finite and > 1");
   if (max_retries < 0) return fail("max_retries must be ≥ 0");
+  if (max_rejections < 0) return fail("max_rejections must be ≥ 0");
   if (num_threads < 0) return fail("num_threads must be ≥ 0");
   return true;
 }
@@ -154,6 +155,8 @@ SolverSummary Solve(const SolverOptions& options, Problem* problem,
   Eigen::VectorXd rhs(n), step(n), trial(n), check(n), reduced(n_kept), step_kept(n_kept);
   IterationRecord record;
   double soft_scale = options.initial_soft_scale;
+  double damping = options.epsilon;  // ε of the next step when options.monotone
+  double growth = 2.0;               // growth of ε² on the next rejection
   double schur_seconds = 0.0;
   for (int k = 0;; ++k) {
     record.iteration = k;
@@ -183,56 +186,90 @@ SolverSummary Solve(const SolverOptions& options, Problem* problem,
     // Step: (A Aᵀ + ε² I) d = −A r.
     system.MultiplyAr(&rhs);
     rhs = -rhs;
-    double epsilon = options.epsilon;
+    const double energy = record.energy;
+    double epsilon = options.monotone ? damping : options.epsilon;
     record = IterationRecord();
-    bool accepted = false;
-    for (int attempt = 0; attempt <= options.max_retries; ++attempt) {
-      if (attempt > 0) epsilon *= options.epsilon_growth;
-      record.retries = attempt;
+    // Solves for the step at this ε into `trial`; false (with `why`) if it is unusable.
+    auto solve_step = [&]() {
       const double beta = epsilon * epsilon;
       if (eliminate) {
         t = Clock::now();
         const bool formed = schur.Form(system.a(), beta, &why);
         if (formed) schur.ReduceRhs(rhs, &reduced);
         schur_seconds += SecondsSince(t);
-        if (!formed) continue;
+        if (!formed) return false;
       }
       t = Clock::now();
       const bool factored = eliminate ? cholesky->Factorize(schur.s(), beta, &why)
                                       : cholesky->Factorize(system.a(), beta, &why);
       record.factorization_seconds += SecondsSince(t);
-      if (!factored) continue;
+      if (!factored) return false;
       t = Clock::now();
       const bool solved = eliminate ? cholesky->Solve(reduced.data(), step_kept.data(), &why)
                                     : cholesky->Solve(rhs.data(), step.data(), &why);
       if (solved && eliminate) schur.BackSubstitute(step_kept, rhs, &step);
       record.solve_seconds += SecondsSince(t);
-      if (!solved) continue;
+      if (!solved) return false;
       // Check the solve: ‖(A Aᵀ + ε² I) d − rhs‖ small against the terms' sizes. Catches
       // factorisations that "succeed" on overflowing or non-finite values.
-      system.MultiplyNormal(step, epsilon * epsilon, &check);
+      system.MultiplyNormal(step, beta, &check);
       const double scale = check.norm() + rhs.norm();
       const double residual = (check - rhs).norm();
       if (!(residual <= 1e-6 * scale) || !std::isfinite(scale)) {
         why = "the linear solve is inaccurate (residual " + std::to_string(residual) + " against " +
               std::to_string(scale) + ")";
-        continue;
+        return false;
       }
       trial = x + step;
+      if (options.project_trial) options.project_trial(&trial);
       if (!trial.allFinite()) {
         why = "the step is not finite";
+        return false;
+      }
+      return true;
+    };
+    int failures = 0, rejections = 0;
+    for (;;) {
+      if (!solve_step()) {
+        if (++failures > options.max_retries)
+          return finish(TerminationType::kFailure,
+                        why + " (after " + std::to_string(options.max_retries) +
+                            " increases of epsilon to " + std::to_string(epsilon) + ")");
+        epsilon *= options.epsilon_growth;
         continue;
       }
-      accepted = true;
-      break;
+      if (!options.monotone) break;
+      // Merit test at the trial point; on rejection the system (and the families' state) is
+      // assembled at x^k again, so the next solve uses the same linearisation.
+      t = Clock::now();
+      const bool assembled = system.Assemble(trial, options.fairness_weight, soft_scale, &why);
+      const double trial_energy = assembled ? system.Energy() : HUGE_VAL;
+      if (trial_energy > energy && !system.Assemble(x, options.fairness_weight, soft_scale, &why))
+        return finish(TerminationType::kFailure, why);
+      schur_seconds += SecondsSince(t);
+      // Gain ratio against the linear model's reduction: with (A Aᵀ + ε² I) d = rhs it is
+      // ½ dᵀ rhs + ½ ε² ‖d‖².
+      const double predicted = 0.5 * (step.dot(rhs) + epsilon * epsilon * step.squaredNorm());
+      const double gain = predicted > 0.0 ? (energy - trial_energy) / predicted : -1.0;
+      if (trial_energy <= energy) {
+        // Nielsen's update of the damping ε² from the gain ratio.
+        const double factor =
+            std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * std::max(gain, 0.0) - 1.0, 3));
+        damping = std::max(options.epsilon, epsilon * std::sqrt(factor));
+        growth = 2.0;
+        break;
+      }
+      if (++rejections > options.max_rejections)
+        return finish(
+            TerminationType::kConvergence,
+            "no step lowers the energy (epsilon raised to " + std::to_string(epsilon) + ")");
+      epsilon *= std::sqrt(growth);
+      growth *= 2.0;
     }
-    if (!accepted)
-      return finish(TerminationType::kFailure,
-                    why + " (after " + std::to_string(options.max_retries) +
-                        " increases of epsilon to " + std::to_string(epsilon) + ")");
+    record.retries = failures + rejections;
     summary.factor_nonzeros = cholesky->FactorNonZeros();
     record.epsilon = epsilon;
-    record.step_norm = step.lpNorm<Eigen::Infinity>();
+    record.step_norm = (trial - x).lpNorm<Eigen::Infinity>();
     x.swap(trial);
     soft_scale = std::max(soft_scale * options.soft_weight_decay, options.soft_weight_floor);
   }

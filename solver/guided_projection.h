@@ -36,6 +36,17 @@ struct SolverOptions {
   // retried, at most max_retries times, before the solver stops with kFailure.
   double epsilon_growth = 10.0;
   int max_retries = 4;
+  // Monotone steps (Levenberg–Marquardt damping): a step is kept only if it lowers the energy
+  // (with this iteration's weights, the families updated at the trial point); otherwise ε²
+  // grows (×2, ×4, ×8, …) and the step is recomputed from the same linearisation. After a kept
+  // step ε² follows the gain ratio (Nielsen's rule), never below `epsilon`². The solver stops
+  // (converged) when max_rejections growths in a row find no lower energy. Costs one more
+  // assembly per step.
+  bool monotone = false;
+  int max_rejections = 12;
+  // Applied to every trial point x^k + d before it is assessed, e.g. to set auxiliary unknowns
+  // to their exact values from the primary ones (null: none).
+  std::function<void(Eigen::VectorXd*)> project_trial;
   LinearSolverType linear_solver = LinearSolverType::kCholmod;
   // Eliminate the items of eliminable blocks (per-element auxiliaries such as face normals)
   // with a Schur complement before factorising; the factor then covers the rest only.

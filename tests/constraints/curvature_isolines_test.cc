@@ -76,6 +76,29 @@ TEST(CurvatureAuxiliariesTest, ExactAuxiliaryGivesZeroResidualAndKnownCurvatures
   for (int r = 0; r < 12; ++r) EXPECT_NEAR(phi[r], 0.0, 1e-12) << "row " << r;
 }
 
+TEST(SurfaceLinearWeingartenTest, GradientAndValueOnTheSurfaceItself) {
+  const Eigen::Vector3d abc(0.6, -0.8, 0.3);
+  SurfaceLinearWeingarten family(1.0, abc, 2.0);
+  family.AddSample({0, 1, 2, 3}, RandomStencil(5));
+  for (uint32_t seed : {4u, 5u, 6u}) {
+    const std::vector<double> x = Random(12, seed);
+    ExpectGradientMatchesFiniteDifferences(family, 0, x, 1e-6, 1e-6);
+    // The value is the relation at the exact H and K of the stencil's derivatives.
+    std::array<Eigen::Vector3d, 5> d;
+    for (int k = 0; k < 5; ++k) {
+      d[k].setZero();
+      for (int j = 0; j < 4; ++j)
+        d[k] += RandomStencil(5).weights[k][j] * Eigen::Vector3d(&x[3 * j]);
+    }
+    const auto a = CurvatureAuxiliaries::ExactAuxiliary(d);
+    double phi = 0.0;
+    std::vector<double> jac(12);
+    family.EvaluateElement(0, x.data(), &phi, jac.data());
+    const double row_scale = 1.0 / (0.6 * 2.0 + 0.8 * 4.0);  // |a| κ + |b| κ²
+    EXPECT_NEAR(phi, row_scale * (abc[0] * a[kH] + abc[1] * a[kK] + abc[2]), 1e-12);
+  }
+}
+
 TEST(IsolineAlignmentTest, GradientAndZeroWhenHIsAFunctionOfK) {
   IsolineAlignment family(1.0);
   family.AddSample(0, 1, 2, 3, 0.7, 1.3);

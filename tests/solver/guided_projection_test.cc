@@ -158,6 +158,70 @@ TEST(GuidedProjectionFailureTest, FailedFactorisationRaisesEpsilonThenStops) {
   EXPECT_EQ(problem.x(), start);  // nothing non-finite was accepted
 }
 
+// Rosenbrock's residuals 10 (y − x²) and 1 − x on one 2-scalar item: from (−1.2, 1) the plain
+// Gauss–Newton step overshoots into a much higher energy.
+class Rosenbrock : public ConstraintFamily {
+ public:
+  Rosenbrock() : ConstraintFamily("rosenbrock", 2) {}
+  void EvaluateElement(int, const double* p, double* phi, double* jac) const override {
+    phi[0] = 10.0 * (p[1] - p[0] * p[0]);
+    phi[1] = 1.0 - p[0];
+    jac[0] = -20.0 * p[0], jac[1] = 10.0, jac[2] = -1.0, jac[3] = 0.0;
+  }
+};
+
+Problem MakeRosenbrockProblem() {
+  Problem problem;
+  const int block = problem.layout().AddBlock("xy", 1, 2);
+  problem.ResizeToLayout();
+  problem.x() << -1.2, 1.0;
+  problem.AddFamily<Rosenbrock>()->AddElement({problem.layout().Item(block, 0)});
+  return problem;
+}
+
+TEST(GuidedProjectionMonotoneTest, MonotoneStepsNeverRaiseTheEnergy) {
+  SolverOptions options;
+  options.max_iterations = 100;
+  options.residual_tolerance = 1e-10;
+  Problem plain = MakeRosenbrockProblem();
+  const SolverSummary p = Solve(options, &plain);
+  ASSERT_GE(p.iterations.size(), 2u);
+  EXPECT_GT(p.iterations[1].energy, 10.0 * p.iterations[0].energy);  // the overshoot
+
+  options.monotone = true;
+  Problem monotone = MakeRosenbrockProblem();
+  const SolverSummary m = Solve(options, &monotone);
+  EXPECT_EQ(m.termination, TerminationType::kConvergence) << m.FullReport();
+  for (size_t k = 1; k < m.iterations.size(); ++k)
+    EXPECT_LE(m.iterations[k].energy, m.iterations[k - 1].energy) << "iteration " << k;
+  EXPECT_GT(m.iterations[1].retries, 0);  // the first step was damped
+  EXPECT_NEAR(monotone.x()[0], 1.0, 1e-6);
+  EXPECT_NEAR(monotone.x()[1], 1.0, 1e-6);
+}
+
+TEST(GuidedProjectionMonotoneTest, TrialPointsAreProjected) {
+  SolverOptions options;
+  options.max_iterations = 100;
+  int calls = 0;
+  // Keep y = x² (Rosenbrock's valley): the first residual then vanishes at every iterate.
+  options.project_trial = [&calls](Eigen::VectorXd* x) {
+    ++calls;
+    (*x)[1] = (*x)[0] * (*x)[0];
+  };
+  Problem problem = MakeRosenbrockProblem();
+  int off_valley = 0;
+  const SolverSummary s =
+      Solve(options, &problem, [&](const IterationRecord& r, const Eigen::VectorXd& x) {
+        if (r.iteration > 0 && std::abs(x[1] - x[0] * x[0]) > 1e-12) ++off_valley;
+        return CallbackResult::kContinue;
+      });
+  EXPECT_EQ(s.termination, TerminationType::kConvergence) << s.FullReport();
+  EXPECT_EQ(calls, s.num_steps());
+  EXPECT_GT(calls, 0);
+  EXPECT_EQ(off_valley, 0);
+  EXPECT_NEAR(problem.x()[0], 1.0, 1e-6);
+}
+
 TEST(GuidedProjectionFailureTest, InvalidOptionsAreRejected) {
   Problem problem = MakeCircleProblem(4, 0.1);
   SolverOptions options;
@@ -165,6 +229,10 @@ TEST(GuidedProjectionFailureTest, InvalidOptionsAreRejected) {
   std::string why;
   EXPECT_FALSE(options.IsValid(&why));
   EXPECT_NE(why.find("epsilon"), std::string::npos);
+  SolverOptions rejections;
+  rejections.max_rejections = -1;
+  EXPECT_FALSE(rejections.IsValid(&why));
+  EXPECT_NE(why.find("max_rejections"), std::string::npos);
   const SolverSummary summary = Solve(options, &problem);
   EXPECT_EQ(summary.termination, TerminationType::kFailure);
   EXPECT_NE(summary.message.find("invalid options"), std::string::npos);
