@@ -65,6 +65,11 @@ echo "== Weingarten surface: align the curvature isolines of a shipped bi-degree
   --molds 20 --picture out/demo/weingarten.svg --surface-mesh out/demo/weingarten_surface.obj \
   --report out/demo/weingarten_report.json
 echo
+echo "== Fig. 3 of 003: the shipped bump, boundary held, driven to constant mean curvature H = -0.1 =="
+./build/gproj weingarten examples/data/bump_12x12.json -o out/demo/cmc.json --preset fig3 \
+  --linear 1,0,0.1 --diagram out/demo/cmc_diagram.svg --picture out/demo/cmc.svg \
+  --surface-mesh out/demo/cmc_surface.obj --report out/demo/cmc_report.json
+echo
 echo "Results in $(pwd)/out/demo (open the .obj files in any mesh viewer, e.g. MeshLab or Blender):"
 echo "  planarized.obj                planar-quad mesh (planarized.svg: a picture of it)"
 echo "  planarize_report.json         convergence history and final measures"
@@ -80,4 +85,5 @@ echo "  combescure.obj, .svg          parallel mesh of the surface of revolution
 echo "  weingarten.json               the optimised B-spline (SPEC §4 JSON); weingarten_surface.obj sampled"
 echo "  weingarten_diagram.svg        curvature diagram (H, K) before and after: a curve after"
 echo "  weingarten_curvature.csv      H, K per sample before/after and the mold of each sample"
+echo "  cmc.json, cmc_surface.obj     the bump made CMC (H = -0.1); cmc_diagram.svg: H, K before/after"
 echo "  m_revolution.obj, .svg        the surface of revolution inverted (000 §5.1; still circular)"
