@@ -1,5 +1,6 @@
 // `gproj weingarten`: Weingarten surfaces on B-splines (003).
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -19,7 +20,8 @@ namespace {
 
 struct WeingartenArgs {
   std::string input, output, preset = "fig1", relation, report, diagram, curvature, picture,
-                             surface_mesh, steps, relation_on;
+                             surface_mesh, steps, relation_on, solver = "gp";
+  bool no_auxiliaries = false;
   std::vector<int> samples;
   std::vector<double> linear;
   int refine = 0, max_iterations = 0, molds = 0;
@@ -80,6 +82,7 @@ int RunWeingarten(const WeingartenArgs& args) {
       options.project_auxiliaries = args.steps == "projected";
     }
     if (!args.relation_on.empty()) options.relation_on_surface = args.relation_on == "surface";
+    if (args.no_auxiliaries) options.curvature_auxiliaries = false;
     options.refine_levels = args.refine;
     std::string why;
     if (!options.IsValid(&why)) throw InputError(why);
@@ -110,24 +113,48 @@ int RunWeingarten(const WeingartenArgs& args) {
                   start_measures.misalignment, start_measures.mean_abs_principal_curvature,
                   problem.scale());
       std::printf("%5s %13s %12s %11s %10s\n", "iter", "energy", "max_constr", "step", "seconds");
-      const SolverSummary summary = problem.Solve([&](const IterationRecord& r) {
+      auto record = [&](int iteration, double energy, double max_constraint, double step,
+                        const nlohmann::json& families) {
+        char constraint[32] = "           -";  // Ceres reports no per-row maximum
+        if (std::isfinite(max_constraint))
+          std::snprintf(constraint, sizeof(constraint), "%12.4e", max_constraint);
         std::printf(
-            "%5d %13.6e %12.4e %11.3e %10.3f\n", r.iteration, r.energy, r.max_constraint,
-            r.step_norm,
+            "%5d %13.6e %s %11.3e %10.3f\n", iteration, energy, constraint, step,
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-        nlohmann::json families = nlohmann::json::object();
-        for (const auto& f : r.families) families[f.name] = {{"max", f.max_abs}, {"rms", f.rms}};
+        std::fflush(stdout);
         history.push_back({{"level", level},
-                           {"iteration", r.iteration},
-                           {"energy", r.energy},
-                           {"max_constraint", r.max_constraint},
-                           {"step", r.step_norm},
+                           {"iteration", iteration},
+                           {"energy", energy},
+                           {"max_constraint", max_constraint},
+                           {"step", step},
                            {"families", families}});
-        return CallbackResult::kContinue;
-      });
-      iterations += summary.num_steps();
-      message = summary.message;
-      if (summary.termination == TerminationType::kFailure || !problem.problem().x().allFinite()) {
+      };
+      int level_iterations = 0;
+      if (args.solver == "gp") {
+        const SolverSummary summary = problem.Solve([&](const IterationRecord& r) {
+          nlohmann::json families = nlohmann::json::object();
+          for (const auto& f : r.families) families[f.name] = {{"max", f.max_abs}, {"rms", f.rms}};
+          record(r.iteration, r.energy, r.max_constraint, r.step_norm, families);
+          return CallbackResult::kContinue;
+        });
+        level_iterations = summary.num_steps();
+        message = summary.message;
+        failed = summary.termination == TerminationType::kFailure;
+        converged = converged && summary.termination == TerminationType::kConvergence;
+      } else {
+        const ceres::Solver::Summary summary =
+            problem.SolveWithCeres(options.max_iterations, [&](const ceres::IterationSummary& s) {
+              record(s.iteration, s.cost, NAN, s.step_norm, nlohmann::json::object());
+              return true;
+            });
+        level_iterations = summary.iterations.empty() ? 0 : summary.iterations.back().iteration;
+        message = "ceres " + std::string(ceres::TerminationTypeToString(summary.termination_type)) +
+                  ": " + summary.message;
+        failed = summary.termination_type == ceres::FAILURE;
+        converged = converged && summary.termination_type == ceres::CONVERGENCE;
+      }
+      iterations += level_iterations;
+      if (failed || !problem.problem().x().allFinite()) {
         failed = true;
         break;
       }
@@ -138,9 +165,8 @@ int RunWeingarten(const WeingartenArgs& args) {
                         {"control_points", {current.nu, current.nv}},
                         {"samples", {su, sv}},
                         {"variables", variables},
-                        {"iterations", summary.num_steps()},
+                        {"iterations", level_iterations},
                         {"misalignment", m.misalignment}});
-      converged = converged && summary.termination != TerminationType::kFailure;
     }
     if (failed) {
       std::cerr << "gproj weingarten: solver failed: " << message << "; nothing written\n";
@@ -154,6 +180,7 @@ int RunWeingarten(const WeingartenArgs& args) {
         {"input", args.input},
         {"output", args.output},
         {"preset", args.preset},
+        {"solver", args.solver},
         {"steps", options.project_auxiliaries ? "projected"
                   : options.monotone          ? "monotone"
                                               : "plain"},
@@ -274,6 +301,14 @@ void RegisterWeingartenCommand(CLI::App* app, int* exit_code) {
                   "the energy, else ε grows; projected: monotone, and the auxiliaries are reset "
                   "to their exact values after each step (default of preset fig3)")
       ->check(CLI::IsMember({"plain", "monotone", "projected"}));
+  cmd->add_option("--solver", args->solver,
+                  "gp: guided projection (default); ceres: Levenberg-Marquardt on the same rows "
+                  "(soft terms at their final weights)")
+      ->check(CLI::IsMember({"gp", "ceres"}))
+      ->capture_default_str();
+  cmd->add_flag("--no-auxiliaries", args->no_auxiliaries,
+                "Control points are the only unknowns (only with --linear and the relation on "
+                "the surface)");
   cmd->add_option("--alignment", args->alignment, "Override ω_al (isoline alignment)");
   cmd->add_option("--closeness", args->closeness, "Override ω_cl (closeness to the input)");
   cmd->add_option("--shape", args->shape, "Override ω_sh (control-net lengths)");

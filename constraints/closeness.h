@@ -1,6 +1,7 @@
 #pragma once
 // Closeness to fixed positions (004 §3.2, 003 §3.1.4): v − v⁰ = 0, one row per coordinate.
-// Role kSoft: a regulariser whose weight may fade with the solver's soft schedule.
+// Role kSoft by default: a regulariser whose weight may fade with the solver's soft schedule;
+// kConstraint for positions that must hold throughout (e.g. held boundary corners).
 
 #include <vector>
 
@@ -10,8 +11,9 @@ namespace gproj {
 
 class Closeness : public ConstraintFamily {
  public:
-  explicit Closeness(int dim = 3, double weight = 1.0, std::string name = "closeness")
-      : ConstraintFamily(std::move(name), dim, FamilyRole::kSoft, weight), dim_(dim) {}
+  explicit Closeness(int dim = 3, double weight = 1.0, std::string name = "closeness",
+                     FamilyRole role = FamilyRole::kSoft)
+      : ConstraintFamily(std::move(name), dim, role, weight), dim_(dim) {}
 
   // Holds `item` at `target` (dim values).
   int AddTarget(int item, const double* target);

@@ -88,6 +88,15 @@ bool WeingartenOptions::IsValid(std::string* why) const {
     *why = "the linear relation needs a or b non-zero";
     return false;
   }
+  if (!curvature_auxiliaries &&
+      (alignment_weight > 0.0 || bspline_relation_weight > 0.0 || geodesic_parallel_weight > 0.0 ||
+       (linear_relation_weight > 0.0 && !(fixed_linear_relation && relation_on_surface)))) {
+    *why =
+        "without curvature auxiliaries only a fixed linear relation on the surface can be "
+        "imposed (isoline alignment, geodesic parallel isolines, fitted and B-spline relations "
+        "use the auxiliaries)";
+    return false;
+  }
   if (!(target_mean_curvature > 0.0)) {
     *why = "target_mean_curvature must be > 0";
     return false;
@@ -227,7 +236,8 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
   const int nc = input.num_control_points(), ns = maps_.num_samples();
   const bool gp = options.geodesic_parallel_weight > 0.0;
   control_block_ = layout.AddBlock("control points", nc, 3);
-  curvature_block_ = layout.AddBlock("curvature auxiliaries", ns, kCurvatureAuxDim);
+  if (options.curvature_auxiliaries)
+    curvature_block_ = layout.AddBlock("curvature auxiliaries", ns, kCurvatureAuxDim);
   if (gp) gradient_block_ = layout.AddBlock("gradient auxiliaries", ns, kGeodesicAuxDim);
   problem_.ResizeToLayout();
   Eigen::VectorXd& x = problem_.x();
@@ -261,7 +271,10 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
   // Auxiliary definitions, one element per sample.
   // Rows are multiplied by the weights of Table 1 (003 §3.3), so a family's weight on φ² is ω².
   auto squared = [](double w) { return w * w; };
-  auto* definitions = problem_.AddFamily<CurvatureAuxiliaries>(squared(options.definition_weight));
+  auto* definitions =
+      options.curvature_auxiliaries
+          ? problem_.AddFamily<CurvatureAuxiliaries>(squared(options.definition_weight))
+          : nullptr;
   std::vector<std::pair<std::vector<int>, SampleStencil>> stencils;  // per sample
   for (int s = 0; s < ns; ++s) {
     std::set<int> support;
@@ -280,12 +293,13 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
     }
     std::vector<int> items;
     for (int c : stencil.control) items.push_back(layout.Item(control_block_, c));
+    stencils.emplace_back(items, stencil);
+    if (!definitions) continue;
     const int item = layout.Item(curvature_block_, s);
     const Eigen::Matrix<double, 12, 1> exact = CurvatureAuxiliaries::ExactAuxiliary(derivatives[s]);
     const auto magnitudes =
         CurvatureAuxiliaries::RowMagnitudes(exact, options.target_mean_curvature);
     definitions->AddSample(item, items, stencil, &magnitudes);
-    stencils.emplace_back(items, stencil);
     x.segment<kCurvatureAuxDim>(layout.ItemOffset(item)) = exact;
   }
 
@@ -294,7 +308,7 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
   // against closeness and the auxiliary definitions whatever the parameter domain.
   double gradient_product = 0.0;
   int inner = 0;
-  for (int a = 1; a + 1 < su; ++a)
+  for (int a = 1; definitions && a + 1 < su; ++a)
     for (int b = 1; b + 1 < sv; ++b) {
       auto value = [&](int aa, int bb, int off) { return x[layout.ItemOffset(aux(aa, bb)) + off]; };
       const double cu = inv_du(a);
@@ -442,8 +456,9 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
   }
   if (options.boundary_weight > 0.0) {
     auto* glide = problem_.AddFamily<PolylineGliding>(squared(options.boundary_weight / mean_edge));
+    // Held like the gliding rows, whatever the soft schedule does to closeness.
     auto* corners = problem_.AddFamily<Closeness>(3, squared(options.boundary_weight / mean_edge),
-                                                  "boundary corners");
+                                                  "boundary corners", FamilyRole::kConstraint);
     auto row = [&](int i0, int j0, int di, int dj, int count) {
       std::vector<Eigen::Vector3d> line;
       for (int t = 0; t < count; ++t)
@@ -469,6 +484,7 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
 }
 
 void WeingartenProblem::SetCurvatureAuxiliaries(Eigen::VectorXd* x) const {
+  if (curvature_block_ < 0) return;
   const VariableLayout& layout = problem_.layout();
   const int nc = reference_.num_control_points();
   Eigen::MatrixX3d control(nc, 3);
@@ -535,6 +551,19 @@ SolverSummary WeingartenProblem::Solve(const Callback& callback) {
                       [&](const IterationRecord& r, const Eigen::VectorXd&) {
                         return callback ? callback(r) : CallbackResult::kContinue;
                       });
+}
+
+ceres::Solver::Summary WeingartenProblem::SolveWithCeres(int max_iterations,
+                                                         const CeresCallback& callback) {
+  const SolverOptions s = ToSolverOptions();
+  CeresOptions c;
+  c.max_iterations = max_iterations;
+  c.fairness_weight = s.fairness_weight;
+  c.soft_scale = options_.soft_start > 1.0 ? s.soft_weight_floor : 1.0;
+  return gproj::SolveWithCeres(c, &problem_,
+                               [&](const ceres::IterationSummary& summary, const Eigen::VectorXd&) {
+                                 return callback ? callback(summary) : true;
+                               });
 }
 
 BSplineSurface WeingartenProblem::ScaledToInput(const Eigen::VectorXd& x) const {

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "geometry/bspline_surface.h"
+#include "solver/ceres_adapter.h"
 #include "solver/guided_projection.h"
 #include "solver/problem.h"
 
@@ -47,6 +48,9 @@ struct WeingartenOptions {
   // Jacobian in the control points) instead of on the auxiliaries: the auxiliary rows of
   // 003 §3.2.2 let the definitions absorb a far target, so the surface stalls short of it.
   bool relation_on_surface = true;
+  // The 12 per-sample auxiliaries of 003 §3.1.2 and their definitions. Without them the only
+  // unknowns are the control points, which only a fixed relation on the surface allows.
+  bool curvature_auxiliaries = true;
   int bspline_relation_control_points = 6;
   // Samples per direction; 0: samples_per_control × control points (Table 2: 2).
   int samples_u = 0, samples_v = 0;
@@ -108,6 +112,11 @@ class WeingartenProblem {
 
   using Callback = std::function<CallbackResult(const IterationRecord&)>;
   SolverSummary Solve(const Callback& callback = nullptr);
+  // The cross-check path: Ceres' Levenberg–Marquardt on the same rows, with the soft terms at
+  // their final weights (after the soft start). The callback may stop it by returning false.
+  using CeresCallback = std::function<bool(const ceres::IterationSummary&)>;
+  ceres::Solver::Summary SolveWithCeres(int max_iterations,
+                                        const CeresCallback& callback = nullptr);
 
   // Current surface in input units.
   BSplineSurface Result() const;

@@ -1,7 +1,5 @@
 #include "solver/ceres_adapter.h"
 
-#include <array>
-#include <cassert>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -19,18 +17,15 @@ class ElementCost : public ceres::CostFunction {
     for (int d : dims) mutable_parameter_block_sizes()->push_back(d);
     local_dim_ = 0;
     for (int d : dims) local_dim_ += d;
-    assert(local_dim_ <= kMaxLocal && family->rows_per_element() * local_dim_ <= kMaxJacobian);
   }
-
-  static constexpr int kMaxLocal = 128;
-  static constexpr int kMaxJacobian = 1024;
 
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override {
     const int rows = num_residuals();
-    // Stack buffers: Ceres calls this for every element in every iteration.
-    std::array<double, kMaxLocal> x_local;
-    std::array<double, kMaxJacobian> jac;
+    // Per-thread buffers that only grow: Ceres calls this for every element in every iteration.
+    thread_local std::vector<double> x_local, jac;
+    if (x_local.size() < static_cast<size_t>(local_dim_)) x_local.resize(local_dim_);
+    if (jac.size() < static_cast<size_t>(rows * local_dim_)) jac.resize(rows * local_dim_);
     for (size_t b = 0, l = 0; b < dims_.size(); ++b)
       for (int c = 0; c < dims_[b]; ++c) x_local[l++] = parameters[b][c];
     family_->EvaluateElement(element_, x_local.data(), residuals, jac.data());

@@ -31,6 +31,38 @@ TEST_F(WeingartenCommandTest, OptimisesTheShippedSurfaceAndWritesEveryOutput) {
   EXPECT_EQ(again.exit_code, 0) << again.err;
 }
 
+// 003 Fig. 3 from the command line: the shipped bump made CMC (H = −0.1) with the boundary held,
+// control points as the only unknowns.
+TEST_F(WeingartenCommandTest, Fig3PresetMakesTheShippedBumpCmc) {
+  const CommandRun r =
+      Gproj("weingarten " + Data("bump_12x12.json") + " -o " + Path("cmc.json") +
+            " --preset fig3 --linear 1,0,0.1 --no-auxiliaries --report " + Path("r.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const nlohmann::json report = Json("r.json");
+  EXPECT_EQ(report["variables"].get<int>(), 3 * 144);
+  EXPECT_EQ(report["steps"].get<std::string>(), "projected");
+  EXPECT_LE(report["final"]["max_relation_residual"].get<double>(), 1e-4);
+  EXPECT_NE(r.out.find("max residual"), std::string::npos);
+  ExpectOneLineError(Gproj("weingarten " + Data("bump_12x12.json") + " -o " + Path("x.json") +
+                           " --no-auxiliaries"),
+                     "without curvature auxiliaries");
+  EXPECT_FALSE(Exists("x.json"));
+}
+
+// The Ceres path on a bi-degree (4,4) surface: every sample's definitions touch 25 control
+// points and the auxiliary (12 rows × 87 unknowns per residual block).
+TEST_F(WeingartenCommandTest, CeresSolverPathRunsOnTheShippedSurface) {
+  const CommandRun r =
+      Gproj("weingarten " + Data("freeform_10x10.json") + " -o " + Path("out.json") +
+            " --solver ceres --max-iterations 3 --report " + Path("r.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const nlohmann::json report = Json("r.json");
+  EXPECT_EQ(report["solver"].get<std::string>(), "ceres");
+  EXPECT_GE(report["history"].size(), 2u);
+  EXPECT_LT(report["history"].back()["energy"].get<double>(),
+            report["history"].front()["energy"].get<double>());
+}
+
 TEST_F(WeingartenCommandTest, RefusesBadSplinesAndPresets) {
   const std::string bad = Write(
       "bad.json", R"({"degree": [2, 2], "knots_u": [0, 0, 0, 1, 1], "knots_v": [0, 0, 0, 1, 1, 1],)"

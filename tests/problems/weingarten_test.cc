@@ -207,5 +207,48 @@ TEST(WeingartenTest, CeresFindsNothingBetterAtTheGuidedProjectionSolution) {
             (1.0 - 1e-3) * early_gp);
 }
 
+// Independent runs from the same start: with the relation on the surface and no auxiliaries
+// (no coefficients frozen at x^k, so the objective is one fixed function of the control
+// points), guided projection and Ceres' Levenberg–Marquardt reach the same objective.
+TEST(WeingartenTest, CeresAndGuidedProjectionReachTheSameObjectiveFromTheSameStart) {
+  WeingartenOptions o = Fig3Options(1.0, 0.0, 0.1);
+  o.curvature_auxiliaries = false;
+  o.closeness_weight = 0.1;
+  o.soft_start = 1.0;
+  o.max_iterations = 300;
+  o.samples_u = o.samples_v = 10;
+  BSplineSurface bump = Bump(6);
+  WeingartenProblem gp(bump, o), ceres(bump, o);
+  EXPECT_EQ(gp.num_variables(), 3 * 36);
+  const double start = EvaluateObjective(&gp.problem(), o.fairness_weight, gp.problem().x());
+  const SolverSummary s = gp.Solve();
+  ASSERT_EQ(s.termination, TerminationType::kConvergence) << s.FullReport();
+  CeresOptions c;
+  c.max_iterations = 500;
+  c.fairness_weight = o.fairness_weight;
+  const ceres::Solver::Summary cs = SolveWithCeres(c, &ceres.problem());
+  ASSERT_TRUE(cs.IsSolutionUsable()) << cs.FullReport();
+  const double gp_value = EvaluateObjective(&gp.problem(), o.fairness_weight, gp.problem().x());
+  const double ceres_value =
+      EvaluateObjective(&ceres.problem(), o.fairness_weight, ceres.problem().x());
+  EXPECT_LT(gp_value, 0.01 * start);
+  EXPECT_NEAR(ceres_value, gp_value, 1e-6 * gp_value) << cs.BriefReport();
+  EXPECT_NEAR(ceres.Measures().max_relation_residual, gp.Measures().max_relation_residual,
+              1e-4 * gp.Measures().max_relation_residual);
+}
+
+TEST(WeingartenTest, WithoutAuxiliariesOnlyTheSurfaceRelationIsAllowed) {
+  WeingartenOptions o = WeingartenPreset("fig1");
+  o.curvature_auxiliaries = false;
+  std::string why;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("without curvature auxiliaries"), std::string::npos) << why;
+  o = Fig3Options(1.0, 0.0, 0.0);
+  o.curvature_auxiliaries = false;
+  EXPECT_TRUE(o.IsValid(&why)) << why;
+  o.relation_on_surface = false;
+  EXPECT_FALSE(o.IsValid(&why));
+}
+
 }  // namespace
 }  // namespace gproj
