@@ -66,7 +66,7 @@ echo "== Weingarten surface: align the curvature isolines of a shipped bi-degree
   --report out/demo/weingarten_report.json
 echo
 echo "== Fig. 3 of 003: the shipped bump, boundary held, driven to constant mean curvature H = -0.1 =="
-./build/gproj weingarten examples/data/bump_12x12.json -o out/demo/cmc.json --preset fig3 \
+./build/gproj weingarten examples/data/bump_14x14.json -o out/demo/cmc.json --preset fig3 \
   --linear 1,0,0.1 --diagram out/demo/cmc_diagram.svg --picture out/demo/cmc.svg \
   --surface-mesh out/demo/cmc_surface.obj --report out/demo/cmc_report.json
 echo

@@ -35,15 +35,15 @@ TEST_F(WeingartenCommandTest, OptimisesTheShippedSurfaceAndWritesEveryOutput) {
 // control points as the only unknowns.
 TEST_F(WeingartenCommandTest, Fig3PresetMakesTheShippedBumpCmc) {
   const CommandRun r =
-      Gproj("weingarten " + Data("bump_12x12.json") + " -o " + Path("cmc.json") +
+      Gproj("weingarten " + Data("bump_14x14.json") + " -o " + Path("cmc.json") +
             " --preset fig3 --linear 1,0,0.1 --no-auxiliaries --report " + Path("r.json"));
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
   const nlohmann::json report = Json("r.json");
-  EXPECT_EQ(report["variables"].get<int>(), 3 * 144);
+  EXPECT_EQ(report["variables"].get<int>(), 3 * 196);
   EXPECT_EQ(report["steps"].get<std::string>(), "projected");
   EXPECT_LE(report["final"]["max_relation_residual"].get<double>(), 1e-4);
   EXPECT_NE(r.out.find("max residual"), std::string::npos);
-  ExpectOneLineError(Gproj("weingarten " + Data("bump_12x12.json") + " -o " + Path("x.json") +
+  ExpectOneLineError(Gproj("weingarten " + Data("bump_14x14.json") + " -o " + Path("x.json") +
                            " --no-auxiliaries"),
                      "without curvature auxiliaries");
   EXPECT_FALSE(Exists("x.json"));

@@ -103,7 +103,7 @@ WeingartenOptions Fig3Options(double a, double b, double c) {
   return o;
 }
 
-// 003 Fig. 3: one B-spline (the bump, 12 × 12 control points), its boundary control points
+// 003 Fig. 3: one B-spline (the bump, 14 × 14 control points), its boundary control points
 // gliding on the boundary polygon with a high weight (preset fig3). The fixed linear relation
 // drives |a H + b K + c| (a² + b² = 1) to at most 1e-4 at every sample, measured on the surface
 // itself (H and K from its derivatives, not the auxiliaries): a developable (K = 0), a minimal
@@ -116,7 +116,7 @@ struct Fig3Case {
 class Fig3Test : public ::testing::TestWithParam<Fig3Case> {};
 
 TEST_P(Fig3Test, FixedLinearRelationIsMetAtEverySample) {
-  const int n = 12;
+  const int n = 14;
   const BSplineSurface bump = Bump(n);
   WeingartenProblem problem(bump, Fig3Options(GetParam().a, GetParam().b, GetParam().c));
   const double start = problem.Measures().max_relation_residual;
