@@ -486,15 +486,22 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
 void WeingartenProblem::SetCurvatureAuxiliaries(Eigen::VectorXd* x) const {
   if (curvature_block_ < 0) return;
   const VariableLayout& layout = problem_.layout();
-  const int nc = reference_.num_control_points();
-  Eigen::MatrixX3d control(nc, 3);
+  // Buffers sized once: this runs after every step.
+  const int nc = reference_.num_control_points(), ns = maps_.num_samples();
+  control_buffer_.resize(nc, 3);
   for (int i = 0; i < nc; ++i)
-    control.row(i) = x->segment<3>(layout.ItemOffset(layout.Item(control_block_, i))).transpose();
-  auto derivatives = SampleDerivatives(maps_, control);
-  for (int s = 0; s < maps_.num_samples(); ++s) {
-    for (int k = 0; k < 5; ++k) derivatives[s][k] *= derivative_scale_[k];
+    control_buffer_.row(i) =
+        x->segment<3>(layout.ItemOffset(layout.Item(control_block_, i))).transpose();
+  for (int k = 0; k < 5; ++k) {
+    derivative_buffer_[k].resize(ns, 3);
+    derivative_buffer_[k].noalias() = maps_.d[k + 1] * control_buffer_;
+  }
+  std::array<Eigen::Vector3d, 5> d;
+  for (int s = 0; s < ns; ++s) {
+    for (int k = 0; k < 5; ++k)
+      d[k] = derivative_buffer_[k].row(s).transpose() * derivative_scale_[k];
     x->segment<kCurvatureAuxDim>(layout.ItemOffset(layout.Item(curvature_block_, s))) =
-        CurvatureAuxiliaries::ExactAuxiliary(derivatives[s]);
+        CurvatureAuxiliaries::ExactAuxiliary(d);
   }
 }
 

@@ -144,10 +144,13 @@ class WeingartenProblem {
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();
   double scale_ = 1.0;
   double alignment_scale_ = 1.0;
-  std::array<double, 5> derivative_scale_{};         // parameters rescaled to unit mean speed
-  std::vector<double> inv_du_, inv_dv_;              // central-difference factors per sample row
-  std::array<double, 2> gradient_scales_{1.0, 1.0};  // units of the K and H gradient auxiliaries //
-                                                     // 1 / RMS |∇H| |∇K| of the input, scaled units
+  std::array<double, 5> derivative_scale_{};  // parameters rescaled to unit mean speed
+  std::vector<double> inv_du_, inv_dv_;       // central-difference factors per sample row
+  std::array<double, 2> gradient_scales_{1.0, 1.0};
+  mutable Eigen::MatrixX3d control_buffer_;  // SetCurvatureAuxiliaries' buffers
+  mutable std::array<Eigen::MatrixX3d, 5>
+      derivative_buffer_;  // units of the K and H gradient auxiliaries //
+                           // 1 / RMS |∇H| |∇K| of the input, scaled units
   Problem problem_;
   int control_block_ = -1, curvature_block_ = -1, gradient_block_ = -1;
   class LinearWeingarten* linear_ = nullptr;
