@@ -185,6 +185,7 @@ int RunWeingarten(const WeingartenArgs& args) {
                   : options.monotone          ? "monotone"
                                               : "plain"},
         {"converged", converged},
+        {"termination", message},
         {"iterations", iterations},
         {"seconds", seconds},
         {"variables", variables},

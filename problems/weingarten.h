@@ -126,6 +126,8 @@ class WeingartenProblem {
   int num_variables() const { return problem_.layout().num_variables(); }
   double scale() const { return scale_; }  // scaled = (input − centre) · scale
   const WeingartenOptions& options() const { return options_; }
+  // With project_auxiliaries the options' project_trial refers to this problem: use them
+  // with this problem only, while it lives.
   SolverOptions ToSolverOptions() const;
   // The linear relation's coefficients in input units (a² + b² = 1), when one is in use.
   Eigen::Vector3d LinearRelation() const;
@@ -143,14 +145,13 @@ class WeingartenProblem {
   SampleMaps maps_;
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();
   double scale_ = 1.0;
-  double alignment_scale_ = 1.0;
+  double alignment_scale_ = 1.0;              // 1 / RMS |∇H| |∇K| of the input, scaled units
   std::array<double, 5> derivative_scale_{};  // parameters rescaled to unit mean speed
   std::vector<double> inv_du_, inv_dv_;       // central-difference factors per sample row
-  std::array<double, 2> gradient_scales_{1.0, 1.0};
-  mutable Eigen::MatrixX3d control_buffer_;  // SetCurvatureAuxiliaries' buffers
-  mutable std::array<Eigen::MatrixX3d, 5>
-      derivative_buffer_;  // units of the K and H gradient auxiliaries //
-                           // 1 / RMS |∇H| |∇K| of the input, scaled units
+  std::array<double, 2> gradient_scales_{1.0, 1.0};  // units of the K and H gradient auxiliaries
+  // Buffers of SetCurvatureAuxiliaries (it runs after every step; sized once).
+  mutable Eigen::MatrixX3d control_buffer_;
+  mutable std::array<Eigen::MatrixX3d, 5> derivative_buffer_;
   Problem problem_;
   int control_block_ = -1, curvature_block_ = -1, gradient_block_ = -1;
   class LinearWeingarten* linear_ = nullptr;

@@ -248,7 +248,9 @@ SolverSummary Solve(const SolverOptions& options, Problem* problem,
         return finish(TerminationType::kFailure, why);
       schur_seconds += SecondsSince(t);
       // Gain ratio against the linear model's reduction: with (A Aᵀ + ε² I) d = rhs it is
-      // ½ dᵀ rhs + ½ ε² ‖d‖².
+      // ½ dᵀ rhs + ½ ε² ‖d‖². With project_trial the actual reduction includes what the
+      // projection gained, so the ratio is larger and ε falls faster: intended, the projected
+      // point is the one kept.
       const double predicted = 0.5 * (step.dot(rhs) + epsilon * epsilon * step.squaredNorm());
       const double gain = predicted > 0.0 ? (energy - trial_energy) / predicted : -1.0;
       if (trial_energy <= energy) {

@@ -78,7 +78,8 @@ struct IterationRecord {
 };
 
 enum class TerminationType {
-  kConvergence,    // residual or step tolerance met, or the callback said so
+  kConvergence,    // residual or step tolerance met, the callback said so, or (monotone)
+                   // no step lowers the energy however large ε grows (a local minimum)
   kNoConvergence,  // max_iterations reached
   kFailure,        // numerical failure (non-finite values, factorisation failed after retries)
   kUserAbort,      // the callback asked to stop

@@ -30,6 +30,42 @@ TEST(CeresAdapterTest, SameObjectiveAsGuidedProjectionFromTheSameStart) {
   EXPECT_LT((gp.x() - ceres.x()).lpNorm<Eigen::Infinity>(), 1e-6);
 }
 
+// Linear rows A x − b on one element touching 30 items of dimension 5 (150 scalars, 40 rows):
+// residual blocks far wider than the constraint families' usual ones.
+class WideLinearRows : public ConstraintFamily {
+ public:
+  WideLinearRows(const Eigen::MatrixXd& a, const Eigen::VectorXd& b)
+      : ConstraintFamily("wide", static_cast<int>(a.rows())), a_(a), b_(b) {}
+  void EvaluateElement(int, const double* x, double* phi, double* jac) const override {
+    const Eigen::Map<const Eigen::VectorXd> v(x, a_.cols());
+    Eigen::Map<Eigen::VectorXd>(phi, a_.rows()) = a_ * v - b_;
+    Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+        jac, a_.rows(), a_.cols()) = a_;
+  }
+
+ private:
+  Eigen::MatrixXd a_;
+  Eigen::VectorXd b_;
+};
+
+TEST(CeresAdapterTest, WideResidualBlocksGiveTheLeastSquaresSolution) {
+  const int items = 30, dim = 5, rows = 200;
+  const Eigen::MatrixXd a = Eigen::MatrixXd::Random(rows, items * dim);
+  const Eigen::VectorXd b = Eigen::VectorXd::Random(rows);
+  Problem problem;
+  const int block = problem.layout().AddBlock("v", items, dim);
+  problem.ResizeToLayout();
+  std::vector<int> element;
+  for (int i = 0; i < items; ++i) element.push_back(problem.layout().Item(block, i));
+  problem.AddFamily<WideLinearRows>(a, b)->AddElement(element);
+  CeresOptions options;
+  options.fairness_weight = 0.0;
+  const ceres::Solver::Summary cs = SolveWithCeres(options, &problem);
+  ASSERT_TRUE(cs.IsSolutionUsable()) << cs.FullReport();
+  const Eigen::VectorXd exact = a.colPivHouseholderQr().solve(b);
+  EXPECT_LT((problem.x() - exact).lpNorm<Eigen::Infinity>(), 1e-8);
+}
+
 TEST(CeresAdapterTest, ResidualBlocksMirrorFamilies) {
   Problem problem = MakeCircleProblem(6, 0.05);
   CeresOptions options;

@@ -190,13 +190,41 @@ TEST(GuidedProjectionMonotoneTest, MonotoneStepsNeverRaiseTheEnergy) {
 
   options.monotone = true;
   Problem monotone = MakeRosenbrockProblem();
-  const SolverSummary m = Solve(options, &monotone);
+  Eigen::Vector2d first = Eigen::Vector2d::Zero();
+  const SolverSummary m =
+      Solve(options, &monotone, [&](const IterationRecord& r, const Eigen::VectorXd& x) {
+        if (r.iteration == 1) first = x;
+        return CallbackResult::kContinue;
+      });
   EXPECT_EQ(m.termination, TerminationType::kConvergence) << m.FullReport();
+  // The kept first step solves (JᵀJ + ε² I) d = −Jᵀr at the start, with the ε it reports: the
+  // rejected trials did not change the linearisation.
+  const Eigen::Vector2d x0(-1.2, 1.0), r0(10.0 * (x0[1] - x0[0] * x0[0]), 1.0 - x0[0]);
+  Eigen::Matrix2d j0;
+  j0 << -20.0 * x0[0], 10.0, -1.0, 0.0;
+  const double beta = m.iterations[1].epsilon * m.iterations[1].epsilon;
+  const Eigen::Vector2d expected =
+      x0 -
+      (j0.transpose() * j0 + beta * Eigen::Matrix2d::Identity()).ldlt().solve(j0.transpose() * r0);
+  EXPECT_LT((first - expected).norm(), 1e-10)
+      << first.transpose() << " vs " << expected.transpose();
   for (size_t k = 1; k < m.iterations.size(); ++k)
     EXPECT_LE(m.iterations[k].energy, m.iterations[k - 1].energy) << "iteration " << k;
   EXPECT_GT(m.iterations[1].retries, 0);  // the first step was damped
   EXPECT_NEAR(monotone.x()[0], 1.0, 1e-6);
   EXPECT_NEAR(monotone.x()[1], 1.0, 1e-6);
+}
+
+TEST(GuidedProjectionMonotoneTest, StopsWhenNoStepLowersTheEnergy) {
+  SolverOptions options;
+  options.monotone = true;
+  options.max_rejections = 0;  // the overshooting first step is the only try
+  Problem problem = MakeRosenbrockProblem();
+  const SolverSummary s = Solve(options, &problem);
+  EXPECT_EQ(s.termination, TerminationType::kConvergence);
+  EXPECT_NE(s.message.find("no step lowers the energy"), std::string::npos) << s.message;
+  EXPECT_EQ(s.num_steps(), 0);
+  EXPECT_EQ(problem.x(), Eigen::Vector2d(-1.2, 1.0));
 }
 
 TEST(GuidedProjectionMonotoneTest, TrialPointsAreProjected) {
