@@ -71,14 +71,7 @@ BENCHMARK(BM_WeingartenIteration)
     ->Unit(benchmark::kSecond);
 
 void BM_WeingartenFig3Iteration(benchmark::State& state) {
-  const int n = 25;
-  BSplineSurface bump = MakeWavyBSpline(n, n, 4);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const double x = bump.control(bump.Index(i, j), 0), y = bump.control(bump.Index(i, j), 1);
-      bump.control(bump.Index(i, j), 2) =
-          0.15 * (1 - x * x) * (1 - y * y) * (1 + 0.3 * x + 0.2 * y * y);
-    }
+  const BSplineSurface bump = MakeBumpBSpline(25);
   WeingartenOptions o = WeingartenPreset("fig3");
   o.fixed_linear_relation = true;
   o.linear_coefficients = Eigen::Vector3d(1.0, 0.0, 0.1);

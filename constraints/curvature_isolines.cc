@@ -379,9 +379,9 @@ LinearWeingarten::LinearWeingarten(double weight, bool fixed, const Eigen::Vecto
       abc_(coefficients),
       curvature_scale_(curvature_scale) {}
 
-double LinearWeingarten::RowScale() const {
-  const double k = curvature_scale_;
-  const double s = std::abs(abc_[0]) * k + std::abs(abc_[1]) * k * k;
+double LinearWeingarten::RowScale(const Eigen::Vector3d& abc, double curvature_scale) {
+  const double k = curvature_scale;
+  const double s = std::abs(abc[0]) * k + std::abs(abc[1]) * k * k;
   return s > 0.0 ? 1.0 / s : 1.0;
 }
 
@@ -405,11 +405,9 @@ void LinearWeingarten::Update(const VariableLayout& layout, const Eigen::VectorX
 
 SurfaceLinearWeingarten::SurfaceLinearWeingarten(double weight, const Eigen::Vector3d& coefficients,
                                                  double curvature_scale, std::string name)
-    : ConstraintFamily(std::move(name), 1, FamilyRole::kConstraint, weight), abc_(coefficients) {
-  const double k = curvature_scale;
-  const double s = std::abs(abc_[0]) * k + std::abs(abc_[1]) * k * k;
-  row_scale_ = s > 0.0 ? 1.0 / s : 1.0;
-}
+    : ConstraintFamily(std::move(name), 1, FamilyRole::kConstraint, weight),
+      abc_(coefficients),
+      row_scale_(LinearWeingarten::RowScale(coefficients, curvature_scale)) {}
 
 int SurfaceLinearWeingarten::AddSample(const std::vector<int>& control_items,
                                        const SampleStencil& stencil) {

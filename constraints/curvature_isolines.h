@@ -168,11 +168,13 @@ class LinearWeingarten : public ConstraintFamily {
   bool RowTouches(int e, int row, int local) const override { return local == kH || local == kK; }
   void Update(const VariableLayout& layout, const Eigen::VectorXd& x) override;
   const Eigen::Vector3d& coefficients() const { return abc_; }
+  // 1 / (|a| κ + |b| κ²), the factor that makes a row a relative error (1 if a = b = 0).
+  static double RowScale(const Eigen::Vector3d& abc, double curvature_scale);
   // Orthogonal regression of the line a H + b K + c = 0 (a² + b² = 1) through the points.
   static Eigen::Vector3d FitLine(const std::vector<double>& h, const std::vector<double>& k);
 
  private:
-  double RowScale() const;
+  double RowScale() const { return RowScale(abc_, curvature_scale_); }
   bool fixed_;
   Eigen::Vector3d abc_;
   double curvature_scale_;

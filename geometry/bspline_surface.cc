@@ -583,4 +583,15 @@ BSplineSurface MakeWavyBSpline(int nu, int nv, int degree, double amplitude) {
   return s;
 }
 
+BSplineSurface MakeBumpBSpline(int n, int degree) {
+  BSplineSurface bump = MakeWavyBSpline(n, n, degree);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double x = bump.control(bump.Index(i, j), 0), y = bump.control(bump.Index(i, j), 1);
+      bump.control(bump.Index(i, j), 2) =
+          0.15 * (1 - x * x) * (1 - y * y) * (1 + 0.3 * x + 0.2 * y * y);
+    }
+  return bump;
+}
+
 }  // namespace gproj

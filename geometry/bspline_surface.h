@@ -91,6 +91,10 @@ BSplineSurface InsertKnotsUniform(const BSplineSurface& surface, int per_span);
 // control point (i, j) at (x, y, a (0.3 sin 2x cos 1.5y + 0.2 x y + 0.15 x²)) on a uniform grid
 // of [−1, 1]², a = amplitude.
 BSplineSurface MakeWavyBSpline(int nu, int nv, int degree, double amplitude = 1.0);
+// A bump over [−1, 1]² with a planar boundary (the start of 003 Fig. 3's fixtures; shipped as
+// examples/data/bump_14x14.json): bi-degree (degree, degree), control point (i, j) at
+// (x, y, 0.15 (1 − x²)(1 − y²)(1 + 0.3 x + 0.2 y²)) on a uniform grid.
+BSplineSurface MakeBumpBSpline(int n, int degree = 4);
 
 // The control net as a quad mesh (vertex i * nv + j), for pictures and `gproj` outputs.
 PolyMesh ControlNetMesh(const BSplineSurface& surface);

@@ -85,16 +85,7 @@ TEST(WeingartenTest, DefaultPresetAlignsIsolinesOfAFreeformSurface) {
 }
 
 // A bump over the square [−1, 1]² with a planar boundary (the start of 003 Fig. 3).
-BSplineSurface Bump(int n) {
-  BSplineSurface bump = Freeform(n, n);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const double x = bump.control(bump.Index(i, j), 0), y = bump.control(bump.Index(i, j), 1);
-      bump.control(bump.Index(i, j), 2) =
-          0.15 * (1 - x * x) * (1 - y * y) * (1 + 0.3 * x + 0.2 * y * y);
-    }
-  return bump;
-}
+BSplineSurface Bump(int n) { return MakeBumpBSpline(n); }
 
 WeingartenOptions Fig3Options(double a, double b, double c) {
   WeingartenOptions o = WeingartenPreset("fig3");
