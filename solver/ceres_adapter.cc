@@ -67,18 +67,6 @@ class UpdateCallback : public ceres::IterationCallback {
   const CeresIterationCallback& user_;
 };
 
-double FamilyWeight(const ConstraintFamily& f, const CeresOptions& options) {
-  switch (f.role()) {
-    case FamilyRole::kConstraint:
-      return f.weight();
-    case FamilyRole::kSoft:
-      return f.weight() * options.soft_scale;
-    case FamilyRole::kFairness:
-      return f.weight() * options.fairness_weight * options.fairness_weight * options.soft_scale;
-  }
-  return f.weight();
-}
-
 }  // namespace
 
 bool CeresOptions::IsValid(std::string* why) const {
@@ -103,14 +91,18 @@ ceres::Solver::Summary SolveWithCeres(const CeresOptions& options, Problem* prob
   }
   const VariableLayout& layout = problem->layout();
   Eigen::VectorXd& x = problem->x();
-  for (int f = 0; f < problem->num_families(); ++f) problem->family(f).Update(layout, x);
+  for (int f = 0; f < problem->num_families(); ++f) {
+    problem->family(f).Prepare();
+    problem->family(f).Update(layout, x);
+  }
 
   ceres::Problem ceres_problem;
   std::vector<int> dims;
   std::vector<double*> blocks;
   for (int f = 0; f < problem->num_families(); ++f) {
     const ConstraintFamily& fam = problem->family(f);
-    const double w = FamilyWeight(fam, options);
+    const double w =
+        RowWeight(fam.role(), fam.weight(), options.fairness_weight, options.soft_scale);
     if (w == 0.0) continue;
     for (int e = 0; e < fam.num_elements(); ++e) {
       dims.clear();

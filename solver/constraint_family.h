@@ -19,6 +19,11 @@ enum class FamilyRole {
   kFairness,    // linear fairness rows P x; weight is ω_f² × weight(), fades like kSoft
 };
 
+// The weight of every row of a family with this role and own weight, given the fairness weight
+// ω_f and the soft-weight factor of the iteration: kConstraint w, kSoft w·s, kFairness w·ω_f²·s.
+// Guided projection and the Ceres cross-check both weigh rows by this rule.
+double RowWeight(FamilyRole role, double weight, double fairness_weight, double soft_scale);
+
 class ConstraintFamily {
  public:
   ConstraintFamily(std::string name, int rows_per_element,
@@ -28,6 +33,7 @@ class ConstraintFamily {
   // Appends an element touching the given global item ids (VariableLayout::Item); returns its
   // index. The local vector of the element is the items' scalars concatenated in this order.
   int AddElement(const std::vector<int>& items);
+  int AddElement(const int* items, int count);
 
   // Values and gradients of element e's rows at its local vector.
   // x_local: local_dim values; phi: rows_per_element(); jac: rows_per_element() × local_dim,
@@ -38,6 +44,19 @@ class ConstraintFamily {
   // asked once when the solver builds its pattern). The default says every row uses every
   // scalar; override it to keep the factor sparse.
   virtual bool RowTouches(int e, int row, int local) const { return true; }
+
+  // The structural sparsity of element e in one call: touches[row × local_dim + local] set to
+  // whether the row can depend on the scalar. x_local is the element's local vector at the
+  // start (for families whose pattern is derived by evaluating them). The default asks
+  // RowTouches for every pair.
+  virtual void RowPattern(int e, const double* x_local, int local_dim, bool* touches) const {
+    for (int row = 0; row < rows_per_element_; ++row)
+      for (int l = 0; l < local_dim; ++l) touches[row * local_dim + l] = RowTouches(e, row, l);
+  }
+
+  // Called once before a solve, after the last element was added (guided projection and the
+  // Ceres adapter both call it); families that precompute per-element state do it here.
+  virtual void Prepare() {}
 
   // Refreshes coefficients frozen at x^k (called once per iteration before evaluation).
   virtual void Update(const VariableLayout& layout, const Eigen::VectorXd& x) {}

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 namespace gproj {
 
@@ -18,7 +19,12 @@ LinearizedSystem::LinearizedSystem(Problem* problem) : problem_(problem) {
   // Pass 1: local indices and the column pattern (sorted, unique row indices per column).
   a_.col_begin.assign(1, 0);
   std::vector<std::pair<int, int>> used;  // (global index, local index)
+  std::vector<double> x_local;
+  std::unique_ptr<bool[]> touches;
+  size_t touches_capacity = 0;
+  const Eigen::VectorXd& x = problem->x();
   for (int f = 0; f < num_families; ++f) {
+    problem->family(f).Prepare();
     const ConstraintFamily& fam = problem->family(f);
     family_row_begin_[f + 1] = family_row_begin_[f] + fam.num_rows();
     auto& begin = local_begin_[f];
@@ -34,10 +40,19 @@ LinearizedSystem::LinearizedSystem(Problem* problem) : problem_(problem) {
       const int local_dim = begin[e + 1] - begin[e];
       max_local = std::max(max_local, local_dim);
       max_rows = std::max(max_rows, fam.rows_per_element());
+      x_local.resize(local_dim);
+      for (int l = 0; l < local_dim; ++l)
+        x_local[l] = x.size() == layout.num_variables() ? x[index[begin[e] + l]] : 0.0;
+      const size_t pattern_size = static_cast<size_t>(fam.rows_per_element()) * local_dim;
+      if (pattern_size > touches_capacity) {
+        touches_capacity = pattern_size;
+        touches = std::make_unique<bool[]>(pattern_size);
+      }
+      fam.RowPattern(e, x_local.data(), local_dim, touches.get());
       for (int row = 0; row < fam.rows_per_element(); ++row) {
         used.clear();
         for (int l = 0; l < local_dim; ++l)
-          if (fam.RowTouches(e, row, l)) used.emplace_back(index[begin[e] + l], l);
+          if (touches[row * local_dim + l]) used.emplace_back(index[begin[e] + l], l);
         std::sort(used.begin(), used.end());
         const size_t row_scatter = scatter.size();
         scatter.resize(row_scatter + local_dim, -1);
@@ -63,26 +78,13 @@ LinearizedSystem::LinearizedSystem(Problem* problem) : problem_(problem) {
   jac_local_.resize(static_cast<size_t>(max_rows) * max_local);
 }
 
-double LinearizedSystem::RowWeight(const ConstraintFamily& f, double fairness_weight,
-                                   double soft_scale) const {
-  switch (f.role()) {
-    case FamilyRole::kConstraint:
-      return f.weight();
-    case FamilyRole::kSoft:
-      return f.weight() * soft_scale;
-    case FamilyRole::kFairness:
-      return f.weight() * fairness_weight * fairness_weight * soft_scale;
-  }
-  return f.weight();
-}
-
 bool LinearizedSystem::Assemble(const Eigen::VectorXd& x, double fairness_weight, double soft_scale,
                                 std::string* message) {
   std::fill(a_.values.begin(), a_.values.end(), 0.0);
   for (int f = 0; f < problem_->num_families(); ++f) {
     ConstraintFamily& fam = problem_->family(f);
     fam.Update(problem_->layout(), x);
-    const double s = std::sqrt(RowWeight(fam, fairness_weight, soft_scale));
+    const double s = std::sqrt(RowWeight(fam.role(), fam.weight(), fairness_weight, soft_scale));
     const int rows = fam.rows_per_element();
     const auto& begin = local_begin_[f];
     const auto& index = local_index_[f];

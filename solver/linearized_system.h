@@ -37,8 +37,6 @@ class LinearizedSystem {
   void MultiplyNormal(const Eigen::VectorXd& d, double beta, Eigen::VectorXd* out);
 
  private:
-  double RowWeight(const ConstraintFamily& f, double fairness_weight, double soft_scale) const;
-
   Problem* problem_;
   CscMatrix a_;
   Eigen::VectorXd r_, phi_;

@@ -3,10 +3,12 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "solver/constraint_family.h"
+#include "solver/term.h"
 #include "solver/variable_layout.h"
 
 namespace gproj {
@@ -29,6 +31,24 @@ class Problem {
     families_.push_back(std::move(family));
     return raw;
   }
+  // Adds a term (solver/term.h): kRows residuals per element from items of kDims scalars,
+  // computed by `residual` (templated on the scalar; derivatives and sparsity automatic).
+  // Without Data: residual(const T* item0, …, T* r); with Data: residual(const Data&, …).
+  template <int kRows, int... kDims, typename Residual>
+  Term<NoData, Residual, kRows, kDims...>* AddTerm(std::string name, Residual residual,
+                                                   FamilyRole role = FamilyRole::kConstraint,
+                                                   double weight = 1.0) {
+    return AddFamily<Term<NoData, Residual, kRows, kDims...>>(std::move(name), std::move(residual),
+                                                              role, weight);
+  }
+  template <typename Data, int kRows, int... kDims, typename Residual>
+  Term<Data, Residual, kRows, kDims...>* AddTerm(std::string name, Residual residual,
+                                                 FamilyRole role = FamilyRole::kConstraint,
+                                                 double weight = 1.0) {
+    return AddFamily<Term<Data, Residual, kRows, kDims...>>(std::move(name), std::move(residual),
+                                                            role, weight);
+  }
+
   int num_families() const { return static_cast<int>(families_.size()); }
   ConstraintFamily& family(int i) { return *families_[i]; }
   const ConstraintFamily& family(int i) const { return *families_[i]; }

@@ -12,6 +12,7 @@ namespace {
 TEST(QuadPlanarityTest, GradientMatchesFiniteDifferences) {
   QuadPlanarity family;
   family.AddQuad(0, 1, 2, 3, 4);
+  family.Prepare();  // evaluated from its quadratic coefficients
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int trial = 0; trial < 5; ++trial) {
