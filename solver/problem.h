@@ -19,7 +19,9 @@ class Problem {
   const VariableLayout& layout() const { return layout_; }
 
   // Sizes x to the layout (new entries zero). Call after the last AddBlock.
-  void ResizeToLayout() { x_.conservativeResize(layout_.num_variables()); }
+  void ResizeToLayout() {
+    x_.conservativeResizeLike(Eigen::VectorXd::Zero(layout_.num_variables()));
+  }
   Eigen::VectorXd& x() { return x_; }
   const Eigen::VectorXd& x() const { return x_; }
 
