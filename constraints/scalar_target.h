@@ -1,31 +1,30 @@
 #pragma once
 // A scalar item held at a value: x − h = 0 (prescribed heights or line parameters of 002 §2,
-// target heights of the fit of 002 eq. 14). Element items: {x} of dimension 1; one row.
-// The role decides whether the rows are constraints (guide curves) or soft (a target).
+// target heights of the fit of 002 eq. 14). Element items: {x} of dimension 1; one row; the
+// value h is the element's data. The role decides whether the rows are constraints (guide
+// curves) or soft (a target).
 
-#include <vector>
+#include <string>
 
-#include "solver/constraint_family.h"
+#include "solver/term.h"
 
 namespace gproj {
 
-class ScalarTarget : public ConstraintFamily {
+struct ScalarTargetResidual {
+  template <typename T>
+  void operator()(double value, const T* x, T* r) const {
+    r[0] = x[0] - value;
+  }
+};
+
+class ScalarTarget : public Term<double, ScalarTargetResidual, 1, 1> {
  public:
   ScalarTarget(std::string name, FamilyRole role, double weight = 1.0)
-      : ConstraintFamily(std::move(name), 1, role, weight) {}
-
-  int AddTarget(int item, double value) {
-    values_.push_back(value);
-    return AddElement({item});
+      : Term(std::move(name), ScalarTargetResidual{}, role, weight) {
+    DeclareQuadratic();
   }
 
-  void EvaluateElement(int e, const double* x, double* phi, double* jac) const override {
-    phi[0] = x[0] - values_[e];
-    jac[0] = 1.0;
-  }
-
- private:
-  std::vector<double> values_;
+  int AddTarget(int item, double value) { return Add({item}, value); }
 };
 
 }  // namespace gproj
