@@ -80,7 +80,10 @@ TEST_P(ClosureTest, ClosureProductFailsWhenTheStarIsNotPlanar) {
   EXPECT_GT(std::abs(lhs - rhs), 1e-3 * std::abs(lhs));
 }
 
-INSTANTIATE_TEST_SUITE_P(Valences, ClosureTest, ::testing::Values(4, 6, 8));
+INSTANTIATE_TEST_SUITE_P(Valences, ClosureTest, ::testing::Values(4, 6, 8),
+                         [](const ::testing::TestParamInfo<int>& info) {
+                           return "Valence" + std::to_string(info.param);
+                         });
 
 TEST(HNetTest, ClosureProductHoldsAtEveryInnerVertexOfAnExactANet) {
   const PolyMesh mesh = Grid("hyperboloid", 9);

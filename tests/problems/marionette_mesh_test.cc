@@ -154,7 +154,10 @@ TEST_P(MarionetteSingularTest, SpokesLiftEveryPatchAndGuidedProjectionAgrees) {
   EXPECT_LE(MaxLiftPlanarity(lines, gp), 1e-12);
 }
 
-INSTANTIATE_TEST_SUITE_P(Valences, MarionetteSingularTest, ::testing::Values(3, 5, 6));
+INSTANTIATE_TEST_SUITE_P(Valences, MarionetteSingularTest, ::testing::Values(3, 5, 6),
+                         [](const ::testing::TestParamInfo<int>& info) {
+                           return "Valence" + std::to_string(info.param);
+                         });
 
 TEST(MarionetteSingularTest, ShippedValenceSixExampleLiftsFromItsSpokes) {
   const std::string plan_path =

@@ -72,7 +72,11 @@ TEST_P(MarionetteRankTest, PlanarHeightFieldsHaveDimensionNPlusMPlusOne) {
 
 INSTANTIATE_TEST_SUITE_P(Sizes, MarionetteRankTest,
                          ::testing::Values(std::make_pair(1, 1), std::make_pair(3, 4),
-                                           std::make_pair(5, 2), std::make_pair(8, 8)));
+                                           std::make_pair(5, 2), std::make_pair(8, 8)),
+                         [](const ::testing::TestParamInfo<std::pair<int, int>>& info) {
+                           return "Grid" + std::to_string(info.param.first) + "x" +
+                                  std::to_string(info.param.second);
+                         });
 
 TEST(MarionetteTest, GuidedProjectionReachesTheDirectLiftInOneIteration) {
   const MarionettePlan plan = Plan(10, 10);

@@ -82,7 +82,10 @@ TEST_P(SchurComplementTest, ReducedSolveEqualsFullSolve) {
   EXPECT_LT((d - expected).norm() / expected.norm(), 1e-10);
 }
 
-INSTANTIATE_TEST_SUITE_P(ItemDims, SchurComplementTest, ::testing::Values(1, 3, 12));
+INSTANTIATE_TEST_SUITE_P(ItemDims, SchurComplementTest, ::testing::Values(1, 3, 12),
+                         [](const ::testing::TestParamInfo<int>& info) {
+                           return "Dim" + std::to_string(info.param);
+                         });
 
 TEST(SchurComplementRefusalTest, RowTouchingTwoEliminatedItemsIsRefused) {
   Fixture f = MakeFixture(3, 5);
