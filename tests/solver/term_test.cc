@@ -59,6 +59,35 @@ TEST(TermTest, JacobianMatchesFiniteDifferencesWithData) {
       ExpectGradientMatchesFiniteDifferences(*springs, e, RandomVector(7, seed));
 }
 
+// Eigen expressions (cross, dot, squaredNorm) and std functions inside a term: the volume of
+// the tetrahedron (a, b, c, d) and the angle at a, on any scalar type.
+struct TetraResidual {
+  template <typename T>
+  void operator()(const T* a, const T* b, const T* c, const T* d, T* r) const {
+    using std::atan2;
+    using Vec = Eigen::Matrix<T, 3, 1>;
+    const Vec pa = Eigen::Map<const Vec>(a), ab = Eigen::Map<const Vec>(b) - pa,
+              ac = Eigen::Map<const Vec>(c) - pa, ad = Eigen::Map<const Vec>(d) - pa;
+    r[0] = ab.cross(ac).dot(ad);
+    r[1] = atan2(ab.cross(ac).norm(), ab.dot(ac));
+    r[2] = ad.squaredNorm();
+  }
+};
+
+TEST(TermTest, EigenExpressionsDifferentiateAndGiveTheirSparsity) {
+  Problem problem;
+  auto* tetra = problem.AddTerm<3, 3, 3, 3, 3>("tetra", TetraResidual{});
+  tetra->Add({0, 1, 2, 3});
+  for (unsigned seed = 1; seed <= 3; ++seed)
+    ExpectGradientMatchesFiniteDifferences(*tetra, 0, RandomVector(12, seed), 1e-6, 1e-6);
+  const std::vector<bool> pattern = Pattern(*tetra, 0, RandomVector(12, 4));
+  for (int l = 0; l < 12; ++l) {
+    EXPECT_TRUE(pattern[l]) << "the volume uses every vertex, local " << l;
+    EXPECT_EQ(pattern[12 + l], l < 9) << "the angle at a ignores d, local " << l;
+    EXPECT_EQ(pattern[24 + l], l < 3 || l >= 9) << "|ad|² uses a and d, local " << l;
+  }
+}
+
 TEST(TermTest, SparsityIsDerivedPerRowAndFollowsData) {
   Problem problem;
   auto* springs = problem.AddTerm<Spring, 2, 3, 3, 1>("springs", SpringResidual{});
