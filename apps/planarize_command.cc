@@ -100,8 +100,8 @@ int RunPlanarize(const PlanarizeArgs& args) {
   } else {
     std::printf("%5s %13s %13s %13s %11s %10s\n", "iter", "cost", "max_planarity", "mean_planar",
                 "step", "time_s");
-    const ceres::Solver::Summary summary = pq->SolveWithCeres(
-        options.max_iterations, [&](const ceres::IterationSummary& s, const PlanarityMeasures& m) {
+    const CeresSummary summary = pq->SolveWithCeres(
+        options.max_iterations, [&](const CeresIterationRecord& s, const PlanarityMeasures& m) {
           std::printf("%5d %13.6e %13.3e %13.3e %11.3e %10.4f\n", s.iteration, s.cost,
                       m.max_planarity, m.mean_planarity, s.step_norm, s.iteration_time_in_seconds);
           std::fflush(stdout);
@@ -115,10 +115,9 @@ int RunPlanarize(const PlanarizeArgs& args) {
         });
     const PlanarityMeasures m = pq->Measures();
     converged = pq->MeetsTolerance(m);
-    failed = summary.termination_type == ceres::FAILURE || !pq->problem().x().allFinite();
-    message = "ceres " + std::string(ceres::TerminationTypeToString(summary.termination_type)) +
-              ": " + summary.message;
-    iterations = summary.iterations.empty() ? 0 : summary.iterations.back().iteration;
+    failed = summary.termination == TerminationType::kFailure || !pq->problem().x().allFinite();
+    message = "ceres " + summary.ceres_termination + ": " + summary.message;
+    iterations = summary.num_steps();
   }
   const PlanarityMeasures final_measures = pq->Measures();
   const double seconds =

@@ -142,16 +142,15 @@ int RunWeingarten(const WeingartenArgs& args) {
         failed = summary.termination == TerminationType::kFailure;
         converged = converged && summary.termination == TerminationType::kConvergence;
       } else {
-        const ceres::Solver::Summary summary =
-            problem.SolveWithCeres(options.max_iterations, [&](const ceres::IterationSummary& s) {
+        const CeresSummary summary =
+            problem.SolveWithCeres(options.max_iterations, [&](const CeresIterationRecord& s) {
               record(s.iteration, s.cost, NAN, s.step_norm, nlohmann::json::object());
               return true;
             });
-        level_iterations = summary.iterations.empty() ? 0 : summary.iterations.back().iteration;
-        message = "ceres " + std::string(ceres::TerminationTypeToString(summary.termination_type)) +
-                  ": " + summary.message;
-        failed = summary.termination_type == ceres::FAILURE;
-        converged = converged && summary.termination_type == ceres::CONVERGENCE;
+        level_iterations = summary.num_steps();
+        message = "ceres " + summary.ceres_termination + ": " + summary.message;
+        failed = summary.termination == TerminationType::kFailure;
+        converged = converged && summary.ceres_termination == "CONVERGENCE";
       }
       iterations += level_iterations;
       if (failed || !problem.problem().x().allFinite()) {

@@ -70,7 +70,7 @@ void BM_PlanarizeToTolerance(benchmark::State& state) {
   for (auto _ : state) {
     PQPlanarization pq(mesh, options);
     if (use_ceres) {
-      const ceres::Solver::Summary s = pq.SolveWithCeres(options.max_iterations);
+      const CeresSummary s = pq.SolveWithCeres(options.max_iterations);
       iterations = s.iterations.empty() ? 0 : s.iterations.back().iteration;
     } else {
       iterations = pq.Solve().num_steps();

@@ -56,7 +56,7 @@ int main() {
   std::printf("%s", summary.FullReport().c_str());
 
   gproj::Problem same = MakeProblem();
-  const ceres::Solver::Summary ceres_summary = gproj::SolveWithCeres({}, &same);
+  const gproj::CeresSummary ceres_summary = gproj::SolveWithCeres({}, &same);
   std::printf("ceres: %s\n", ceres_summary.BriefReport().c_str());
   const double gp = gproj::EvaluateObjective(&problem, options.fairness_weight, problem.x());
   const double ceres = gproj::EvaluateObjective(&same, options.fairness_weight, same.x());

@@ -211,7 +211,7 @@ SolverSummary ANet::Solve(const Callback& callback) {
       callback);
 }
 
-ceres::Solver::Summary ANet::SolveWithCeres(int max_iterations, double soft_scale) {
+CeresSummary ANet::SolveWithCeres(int max_iterations, double soft_scale) {
   CeresOptions options;
   options.max_iterations = max_iterations;
   options.fairness_weight = options_.fairness_weight;

@@ -3,8 +3,6 @@
 // negatively curved surface becomes a mesh with planar vertex stars, staying close to a
 // reference surface (a triangle mesh, or the input itself) and fair.
 
-#include <ceres/ceres.h>
-
 #include <functional>
 #include <memory>
 #include <string>
@@ -13,6 +11,7 @@
 #include "geometry/closest_point.h"
 #include "geometry/mesh_io.h"
 #include "problems/mesh_variables.h"
+#include "solver/ceres_adapter.h"
 #include "solver/guided_projection.h"
 #include "solver/problem.h"
 
@@ -87,7 +86,7 @@ class ANet {
       std::function<CallbackResult(const IterationRecord&, const StarPlanarityMeasures&)>;
   SolverSummary Solve(const Callback& callback = nullptr);
   // Ceres LM on the same rows with fixed weights (soft scale `soft_scale`).
-  ceres::Solver::Summary SolveWithCeres(int max_iterations, double soft_scale);
+  CeresSummary SolveWithCeres(int max_iterations, double soft_scale);
 
   PolyMesh Result() const;
   StarPlanarityMeasures Measures() const;

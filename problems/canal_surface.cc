@@ -37,6 +37,13 @@ T CcwAngle(const Vec3<T>& from, const Vec3<T>& to, const Vec3<T>& c, const Vec3<
   return angle;
 }
 
+// The value of a double or of a Jet (for messages).
+double ScalarValue(double value) { return value; }
+template <typename T, int N>
+double ScalarValue(const ceres::Jet<T, N>& value) {
+  return value.a;
+}
+
 // Reflection in the plane perpendicular to `edge`.
 template <typename T>
 Vec3<T> Reflect(const Vec3<T>& x, const Vec3<T>& edge) {
@@ -61,10 +68,9 @@ bool BuildStripT(const std::vector<Eigen::Vector3d>& curve, const Eigen::Vector3
   auto point_at_chord = [&](const CircleT<T>& circle, const Vec3<T>& from, const T& length, int k,
                             T* angle) {
     if (!(length > T(0)) || !(length < T(2) * circle.radius)) {
-      *error = "length " + std::to_string(k) + " (" +
-               std::to_string(ceres::internal::AsScalar(length)) +
+      *error = "length " + std::to_string(k) + " (" + std::to_string(ScalarValue(length)) +
                ") must be positive and shorter than the circle's diameter " +
-               std::to_string(2 * ceres::internal::AsScalar(circle.radius));
+               std::to_string(2 * ScalarValue(circle.radius));
       return false;
     }
     *angle = T(2) * asin(length / (T(2) * circle.radius));

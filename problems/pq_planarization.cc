@@ -154,8 +154,7 @@ SolverSummary PQPlanarization::Solve(const Callback& callback) {
       [this](const PlanarityMeasures& m) { return MeetsTolerance(m); }, callback);
 }
 
-ceres::Solver::Summary PQPlanarization::SolveWithCeres(int max_iterations,
-                                                       const CeresCallback& callback) {
+CeresSummary PQPlanarization::SolveWithCeres(int max_iterations, const CeresCallback& callback) {
   CeresOptions ceres_options;
   ceres_options.max_iterations = max_iterations;
   ceres_options.fairness_weight = options_.fairness_weight;
@@ -164,7 +163,7 @@ ceres::Solver::Summary PQPlanarization::SolveWithCeres(int max_iterations,
                                  : std::min(1.0, options_.tolerance * 1e-2);
   ceres_options.num_threads = std::max(1, options_.num_threads);
   return gproj::SolveWithCeres(ceres_options, &problem_,
-                               [&](const ceres::IterationSummary& s, const Eigen::VectorXd& x) {
+                               [&](const CeresIterationRecord& s, const Eigen::VectorXd& x) {
                                  const PlanarityMeasures m = MeasuresAt(x);
                                  if (callback && !callback(s, m)) return false;
                                  return !MeetsTolerance(m);

@@ -3,8 +3,6 @@
 // input and fairness along the mesh polylines (SPEC §3; 004 §3.2). The mesh is centred and
 // scaled to mean edge length 1 inside the problem, so weights do not depend on units.
 
-#include <ceres/ceres.h>
-
 #include <functional>
 #include <string>
 
@@ -73,10 +71,8 @@ class PQPlanarization {
 
   // The same problem (rows, weights at the final soft scale) minimised by Ceres LM.
   // Stops when the tolerance is met, or Ceres converges.
-  using CeresCallback =
-      std::function<bool(const ceres::IterationSummary&, const PlanarityMeasures&)>;
-  ceres::Solver::Summary SolveWithCeres(int max_iterations,
-                                        const CeresCallback& callback = nullptr);
+  using CeresCallback = std::function<bool(const CeresIterationRecord&, const PlanarityMeasures&)>;
+  CeresSummary SolveWithCeres(int max_iterations, const CeresCallback& callback = nullptr);
 
   // Current vertices, in input units.
   PolyMesh Result() const;

@@ -560,15 +560,14 @@ SolverSummary WeingartenProblem::Solve(const Callback& callback) {
                       });
 }
 
-ceres::Solver::Summary WeingartenProblem::SolveWithCeres(int max_iterations,
-                                                         const CeresCallback& callback) {
+CeresSummary WeingartenProblem::SolveWithCeres(int max_iterations, const CeresCallback& callback) {
   const SolverOptions s = ToSolverOptions();
   CeresOptions c;
   c.max_iterations = max_iterations;
   c.fairness_weight = s.fairness_weight;
   c.soft_scale = options_.soft_start > 1.0 ? s.soft_weight_floor : 1.0;
   return gproj::SolveWithCeres(c, &problem_,
-                               [&](const ceres::IterationSummary& summary, const Eigen::VectorXd&) {
+                               [&](const CeresIterationRecord& summary, const Eigen::VectorXd&) {
                                  return callback ? callback(summary) : true;
                                });
 }

@@ -114,9 +114,8 @@ class WeingartenProblem {
   SolverSummary Solve(const Callback& callback = nullptr);
   // The cross-check path: Ceres' Levenberg–Marquardt on the same rows, with the soft terms at
   // their final weights (after the soft start). The callback may stop it by returning false.
-  using CeresCallback = std::function<bool(const ceres::IterationSummary&)>;
-  ceres::Solver::Summary SolveWithCeres(int max_iterations,
-                                        const CeresCallback& callback = nullptr);
+  using CeresCallback = std::function<bool(const CeresIterationRecord&)>;
+  CeresSummary SolveWithCeres(int max_iterations, const CeresCallback& callback = nullptr);
 
   // Current surface in input units.
   BSplineSurface Result() const;

@@ -1,5 +1,7 @@
 #include "solver/ceres_adapter.h"
 
+#include <ceres/ceres.h>
+
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -58,14 +60,61 @@ class UpdateCallback : public ceres::IterationCallback {
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
     for (int f = 0; f < problem_->num_families(); ++f)
       problem_->family(f).Update(problem_->layout(), problem_->x());
-    if (user_ && !user_(summary, problem_->x())) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+    if (user_ && !user_(Record(summary), problem_->x()))
+      return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
     return ceres::SOLVER_CONTINUE;
+  }
+
+  static CeresIterationRecord Record(const ceres::IterationSummary& s) {
+    CeresIterationRecord r;
+    r.iteration = s.iteration;
+    r.cost = s.cost;
+    r.step_norm = s.step_norm;
+    r.gradient_max_norm = s.gradient_max_norm;
+    r.step_is_successful = s.step_is_successful;
+    r.iteration_time_in_seconds = s.iteration_time_in_seconds;
+    r.cumulative_time_in_seconds = s.cumulative_time_in_seconds;
+    return r;
   }
 
  private:
   Problem* problem_;
   const CeresIterationCallback& user_;
 };
+
+TerminationType FromCeres(ceres::TerminationType type) {
+  switch (type) {
+    case ceres::CONVERGENCE:
+    case ceres::USER_SUCCESS:
+      return TerminationType::kConvergence;
+    case ceres::NO_CONVERGENCE:
+      return TerminationType::kNoConvergence;
+    case ceres::USER_FAILURE:
+      return TerminationType::kUserAbort;
+    case ceres::FAILURE:
+      return TerminationType::kFailure;
+  }
+  return TerminationType::kFailure;
+}
+
+CeresSummary FromCeres(const ceres::Solver::Summary& s) {
+  CeresSummary out;
+  out.termination = FromCeres(s.termination_type);
+  out.ceres_termination = ceres::TerminationTypeToString(s.termination_type);
+  out.message = s.message;
+  for (const ceres::IterationSummary& it : s.iterations)
+    out.iterations.push_back(UpdateCallback::Record(it));
+  out.initial_cost = s.initial_cost;
+  out.final_cost = s.final_cost;
+  out.num_parameters = s.num_parameters;
+  out.num_residuals = s.num_residuals;
+  out.num_residual_blocks = s.num_residual_blocks;
+  out.total_seconds = s.total_time_in_seconds;
+  out.usable = s.IsSolutionUsable();
+  out.brief_report = s.BriefReport();
+  out.full_report = s.FullReport();
+  return out;
+}
 
 }  // namespace
 
@@ -81,13 +130,15 @@ bool CeresOptions::IsValid(std::string* why) const {
   return true;
 }
 
-ceres::Solver::Summary SolveWithCeres(const CeresOptions& options, Problem* problem,
-                                      const CeresIterationCallback& callback) {
+CeresSummary SolveWithCeres(const CeresOptions& options, Problem* problem,
+                            const CeresIterationCallback& callback) {
   ceres::Solver::Summary summary;
   std::string why;
   if (!options.IsValid(&why)) {
-    summary.message = "invalid options: " + why;
-    return summary;
+    CeresSummary out;
+    out.message = "invalid options: " + why;
+    out.ceres_termination = "FAILURE";
+    return out;
   }
   const VariableLayout& layout = problem->layout();
   Eigen::VectorXd& x = problem->x();
@@ -131,7 +182,7 @@ ceres::Solver::Summary SolveWithCeres(const CeresOptions& options, Problem* prob
   UpdateCallback update(problem, callback);
   solver_options.callbacks.push_back(&update);
   ceres::Solve(solver_options, &ceres_problem, &summary);
-  return summary;
+  return FromCeres(summary);
 }
 
 }  // namespace gproj

@@ -131,7 +131,7 @@ TEST(ANetTest, CeresCrossCheckReachesTheSameObjective) {
   ANet gp(mesh, nullptr, options), ceres(mesh, nullptr, options);
   const SolverSummary summary = gp.Solve();
   ASSERT_TRUE(summary.converged()) << summary.FullReport();
-  const ceres::Solver::Summary cs = ceres.SolveWithCeres(500, 1.0);
+  const CeresSummary cs = ceres.SolveWithCeres(500, 1.0);
   ASSERT_TRUE(cs.IsSolutionUsable()) << cs.FullReport();
   const double e_gp = EvaluateObjective(&gp.problem(), options.fairness_weight, gp.problem().x());
   const double e_ceres =

@@ -84,7 +84,7 @@ TEST(PQPlanarizationTest, GuidedProjectionAndCeresReachTheSameObjective) {
   PQPlanarization ceres(mesh, options);
   const SolverSummary summary = gp.Solve();
   ASSERT_TRUE(summary.converged()) << summary.FullReport();
-  const ceres::Solver::Summary cs = ceres.SolveWithCeres(500);
+  const CeresSummary cs = ceres.SolveWithCeres(500);
   ASSERT_TRUE(cs.IsSolutionUsable()) << cs.FullReport();
 
   const double e_gp = EvaluateObjective(&gp.problem(), options.fairness_weight, gp.problem().x());

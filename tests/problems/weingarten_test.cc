@@ -196,7 +196,7 @@ TEST(WeingartenTest, CeresFindsNothingBetterAtTheGuidedProjectionSolution) {
   CeresOptions c;
   c.max_iterations = 200;
   c.fairness_weight = o.fairness_weight;
-  const ceres::Solver::Summary cs = SolveWithCeres(c, &problem.problem());
+  const CeresSummary cs = SolveWithCeres(c, &problem.problem());
   ASSERT_TRUE(cs.IsSolutionUsable()) << cs.FullReport();
   const double ceres =
       EvaluateObjective(&problem.problem(), o.fairness_weight, problem.problem().x());
@@ -234,7 +234,7 @@ TEST(WeingartenTest, CeresAndGuidedProjectionReachTheSameObjectiveFromTheSameSta
   CeresOptions c;
   c.max_iterations = 500;
   c.fairness_weight = o.fairness_weight;
-  const ceres::Solver::Summary cs = SolveWithCeres(c, &ceres.problem());
+  const CeresSummary cs = SolveWithCeres(c, &ceres.problem());
   ASSERT_TRUE(cs.IsSolutionUsable()) << cs.FullReport();
   const double gp_value = EvaluateObjective(&gp.problem(), o.fairness_weight, gp.problem().x());
   const double ceres_value =

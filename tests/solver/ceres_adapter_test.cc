@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/QR>
+
 #include "solver/guided_projection.h"
 #include "test_problems.h"
 
@@ -20,7 +22,7 @@ TEST(CeresAdapterTest, SameObjectiveAsGuidedProjectionFromTheSameStart) {
   ASSERT_TRUE(summary.converged()) << summary.FullReport();
   CeresOptions ceres_options;
   ceres_options.fairness_weight = 0.2;
-  const ceres::Solver::Summary cs = SolveWithCeres(ceres_options, &ceres);
+  const CeresSummary cs = SolveWithCeres(ceres_options, &ceres);
   ASSERT_TRUE(cs.IsSolutionUsable()) << cs.FullReport();
   const double e_gp = EvaluateObjective(&gp, 0.2, gp.x());
   const double e_ceres = EvaluateObjective(&ceres, 0.2, ceres.x());
@@ -60,7 +62,7 @@ TEST(CeresAdapterTest, WideResidualBlocksGiveTheLeastSquaresSolution) {
   problem.AddFamily<WideLinearRows>(a, b)->AddElement(element);
   CeresOptions options;
   options.fairness_weight = 0.0;
-  const ceres::Solver::Summary cs = SolveWithCeres(options, &problem);
+  const CeresSummary cs = SolveWithCeres(options, &problem);
   ASSERT_TRUE(cs.IsSolutionUsable()) << cs.FullReport();
   const Eigen::VectorXd exact = a.colPivHouseholderQr().solve(b);
   EXPECT_LT((problem.x() - exact).lpNorm<Eigen::Infinity>(), 1e-8);
@@ -70,7 +72,7 @@ TEST(CeresAdapterTest, ResidualBlocksMirrorFamilies) {
   Problem problem = MakeCircleProblem(6, 0.05);
   CeresOptions options;
   options.max_iterations = 0;
-  const ceres::Solver::Summary cs = SolveWithCeres(options, &problem);
+  const CeresSummary cs = SolveWithCeres(options, &problem);
   // 6 circle + 6 anchor + 4 smooth elements; 6 points of dimension 2.
   EXPECT_EQ(cs.num_residual_blocks, 16);
   EXPECT_EQ(cs.num_residuals, 6 + 12 + 8);

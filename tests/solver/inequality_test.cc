@@ -70,7 +70,7 @@ TEST(InequalityTest, CeresMinimisesTheSameRows) {
   const double w = 0.25;
   Problem problem = HalfPlaneProblem({{0.2, -1.0}}, w);
   CeresOptions options;
-  const ceres::Solver::Summary summary = SolveWithCeres(options, &problem);
+  const CeresSummary summary = SolveWithCeres(options, &problem);
   ASSERT_TRUE(summary.IsSolutionUsable()) << summary.BriefReport();
   EXPECT_NEAR(problem.x()[0], 1.0 / (1.0 + w), 1e-6);
   EXPECT_NEAR(problem.x()[1], 0.0, 1e-6);

@@ -192,8 +192,8 @@ TEST(TermTest, CeresSolvesATermProblemFromTheSameDefinition) {
   Problem hand = MakeCircleProblem(12, 0.05);
   Problem terms = MakeCircleTermProblem(12, 0.05);
   CeresOptions options;
-  const ceres::Solver::Summary a = SolveWithCeres(options, &hand);
-  const ceres::Solver::Summary b = SolveWithCeres(options, &terms);
+  const CeresSummary a = SolveWithCeres(options, &hand);
+  const CeresSummary b = SolveWithCeres(options, &terms);
   ASSERT_TRUE(b.IsSolutionUsable()) << b.BriefReport();
   EXPECT_NEAR(a.final_cost, b.final_cost, 1e-10 * a.final_cost);
   EXPECT_LT((hand.x() - terms.x()).lpNorm<Eigen::Infinity>(), 1e-6);
