@@ -4,10 +4,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <sstream>
 
 #include "solver/linearized_system.h"
-#include "solver/schur_complement.h"
+#include "solver/step_solver.h"
 
 namespace gproj {
 namespace {
@@ -112,169 +113,181 @@ std::string SolverSummary::FullReport() const {
   return out.str();
 }
 
-SolverSummary Solve(const SolverOptions& options, Problem* problem,
-                    const IterationCallback& callback) {
-  const auto start = Clock::now();
-  SolverSummary summary;
-  summary.linear_solver = options.linear_solver;
-  summary.num_variables = problem->layout().num_variables();
-  auto finish = [&](TerminationType type, const std::string& message) {
-    summary.termination = type;
-    summary.message = message;
-    summary.total_seconds = SecondsSince(start);
-    return summary;
-  };
-  std::string why;
-  if (!options.IsValid(&why)) return finish(TerminationType::kFailure, "invalid options: " + why);
-  Eigen::VectorXd& x = problem->x();
-  if (x.size() != summary.num_variables)
-    return finish(TerminationType::kFailure, "x does not match the variable layout");
-  if (!x.allFinite()) return finish(TerminationType::kFailure, "the start x is not finite");
-  summary.usable = true;
+namespace {
 
-  LinearizedSystem system(problem);
-  summary.num_rows = system.num_rows();
-  summary.jacobian_nonzeros = system.a().nnz();
-  auto cholesky = CreateSparseCholesky(options.linear_solver, options.num_threads);
-  auto t = Clock::now();
-  SchurComplement schur;
-  bool eliminate = false;
-  if (options.eliminate_auxiliaries) {
-    eliminate = schur.Init(problem->layout(), system.a(), &summary.elimination_note);
-    if (eliminate) summary.eliminated_variables = schur.num_eliminated();
-  } else {
-    summary.elimination_note = "disabled by options";
+// Guided projection as a minimizer (like Ceres' trust-region minimizer): evaluate the iterate,
+// stop or step; a step solves the linearisation at ε, retries with a larger ε when the linear
+// algebra fails, and with monotone steps damps ε until the energy falls (Nielsen's rule).
+class Minimizer {
+ public:
+  Minimizer(const SolverOptions& options, Problem* problem, const IterationCallback& callback)
+      : options_(options), problem_(problem), callback_(callback), x_(problem->x()) {}
+
+  SolverSummary Run() {
+    summary_.linear_solver = options_.linear_solver;
+    summary_.num_variables = problem_->layout().num_variables();
+    if (!Start()) return summary_;
+    for (int k = 0;; ++k)
+      if (EvaluateIterate(k) || !TakeStep()) return summary_;
   }
-  const bool analysed = eliminate ? cholesky->Analyze(schur.s(), MatrixForm::kSymmetric, &why)
-                                  : cholesky->Analyze(system.a(), MatrixForm::kAAt, &why);
-  if (!analysed) return finish(TerminationType::kFailure, why);
-  summary.analysis_seconds = SecondsSince(t);
 
-  const int n = summary.num_variables;
-  const int n_kept = eliminate ? schur.num_kept() : n;
-  Eigen::VectorXd rhs(n), step(n), trial(n), check(n), reduced(n_kept), step_kept(n_kept);
-  IterationRecord record;
-  double soft_scale = options.initial_soft_scale;
-  double damping = options.epsilon;  // ε of the next step when options.monotone
-  double growth = 2.0;               // growth of ε² on the next rejection
-  double schur_seconds = 0.0;
-  for (int k = 0;; ++k) {
-    record.iteration = k;
-    record.soft_scale = soft_scale;
-    t = Clock::now();
-    if (!system.Assemble(x, options.fairness_weight, soft_scale, &why))
-      return finish(TerminationType::kFailure, why);
-    record.energy = system.Energy();
-    FillResiduals(*problem, system, &record);
+ private:
+  // Ends the run with this outcome; returns false so callers can `return Finish(…)`.
+  bool Finish(TerminationType type, const std::string& message) {
+    summary_.termination = type;
+    summary_.message = message;
+    summary_.total_seconds = SecondsSince(start_);
+    return false;
+  }
+
+  // Checks the options and the start, builds the system, analyses its pattern.
+  bool Start() {
+    if (!options_.IsValid(&why_))
+      return Finish(TerminationType::kFailure, "invalid options: " + why_);
+    if (x_.size() != summary_.num_variables)
+      return Finish(TerminationType::kFailure, "x does not match the variable layout");
+    if (!x_.allFinite()) return Finish(TerminationType::kFailure, "the start x is not finite");
+    summary_.usable = true;
+    system_ = std::make_unique<LinearizedSystem>(problem_);
+    summary_.num_rows = system_->num_rows();
+    summary_.jacobian_nonzeros = system_->a().nnz();
+    steps_ = std::make_unique<StepSolver>(options_, problem_->layout(), system_.get());
+    if (!steps_->Analyze(&summary_, &why_)) return Finish(TerminationType::kFailure, why_);
+    step_.resize(summary_.num_variables);
+    trial_.resize(summary_.num_variables);
+    soft_scale_ = options_.initial_soft_scale;
+    damping_ = options_.epsilon;
+    return true;
+  }
+
+  // Assembles at x^k and records it; true when the run ends here (tolerance, callback,
+  // iteration limit or failure).
+  bool EvaluateIterate(int k) {
+    record_.iteration = k;
+    record_.soft_scale = soft_scale_;
+    const auto t = Clock::now();
+    if (!system_->Assemble(x_, options_.fairness_weight, soft_scale_, &why_))
+      return !Finish(TerminationType::kFailure, why_);
+    record_.energy = system_->Energy();
+    FillResiduals(*problem_, *system_, &record_);
     // The step's Schur complement counts as assembly of the iterate it led to.
-    record.assembly_seconds = SecondsSince(t) + schur_seconds;
-    schur_seconds = 0.0;
-    summary.iterations.push_back(record);
+    record_.assembly_seconds = SecondsSince(t) + schur_seconds_;
+    schur_seconds_ = 0.0;
+    summary_.iterations.push_back(record_);
 
-    CallbackResult cb = callback ? callback(record, x) : CallbackResult::kContinue;
+    const CallbackResult cb = callback_ ? callback_(record_, x_) : CallbackResult::kContinue;
     if (cb == CallbackResult::kAbort)
-      return finish(TerminationType::kUserAbort, "stopped by callback");
+      return !Finish(TerminationType::kUserAbort, "stopped by callback");
     if (cb == CallbackResult::kConverged)
-      return finish(TerminationType::kConvergence, "the callback's tolerance was met");
-    if (options.residual_tolerance > 0.0 && record.max_constraint <= options.residual_tolerance)
-      return finish(TerminationType::kConvergence, "residual tolerance met");
-    if (k > 0 && options.step_tolerance > 0.0 && record.step_norm <= options.step_tolerance)
-      return finish(TerminationType::kConvergence, "step tolerance met");
-    if (k == options.max_iterations)
-      return finish(TerminationType::kNoConvergence, "maximum number of iterations reached");
+      return !Finish(TerminationType::kConvergence, "the callback's tolerance was met");
+    if (options_.residual_tolerance > 0.0 && record_.max_constraint <= options_.residual_tolerance)
+      return !Finish(TerminationType::kConvergence, "residual tolerance met");
+    if (k > 0 && options_.step_tolerance > 0.0 && record_.step_norm <= options_.step_tolerance)
+      return !Finish(TerminationType::kConvergence, "step tolerance met");
+    if (k == options_.max_iterations)
+      return !Finish(TerminationType::kNoConvergence, "maximum number of iterations reached");
+    return false;
+  }
 
-    // Step: (A Aᵀ + ε² I) d = −A r.
-    system.MultiplyAr(&rhs);
-    rhs = -rhs;
-    const double energy = record.energy;
-    double epsilon = options.monotone ? damping : options.epsilon;
-    record = IterationRecord();
-    // Solves for the step at this ε into `trial`; false (with `why`) if it is unusable.
-    auto solve_step = [&]() {
-      const double beta = epsilon * epsilon;
-      if (eliminate) {
-        t = Clock::now();
-        const bool formed = schur.Form(system.a(), beta, &why);
-        if (formed) schur.ReduceRhs(rhs, &reduced);
-        schur_seconds += SecondsSince(t);
-        if (!formed) return false;
-      }
-      t = Clock::now();
-      const bool factored = eliminate ? cholesky->Factorize(schur.s(), beta, &why)
-                                      : cholesky->Factorize(system.a(), beta, &why);
-      record.factorization_seconds += SecondsSince(t);
-      if (!factored) return false;
-      t = Clock::now();
-      const bool solved = eliminate ? cholesky->Solve(reduced.data(), step_kept.data(), &why)
-                                    : cholesky->Solve(rhs.data(), step.data(), &why);
-      if (solved && eliminate) schur.BackSubstitute(step_kept, rhs, &step);
-      record.solve_seconds += SecondsSince(t);
-      if (!solved) return false;
-      // Check the solve: ‖(A Aᵀ + ε² I) d − rhs‖ small against the terms' sizes. Catches
-      // factorisations that "succeed" on overflowing or non-finite values.
-      system.MultiplyNormal(step, beta, &check);
-      const double scale = check.norm() + rhs.norm();
-      const double residual = (check - rhs).norm();
-      if (!(residual <= 1e-6 * scale) || !std::isfinite(scale)) {
-        why = "the linear solve is inaccurate (residual " + std::to_string(residual) + " against " +
-              std::to_string(scale) + ")";
-        return false;
-      }
-      trial = x + step;
-      if (options.project_trial) options.project_trial(&trial);
-      if (!trial.allFinite()) {
-        why = "the step is not finite";
-        return false;
-      }
-      return true;
-    };
+  // Solves for the step at ε and forms the trial point; false (with why_) if unusable.
+  bool SolveTrial(double epsilon) {
+    if (!steps_->Solve(epsilon, &step_, &schur_seconds_, &record_.factorization_seconds,
+                       &record_.solve_seconds, &why_))
+      return false;
+    trial_ = x_ + step_;
+    if (options_.project_trial) options_.project_trial(&trial_);
+    if (!trial_.allFinite()) {
+      why_ = "the step is not finite";
+      return false;
+    }
+    return true;
+  }
+
+  // With monotone steps: whether the trial lowers the energy. Updates the damping on success;
+  // on failure the system is assembled at x^k again (same linearisation for the next solve).
+  // Sets *failed when that re-assembly fails.
+  bool Accepts(double energy, double epsilon, bool* failed) {
+    const auto t = Clock::now();
+    const bool assembled = system_->Assemble(trial_, options_.fairness_weight, soft_scale_, &why_);
+    const double trial_energy = assembled ? system_->Energy() : HUGE_VAL;
+    if (trial_energy > energy &&
+        !system_->Assemble(x_, options_.fairness_weight, soft_scale_, &why_))
+      *failed = true;
+    schur_seconds_ += SecondsSince(t);
+    if (trial_energy > energy) return false;
+    // Gain ratio against the linear model's reduction: with (A Aᵀ + ε² I) d = rhs it is
+    // ½ dᵀ rhs + ½ ε² ‖d‖². With project_trial the actual reduction includes what the
+    // projection gained, so the ratio is larger and ε falls faster: intended, the projected
+    // point is the one kept.
+    const double predicted =
+        0.5 * (step_.dot(steps_->rhs()) + epsilon * epsilon * step_.squaredNorm());
+    const double gain = predicted > 0.0 ? (energy - trial_energy) / predicted : -1.0;
+    // Nielsen's update of the damping ε² from the gain ratio.
+    const double factor = std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * std::max(gain, 0.0) - 1.0, 3));
+    damping_ = std::max(options_.epsilon, epsilon * std::sqrt(factor));
+    growth_ = 2.0;
+    return true;
+  }
+
+  // Moves x to the next iterate; false when the run ends (failure, or no lower energy).
+  bool TakeStep() {
+    steps_->SetRhs();
+    const double energy = record_.energy;
+    double epsilon = options_.monotone ? damping_ : options_.epsilon;
+    record_ = IterationRecord();
     int failures = 0, rejections = 0;
     for (;;) {
-      if (!solve_step()) {
-        if (++failures > options.max_retries)
-          return finish(TerminationType::kFailure,
-                        why + " (after " + std::to_string(options.max_retries) +
+      if (!SolveTrial(epsilon)) {
+        if (++failures > options_.max_retries)
+          return Finish(TerminationType::kFailure,
+                        why_ + " (after " + std::to_string(options_.max_retries) +
                             " increases of epsilon to " + std::to_string(epsilon) + ")");
-        epsilon *= options.epsilon_growth;
+        epsilon *= options_.epsilon_growth;
         continue;
       }
-      if (!options.monotone) break;
-      // Merit test at the trial point; on rejection the system (and the families' state) is
-      // assembled at x^k again, so the next solve uses the same linearisation.
-      t = Clock::now();
-      const bool assembled = system.Assemble(trial, options.fairness_weight, soft_scale, &why);
-      const double trial_energy = assembled ? system.Energy() : HUGE_VAL;
-      if (trial_energy > energy && !system.Assemble(x, options.fairness_weight, soft_scale, &why))
-        return finish(TerminationType::kFailure, why);
-      schur_seconds += SecondsSince(t);
-      // Gain ratio against the linear model's reduction: with (A Aᵀ + ε² I) d = rhs it is
-      // ½ dᵀ rhs + ½ ε² ‖d‖². With project_trial the actual reduction includes what the
-      // projection gained, so the ratio is larger and ε falls faster: intended, the projected
-      // point is the one kept.
-      const double predicted = 0.5 * (step.dot(rhs) + epsilon * epsilon * step.squaredNorm());
-      const double gain = predicted > 0.0 ? (energy - trial_energy) / predicted : -1.0;
-      if (trial_energy <= energy) {
-        // Nielsen's update of the damping ε² from the gain ratio.
-        const double factor =
-            std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * std::max(gain, 0.0) - 1.0, 3));
-        damping = std::max(options.epsilon, epsilon * std::sqrt(factor));
-        growth = 2.0;
-        break;
-      }
-      if (++rejections > options.max_rejections)
-        return finish(
+      if (!options_.monotone) break;
+      bool failed = false;
+      const bool accepted = Accepts(energy, epsilon, &failed);
+      if (failed) return Finish(TerminationType::kFailure, why_);
+      if (accepted) break;
+      if (++rejections > options_.max_rejections)
+        return Finish(
             TerminationType::kConvergence,
             "no step lowers the energy (epsilon raised to " + std::to_string(epsilon) + ")");
-      epsilon *= std::sqrt(growth);
-      growth *= 2.0;
+      epsilon *= std::sqrt(growth_);
+      growth_ *= 2.0;
     }
-    record.retries = failures + rejections;
-    summary.factor_nonzeros = cholesky->FactorNonZeros();
-    record.epsilon = epsilon;
-    record.step_norm = (trial - x).lpNorm<Eigen::Infinity>();
-    x.swap(trial);
-    soft_scale = std::max(soft_scale * options.soft_weight_decay, options.soft_weight_floor);
+    record_.retries = failures + rejections;
+    summary_.factor_nonzeros = steps_->FactorNonZeros();
+    record_.epsilon = epsilon;
+    record_.step_norm = (trial_ - x_).lpNorm<Eigen::Infinity>();
+    x_.swap(trial_);
+    soft_scale_ = std::max(soft_scale_ * options_.soft_weight_decay, options_.soft_weight_floor);
+    return true;
   }
+
+  const SolverOptions& options_;
+  Problem* problem_;
+  const IterationCallback& callback_;
+  Eigen::VectorXd& x_;
+  const Clock::time_point start_ = Clock::now();
+  SolverSummary summary_;
+  std::unique_ptr<LinearizedSystem> system_;
+  std::unique_ptr<StepSolver> steps_;
+  Eigen::VectorXd step_, trial_;
+  IterationRecord record_;
+  std::string why_;
+  double soft_scale_ = 1.0;
+  double damping_ = 0.0;  // ε of the next step when options_.monotone
+  double growth_ = 2.0;   // growth of ε² on the next rejection
+  double schur_seconds_ = 0.0;
+};
+
+}  // namespace
+
+SolverSummary Solve(const SolverOptions& options, Problem* problem,
+                    const IterationCallback& callback) {
+  return Minimizer(options, problem, callback).Run();
 }
 
 double EvaluateObjective(Problem* problem, double fairness_weight, const Eigen::VectorXd& x) {
