@@ -201,12 +201,12 @@ void IsolineAlignment::Update(const VariableLayout& layout, const Eigen::VectorX
   double sum = 0.0;
   for (int e = 0; e < n; ++e) {
     const int* it = element_items(e);
-    auto d = [&](int p, int m, int off, double c) {
-      return c * (Value(layout, x, it[p], off) - Value(layout, x, it[m], off));
+    auto gradient = [&](int off) {
+      return CentralGradient(Value(layout, x, it[0], off), Value(layout, x, it[1], off),
+                             Value(layout, x, it[2], off), Value(layout, x, it[3], off), inv_[e][0],
+                             inv_[e][1]);
     };
-    const double hu = d(0, 1, kH, inv_[e][0]), ku = d(0, 1, kK, inv_[e][0]);
-    const double hv = d(2, 3, kH, inv_[e][1]), kv = d(2, 3, kK, inv_[e][1]);
-    product[e] = std::hypot(hu, hv) * std::hypot(ku, kv);
+    product[e] = GradientNormProduct(gradient(kH), gradient(kK));
     sum += product[e] * product[e];
   }
   const double delta = n > 0 ? 0.1 * std::sqrt(sum / n) : 0.0;

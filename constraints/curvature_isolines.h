@@ -29,6 +29,18 @@
 
 namespace gproj {
 
+// The central-difference gradient (ψ_u, ψ_v) of 003 eq. 5 at an inner sample (a, b), from ψ at
+// (a+1, b), (a−1, b), (a, b+1), (a, b−1) and the factors cu = 1 / (u_{a+1} − u_{a−1}),
+// cv = 1 / (v_{b+1} − v_{b−1}).
+inline Eigen::Vector2d CentralGradient(double up, double um, double vp, double vm, double cu,
+                                       double cv) {
+  return Eigen::Vector2d(cu * (up - um), cv * (vp - vm));
+}
+// |∇φ| |∇ψ| of two such gradients: the size that H_u K_v − H_v K_u is measured against.
+inline double GradientNormProduct(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return std::hypot(a.x(), a.y()) * std::hypot(b.x(), b.y());
+}
+
 // Offsets inside the curvature auxiliary item.
 enum CurvatureAux {
   kN = 0,

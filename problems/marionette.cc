@@ -7,13 +7,6 @@
 #include "geometry/quad_grid.h"
 
 namespace gproj {
-namespace {
-
-double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
-
-}  // namespace
 
 MarionettePlan MakeMarionettePlan(const PolyMesh& mesh, const std::string& path) {
   const std::string prefix = path.empty() ? "" : path + ": ";
@@ -27,20 +20,18 @@ MarionettePlan MakeMarionettePlan(const PolyMesh& mesh, const std::string& path)
   }
   for (int i = 0; i < plan.rows; ++i)
     for (int j = 0; j < plan.cols; ++j) {
-      const Eigen::Vector2d a = plan.xy[plan.Vertex(i, j)];
-      const Eigen::Vector2d ab = plan.xy[plan.Vertex(i + 1, j)] - a;
-      const Eigen::Vector2d ac = plan.xy[plan.Vertex(i + 1, j + 1)] - a;
-      const Eigen::Vector2d ad = plan.xy[plan.Vertex(i, j + 1)] - a;
-      const double d = Cross(ab, ad);
-      if (!(std::abs(d) > 1e-12 * ab.norm() * ad.norm()))
+      double alpha = 0.0, beta = 0.0;
+      if (!MarionettePlanarity::PlanCoefficients(
+              plan.xy[plan.Vertex(i, j)], plan.xy[plan.Vertex(i + 1, j)],
+              plan.xy[plan.Vertex(i + 1, j + 1)], plan.xy[plan.Vertex(i, j + 1)], &alpha, &beta))
         throw InputError(prefix + "face " + std::to_string(i * plan.cols + j) +
                          " has a degenerate plan view: its vertices " +
                          std::to_string(plan.Vertex(i, j)) + ", " +
                          std::to_string(plan.Vertex(i + 1, j)) + " and " +
                          std::to_string(plan.Vertex(i, j + 1)) +
                          " are collinear in x, y, so its height cannot be propagated");
-      plan.alpha.push_back(Cross(ac, ad) / d);
-      plan.beta.push_back(Cross(ab, ac) / d);
+      plan.alpha.push_back(alpha);
+      plan.beta.push_back(beta);
     }
   return plan;
 }
@@ -163,17 +154,13 @@ ClosedStripLift LiftClosedStrip(const ClosedStrip& strip, const Eigen::VectorXd&
         "height per inner vertex");
   std::vector<double> alpha(n), beta(n);
   for (int i = 0; i < n; ++i) {
-    const Eigen::Vector2d a = strip.inner[i];
-    const Eigen::Vector2d ab = strip.outer[i] - a, ac = strip.outer[(i + 1) % n] - a,
-                          ad = strip.inner[(i + 1) % n] - a;
-    const double d = Cross(ab, ad);
-    if (!(std::abs(d) > 1e-12 * ab.norm() * ad.norm()))
+    if (!MarionettePlanarity::PlanCoefficients(strip.inner[i], strip.outer[i],
+                                               strip.outer[(i + 1) % n], strip.inner[(i + 1) % n],
+                                               &alpha[i], &beta[i]))
       throw InputError("quad " + std::to_string(i) +
                        " of the closed strip has a degenerate plan view (inner " +
                        std::to_string(i) + ", outer " + std::to_string(i) + " and inner " +
                        std::to_string((i + 1) % n) + " are collinear)");
-    alpha[i] = Cross(ac, ad) / d;
-    beta[i] = Cross(ab, ac) / d;
   }
   ClosedStripLift out;
   // z_N* is linear in (Z, z_0*): a from (0, 1), V_k from (e_k, 0).

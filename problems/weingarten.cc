@@ -187,12 +187,13 @@ WeingartenMeasures MeasureWeingarten(const BSplineSurface& surface, const BSplin
     for (int b = 1; b + 1 < sv; ++b) {
       const double cu = 1.0 / (maps.u[a + 1] - maps.u[a - 1]);
       const double cv = 1.0 / (maps.v[b + 1] - maps.v[b - 1]);
-      const double hu = cu * (m.h[maps.Index(a + 1, b)] - m.h[maps.Index(a - 1, b)]);
-      const double ku = cu * (m.k[maps.Index(a + 1, b)] - m.k[maps.Index(a - 1, b)]);
-      const double hv = cv * (m.h[maps.Index(a, b + 1)] - m.h[maps.Index(a, b - 1)]);
-      const double kv = cv * (m.k[maps.Index(a, b + 1)] - m.k[maps.Index(a, b - 1)]);
-      num += std::abs(hu * kv - hv * ku);
-      den += std::hypot(hu, hv) * std::hypot(ku, kv);
+      auto gradient = [&](const std::vector<double>& psi) {
+        return CentralGradient(psi[maps.Index(a + 1, b)], psi[maps.Index(a - 1, b)],
+                               psi[maps.Index(a, b + 1)], psi[maps.Index(a, b - 1)], cu, cv);
+      };
+      const Eigen::Vector2d gh = gradient(m.h), gk = gradient(m.k);
+      num += std::abs(gh.x() * gk.y() - gh.y() * gk.x());
+      den += GradientNormProduct(gh, gk);
     }
   m.misalignment = den > 0.0 ? num / den : 0.0;
   const SampleMaps ref_maps = MakeSampleMaps(reference, su, sv);
@@ -311,13 +312,11 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
   for (int a = 1; definitions && a + 1 < su; ++a)
     for (int b = 1; b + 1 < sv; ++b) {
       auto value = [&](int aa, int bb, int off) { return x[layout.ItemOffset(aux(aa, bb)) + off]; };
-      const double cu = inv_du(a);
-      const double cv = inv_dv(b);
-      const double hu = cu * (value(a + 1, b, kH) - value(a - 1, b, kH));
-      const double hv = cv * (value(a, b + 1, kH) - value(a, b - 1, kH));
-      const double ku = cu * (value(a + 1, b, kK) - value(a - 1, b, kK));
-      const double kv = cv * (value(a, b + 1, kK) - value(a, b - 1, kK));
-      gradient_product += squared(std::hypot(hu, hv) * std::hypot(ku, kv));
+      auto gradient = [&](int off) {
+        return CentralGradient(value(a + 1, b, off), value(a - 1, b, off), value(a, b + 1, off),
+                               value(a, b - 1, off), inv_du(a), inv_dv(b));
+      };
+      gradient_product += squared(GradientNormProduct(gradient(kH), gradient(kK)));
       ++inner;
     }
   alignment_scale_ =
@@ -363,14 +362,12 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
       for (int b = 2; b + 2 < sv; ++b)
         for (int p = 0; p < 2; ++p) {
           const int off = p == 0 ? kK : kH, goff = p == 0 ? kGradK : kGradH;
-          auto at = [&](int item, int o) { return x[layout.ItemOffset(item) + o]; };
-          const double cu = inv_du(a);
-          const double cv = inv_dv(b);
-          const double qu = cu * (at(grad(a + 1, b), goff) - at(grad(a - 1, b), goff));
-          const double qv = cv * (at(grad(a, b + 1), goff) - at(grad(a, b - 1), goff));
-          const double pu = cu * (at(aux(a + 1, b), off) - at(aux(a - 1, b), off));
-          const double pv = cv * (at(aux(a, b + 1), off) - at(aux(a, b - 1), off));
-          product += squared(std::hypot(qu, qv) * std::hypot(pu, pv));
+          auto gradient = [&](auto item, int o) {
+            auto at = [&](int aa, int bb) { return x[layout.ItemOffset(item(aa, bb)) + o]; };
+            return CentralGradient(at(a + 1, b), at(a - 1, b), at(a, b + 1), at(a, b - 1),
+                                   inv_du(a), inv_dv(b));
+          };
+          product += squared(GradientNormProduct(gradient(grad, goff), gradient(aux, off)));
           ++count;
         }
     const double gp_scale = count > 0 && product > 0.0 ? 1.0 / std::sqrt(product / count) : 1.0;
@@ -518,8 +515,10 @@ void WeingartenProblem::SetGradientAuxiliaries(Eigen::VectorXd* x) const {
       Eigen::Matrix<double, kGeodesicAuxDim, 1> g;
       for (int p = 0; p < 2; ++p) {
         const int off = p == 0 ? kK : kH;
-        const double du = inv_du_[a] * (value(a + 1, b, off) - value(a - 1, b, off));
-        const double dv = inv_dv_[b] * (value(a, b + 1, off) - value(a, b - 1, off));
+        const Eigen::Vector2d gradient =
+            CentralGradient(value(a + 1, b, off), value(a - 1, b, off), value(a, b + 1, off),
+                            value(a, b - 1, off), inv_du_[a], inv_dv_[b]);
+        const double du = gradient.x(), dv = gradient.y();
         const double unit = gradient_scales_[p];
         g[3 * p] = du * du / unit;
         g[3 * p + 1] = du * dv / unit;
