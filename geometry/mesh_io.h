@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "geometry/input_error.h"
+
 namespace gproj {
 
 // Double-precision OpenMesh polygon mesh.
@@ -16,14 +18,6 @@ struct MeshTraits : public OpenMesh::DefaultTraits {
   using Normal = OpenMesh::Vec3d;
 };
 using PolyMesh = OpenMesh::PolyMesh_ArrayKernelT<MeshTraits>;
-
-// Bad input at the boundary: the message is one line and names the file and the offending
-// line / vertex / face and the rule broken, e.g.
-//   "grid.obj:12: face 3 references vertex 40, but the file has 36 vertices".
-class InputError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 // Faces and vertices as read, before any topology is built. Line numbers are 1-based source
 // lines for text formats and 0 where the format has none (binary PLY).
