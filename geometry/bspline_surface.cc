@@ -8,6 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "geometry/bspline_basis.h"
+
 namespace gproj {
 namespace {
 
@@ -47,57 +49,13 @@ Basis EvaluateBasis(const std::vector<double>& knots, int degree, int count, dou
   Basis b;
   b.span = FindSpan(knots, p, count, t);
   t = std::clamp(t, knots[p], knots[count]);
-  const int span = b.span;
-  // ndu(r, j), r ≤ j: the degree-j basis functions (upper triangle); ndu(j, r), j > r: knot
-  // differences (lower triangle).
-  Eigen::MatrixXd ndu(p + 1, p + 1);
-  std::vector<double> left(p + 1), right(p + 1);
-  ndu(0, 0) = 1.0;
-  for (int j = 1; j <= p; ++j) {
-    left[j] = t - knots[span + 1 - j];
-    right[j] = knots[span + j] - t;
-    double saved = 0.0;
-    for (int r = 0; r < j; ++r) {
-      ndu(j, r) = right[r + 1] + left[j - r];
-      const double temp = ndu(r, j - 1) / ndu(j, r);
-      ndu(r, j) = saved + right[r + 1] * temp;
-      saved = left[j - r] * temp;
-    }
-    ndu(j, j) = saved;
-  }
-  b.ders.setZero(3, p + 1);
-  for (int j = 0; j <= p; ++j) b.ders(0, j) = ndu(j, p);
   const int n = std::min(2, p);
-  Eigen::MatrixXd a(2, p + 1);
-  for (int r = 0; r <= p; ++r) {
-    int s1 = 0, s2 = 1;
-    a(0, 0) = 1.0;
-    for (int k = 1; k <= n; ++k) {
-      double d = 0.0;
-      const int rk = r - k, pk = p - k;
-      if (r >= k) {
-        a(s2, 0) = a(s1, 0) / ndu(pk + 1, rk);
-        d = a(s2, 0) * ndu(rk, pk);
-      }
-      const int j1 = rk >= -1 ? 1 : -rk;
-      const int j2 = r - 1 <= pk ? k - 1 : p - r;
-      for (int j = j1; j <= j2; ++j) {
-        a(s2, j) = (a(s1, j) - a(s1, j - 1)) / ndu(pk + 1, rk + j);
-        d += a(s2, j) * ndu(rk + j, pk);
-      }
-      if (r <= pk) {
-        a(s2, k) = -a(s1, k - 1) / ndu(pk + 1, r);
-        d += a(s2, k) * ndu(r, pk);
-      }
-      b.ders(k, r) = d;
-      std::swap(s1, s2);
-    }
-  }
-  double factor = p;
-  for (int k = 1; k <= n; ++k) {
-    b.ders.row(k) *= factor;
-    factor *= p - k;
-  }
+  std::vector<double> scratch(BasisScratchSize(p)), ders((n + 1) * (p + 1));
+  BasisFunctionDerivatives([&](int i) { return knots[i]; }, p, b.span, t, n, scratch.data(),
+                           ders.data());
+  b.ders.setZero(3, p + 1);
+  for (int k = 0; k <= n; ++k)
+    for (int r = 0; r <= p; ++r) b.ders(k, r) = ders[k * (p + 1) + r];
   return b;
 }
 

@@ -8,7 +8,9 @@
 
 #include "constraints/closeness.h"
 #include "constraints/control_net.h"
-#include "constraints/curvature_isolines.h"
+#include "constraints/curvature_relations.h"
+#include "constraints/geodesic_parallel_isolines.h"
+#include "constraints/isoline_alignment.h"
 #include "constraints/polyline_fairness.h"
 
 namespace gproj {

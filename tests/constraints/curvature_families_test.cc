@@ -1,5 +1,3 @@
-#include "constraints/curvature_isolines.h"
-
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -7,6 +5,9 @@
 
 #include "constraint_test_util.h"
 #include "constraints/control_net.h"
+#include "constraints/curvature_relations.h"
+#include "constraints/geodesic_parallel_isolines.h"
+#include "constraints/isoline_alignment.h"
 
 namespace gproj {
 namespace {
