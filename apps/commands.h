@@ -4,13 +4,9 @@
 
 #include <CLI/CLI.hpp>
 
-namespace gproj {
+#include "apps/command_support.h"
 
-// Exit codes shared by all subcommands.
-constexpr int kExitOk = 0;
-constexpr int kExitInputError = 1;     // bad file, mesh or option value: nothing written
-constexpr int kExitNotConverged = 3;   // finished without meeting the tolerance: result written
-constexpr int kExitSolverFailure = 4;  // numerical failure: nothing written
+namespace gproj {
 
 // Registers `gproj planarize`; *exit_code receives the handler's exit code.
 void RegisterPlanarizeCommand(CLI::App* app, int* exit_code);

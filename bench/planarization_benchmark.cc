@@ -35,13 +35,13 @@ void BM_PlanarizationIteration(benchmark::State& state) {
   const bool eliminate = state.range(1) == 1;
   const PolyMesh mesh = NoisyGrid(n);
   PQPlanarizationOptions options;
-  options.max_iterations = 4;
+  options.solver.max_iterations = 4;
   options.tolerance = 1e-300;
   SolverSummary summary;
   double wall = 0.0;
   for (auto _ : state) {
     PQPlanarization pq(mesh, options);
-    SolverOptions solver_options = options.ToSolverOptions();
+    SolverOptions solver_options = options.solver;
     solver_options.eliminate_auxiliaries = eliminate;
     const auto t = Clock::now();
     summary = Solve(solver_options, &pq.problem());
@@ -65,16 +65,12 @@ void BM_PlanarizeToTolerance(benchmark::State& state) {
   const PolyMesh mesh = NoisyGrid(n);
   PQPlanarizationOptions options;
   options.tolerance = 1e-6;
-  options.max_iterations = use_ceres ? 500 : 50;
+  options.solver.max_iterations = use_ceres ? 500 : 50;
   double reached = 0.0, iterations = 0.0;
   for (auto _ : state) {
     PQPlanarization pq(mesh, options);
-    if (use_ceres) {
-      const CeresSummary s = pq.SolveWithCeres(options.max_iterations);
-      iterations = s.iterations.empty() ? 0 : s.iterations.back().iteration;
-    } else {
-      iterations = pq.Solve().num_steps();
-    }
+    iterations =
+        use_ceres ? pq.RunCeres(options.solver.max_iterations).iterations : pq.Run().iterations;
     reached = pq.Measures().max_planarity;
   }
   state.counters["max_planarity"] = reached;

@@ -323,6 +323,8 @@ PolyMesh ReadMesh(const std::string& path, const MeshRequirements& requirements)
   return BuildMesh(ReadPolygonSoup(path), path, requirements);
 }
 
+void CheckMeshExtension(const std::string& path) { FormatOf(path); }
+
 void WriteMeshAtomically(const PolyMesh& mesh, const std::string& path) {
   const Format format = FormatOf(path);
   for (const auto vh : mesh.vertices()) {

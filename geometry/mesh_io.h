@@ -51,6 +51,9 @@ PolyMesh ReadMesh(const std::string& path, const MeshRequirements& requirements 
 // it over `path`. On any failure the temporary is removed, `path` is untouched, and an
 // InputError naming the path is thrown. Throws if any coordinate is non-finite.
 void WriteMeshAtomically(const PolyMesh& mesh, const std::string& path);
+// Throws InputError unless `path` names a mesh format gproj reads and writes (.obj, .off,
+// .ply, any case).
+void CheckMeshExtension(const std::string& path);
 
 // Writes `contents` to `path` atomically (temporary file + rename); throws InputError.
 void WriteTextFileAtomically(const std::string& path, const std::string& contents);

@@ -12,6 +12,17 @@
 
 namespace gproj {
 
+SolverOptions PQPlanarizationSolverDefaults() {
+  SolverOptions s;
+  s.max_iterations = 30;
+  s.residual_tolerance = 0.0;  // the planarity measure decides, through the callback
+  s.step_tolerance = 1e-15;
+  s.fairness_weight = 1.0;
+  s.soft_weight_decay = 0.1;
+  s.soft_weight_floor = 1e-12;
+  return s;
+}
+
 bool PQPlanarizationOptions::IsValid(std::string* why) const {
   auto fail = [why](const std::string& text) {
     *why = text;
@@ -21,28 +32,21 @@ bool PQPlanarizationOptions::IsValid(std::string* why) const {
     return fail("planarity weight must be finite and > 0");
   if (!(closeness_weight >= 0.0) || !std::isfinite(closeness_weight))
     return fail("closeness weight must be finite and ≥ 0");
-  if (!(fairness_weight >= 0.0) || !std::isfinite(fairness_weight))
-    return fail("fairness weight must be finite and ≥ 0");
   if (!(ceres_soft_scale >= 0.0) || !std::isfinite(ceres_soft_scale))
     return fail("ceres soft scale must be finite and ≥ 0");
   if (fairness_order != 2 && fairness_order != 3) return fail("fairness order must be 2 or 3");
   if (!(tolerance > 0.0) || !std::isfinite(tolerance))
     return fail("tolerance must be finite and > 0");
-  return ToSolverOptions().IsValid(why);
+  return solver.IsValid(why);
 }
 
-SolverOptions PQPlanarizationOptions::ToSolverOptions() const {
-  SolverOptions s;
-  s.max_iterations = max_iterations;
-  s.residual_tolerance = 0.0;  // the planarity measure decides, through the callback
-  s.step_tolerance = 1e-15;
-  s.fairness_weight = fairness_weight;
-  s.epsilon = epsilon;
-  s.soft_weight_decay = soft_weight_decay;
-  s.soft_weight_floor = soft_weight_floor;
-  s.linear_solver = linear_solver;
-  s.num_threads = num_threads;
-  return s;
+NamedValues ToNamedValues(const PlanarityMeasures& m) {
+  NamedValues values = {{"max_planarity", m.max_planarity},
+                        {"mean_planarity", m.mean_planarity},
+                        {"max_displacement", m.max_displacement},
+                        {"mean_edge_length", m.mean_edge_length}};
+  if (m.max_concyclicity >= 0.0) values.push_back({"max_concyclicity", m.max_concyclicity});
+  return values;
 }
 
 double DiagonalDistance(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
@@ -130,7 +134,7 @@ PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOpti
       closeness->AddTarget(layout.Item(vertex_block_, v.idx()), x.data() + index);
     }
   }
-  if (options.fairness_weight > 0.0)
+  if (options.solver.fairness_weight > 0.0)
     AddMeshFairness(mesh, options.fairness_order, vertex_block_, &problem_);
 }
 
@@ -141,33 +145,20 @@ PlanarityMeasures PQPlanarization::MeasuresAt(const Eigen::VectorXd& x) const {
   return m;
 }
 
-bool PQPlanarization::MeetsTolerance(const PlanarityMeasures& m) const {
-  return m.max_planarity <= options_.tolerance && m.max_concyclicity <= options_.tolerance;
+bool PQPlanarization::MeetsTolerance(const NamedValues& m) const {
+  return ValueOf(m, "max_planarity") <= options_.tolerance &&
+         (!options_.circular || ValueOf(m, "max_concyclicity") <= options_.tolerance);
 }
 
-PlanarityMeasures PQPlanarization::Measures() const { return MeasuresAt(problem_.x()); }
-
-SolverSummary PQPlanarization::Solve(const Callback& callback) {
-  return SolveWithMeasures<PlanarityMeasures>(
-      options_.ToSolverOptions(), &problem_,
-      [this](const Eigen::VectorXd& x) { return MeasuresAt(x); },
-      [this](const PlanarityMeasures& m) { return MeetsTolerance(m); }, callback);
-}
-
-CeresSummary PQPlanarization::SolveWithCeres(int max_iterations, const CeresCallback& callback) {
+CeresOptions PQPlanarization::ceres_options(int max_iterations) const {
   CeresOptions ceres_options;
   ceres_options.max_iterations = max_iterations;
-  ceres_options.fairness_weight = options_.fairness_weight;
+  ceres_options.fairness_weight = options_.solver.fairness_weight;
   ceres_options.soft_scale = options_.ceres_soft_scale > 0.0
                                  ? options_.ceres_soft_scale
                                  : std::min(1.0, options_.tolerance * 1e-2);
-  ceres_options.num_threads = std::max(1, options_.num_threads);
-  return gproj::SolveWithCeres(ceres_options, &problem_,
-                               [&](const CeresIterationRecord& s, const Eigen::VectorXd& x) {
-                                 const PlanarityMeasures m = MeasuresAt(x);
-                                 if (callback && !callback(s, m)) return false;
-                                 return !MeetsTolerance(m);
-                               });
+  ceres_options.num_threads = std::max(1, options_.solver.num_threads);
+  return ceres_options;
 }
 
 PolyMesh PQPlanarization::Result() const {

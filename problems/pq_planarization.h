@@ -7,6 +7,7 @@
 #include <string>
 
 #include "geometry/mesh_io.h"
+#include "problems/guided_problem.h"
 #include "problems/mesh_variables.h"
 #include "solver/ceres_adapter.h"
 #include "solver/guided_projection.h"
@@ -14,10 +15,16 @@
 
 namespace gproj {
 
+// Guided projection's defaults for planarisation: 30 iterations, ω_f = 1, soft weights fading
+// by 0.1 per iteration down to 1e-12; the planarity measure (not a row residual) decides
+// convergence.
+SolverOptions PQPlanarizationSolverDefaults();
+
 struct PQPlanarizationOptions {
+  // Guided projection (ω_f = solver.fairness_weight weighs the second-difference fairness).
+  SolverOptions solver = PQPlanarizationSolverDefaults();
   double planarity_weight = 1.0;  // weight of the planarity rows
   double closeness_weight = 1.0;  // closeness to the input vertices (scaled mesh units)
-  double fairness_weight = 1.0;   // ω_f of the second-difference fairness
   int fairness_order = 2;         // 2: second differences, 3: third differences
   // Circular quads instead of planar ones (000 §2): every face planar and concyclic, with an
   // auxiliary (normal, centre, squared radius) per face; the tolerance then also bounds the
@@ -25,22 +32,17 @@ struct PQPlanarizationOptions {
   bool circular = false;
   // Stop when the max planarity measure (diagonal distance / mean edge) is ≤ this.
   double tolerance = 1e-9;
-  int max_iterations = 30;
-  // Soft schedule: closeness and fairness weights × max(decay^k, floor) at iteration k.
-  double soft_weight_decay = 0.1;
-  double soft_weight_floor = 1e-12;
-  double epsilon = 1e-3;
   // Ceres path: one fixed-weight problem, closeness and fairness × this scale (0: tolerance /
   // 100, whose optimum meets the tolerance on typical inputs since the planarity left at the
   // optimum is roughly proportional to the soft weights).
   double ceres_soft_scale = 0.0;
-  LinearSolverType linear_solver = LinearSolverType::kCholmod;
-  int num_threads = 0;
 
   bool IsValid(std::string* why) const;
-  SolverOptions ToSolverOptions() const;
 };
 
+// PQ planarisation's measures; as named values (the report's keys): max_planarity,
+// mean_planarity, max_displacement, mean_edge_length and, for circular problems,
+// max_concyclicity.
 struct PlanarityMeasures {
   double max_planarity = 0.0;     // max over faces of (diagonal distance) / (mean edge length)
   double mean_planarity = 0.0;    // mean of the same
@@ -51,6 +53,8 @@ struct PlanarityMeasures {
   double max_concyclicity = -1.0;
 };
 
+NamedValues ToNamedValues(const PlanarityMeasures& m);
+
 // Distance between the two diagonal lines of a quad.
 double DiagonalDistance(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
                         const Eigen::Vector3d& v2, const Eigen::Vector3d& v3);
@@ -59,27 +63,25 @@ double DiagonalDistance(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
 // the mesh itself).
 PlanarityMeasures MeasurePlanarity(const PolyMesh& mesh, const PolyMesh& reference);
 
-class PQPlanarization {
+// Run() is guided projection to the tolerance; RunCeres() minimises the same rows with fixed
+// weights (closeness and fairness × ceres_soft_scale) by Ceres LM.
+class PQPlanarization : public GuidedProblem {
  public:
   // `mesh` must be a valid quad mesh (ReadMesh with quads_only). Throws InputError otherwise.
   PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOptions& options);
 
-  // Guided projection. `callback` sees every iteration with the current measures; its return
-  // value can stop the run. The run stops on its own when the tolerance is met.
-  using Callback = std::function<CallbackResult(const IterationRecord&, const PlanarityMeasures&)>;
-  SolverSummary Solve(const Callback& callback = nullptr);
-
-  // The same problem (rows, weights at the final soft scale) minimised by Ceres LM.
-  // Stops when the tolerance is met, or Ceres converges.
-  using CeresCallback = std::function<bool(const CeresIterationRecord&, const PlanarityMeasures&)>;
-  CeresSummary SolveWithCeres(int max_iterations, const CeresCallback& callback = nullptr);
+  Problem& problem() override { return problem_; }
+  SolverOptions solver_options() const override { return options_.solver; }
+  CeresOptions ceres_options(int max_iterations) const override;
+  NamedValues MeasureAt(const Eigen::VectorXd& x) const override {
+    return ToNamedValues(MeasuresAt(x));
+  }
+  // Planarity, and concyclicity when circular, within the tolerance.
+  bool MeetsTolerance(const NamedValues& m) const override;
 
   // Current vertices, in input units.
   PolyMesh Result() const;
-  PlanarityMeasures Measures() const;
-  // Whether the measures meet the tolerance (planarity, and concyclicity when circular).
-  bool MeetsTolerance(const PlanarityMeasures& m) const;
-  Problem& problem() { return problem_; }
+  PlanarityMeasures Measures() const { return MeasuresAt(problem_.x()); }
   const PQPlanarizationOptions& options() const { return options_; }
 
  private:

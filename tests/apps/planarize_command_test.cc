@@ -50,6 +50,57 @@ TEST_F(PlanarizeCommandTest, PlanarizesAValidMeshAndWritesReport) {
   EXPECT_NE(r.out.find("wrote"), std::string::npos);
 }
 
+TEST_F(PlanarizeCommandTest, ChecksEveryOutputPathBeforeWorking) {
+  const std::string in = Write("in.obj", kQuad2x1);
+  const std::string missing = (dir_ / "missing" / "x").string();
+  const CommandRun out =
+      Gproj("planarize " + in + " -o " + missing + ".obj --report " + (dir_ / "r.json").string());
+  EXPECT_EQ(out.exit_code, 1) << out.err;
+  EXPECT_NE(out.err.find("--output"), std::string::npos) << out.err;
+  EXPECT_NE(out.err.find("does not exist"), std::string::npos) << out.err;
+  EXPECT_FALSE(fs::exists(dir_ / "r.json")) << "the report was written for a refused run";
+  for (const auto& [option, extra] : std::vector<std::pair<std::string, std::string>>{
+           {"--report", "--report " + missing}, {"--picture", "--picture " + missing}}) {
+    const CommandRun r =
+        Gproj("planarize " + in + " -o " + (dir_ / "out.obj").string() + " " + extra);
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find(option), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "out.obj")) << "the mesh was written before the check";
+  }
+  const CommandRun stl = Gproj("planarize " + in + " -o " + (dir_ / "out.stl").string());
+  EXPECT_EQ(stl.exit_code, 1);
+  EXPECT_NE(stl.err.find(".stl"), std::string::npos) << stl.err;
+}
+
+TEST_F(PlanarizeCommandTest, AStalledRunIsNotConvergence) {
+  // Fixed soft weights stall far above the tolerance: the step tolerance is met, the asked
+  // planarity is not, so the exit code is 3 and the report says converged: false.
+  const std::string in = Write("in.obj", kQuad2x1);
+  const CommandRun r =
+      Gproj("planarize " + in + " -o " + (dir_ / "out.obj").string() +
+            " --soft-decay 1 --soft-floor 1 --closeness 10 --report " + (dir_ / "r.json").string());
+  EXPECT_EQ(r.exit_code, 3) << r.err << r.out;
+  EXPECT_TRUE(fs::exists(dir_ / "out.obj"));
+  const std::string report = Slurp(dir_ / "r.json");
+  EXPECT_NE(report.find("\"converged\": false"), std::string::npos) << report;
+  EXPECT_NE(r.err.find("tolerance"), std::string::npos) << r.err;
+}
+
+TEST_F(PlanarizeCommandTest, ReportHasTheSharedSchema) {
+  const std::string in = Write("in.obj", kQuad2x1);
+  for (const char* solver : {"gp", "ceres"}) {
+    const CommandRun r =
+        Gproj("planarize " + in + " -o " + (dir_ / "out.obj").string() + " --solver " + solver +
+              " --tolerance 1e-6 --report " + (dir_ / "r.json").string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string report = Slurp(dir_ / "r.json");
+    for (const char* key :
+         {"\"command\": \"planarize\"", "\"solver\"", "\"failed\": false", "\"termination\"",
+          "\"initial\"", "\"final\"", "\"history\"", "\"families\"", "\"step\"", "\"energy\""})
+      EXPECT_NE(report.find(key), std::string::npos) << solver << " " << key;
+  }
+}
+
 TEST_F(PlanarizeCommandTest, CeresSolverPathWorks) {
   const std::string in = Write("in.obj", kQuad2x1);
   const CommandRun r =

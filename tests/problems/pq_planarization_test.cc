@@ -21,12 +21,16 @@ TEST(PQPlanarizationTest, ShippedNoisyGridReachesPlanarity1e9) {
   PQPlanarization pq(mesh, options);
   const PlanarityMeasures before = pq.Measures();
   EXPECT_GT(before.max_planarity, 1e-2);  // the input really is far from planar
-  const SolverSummary summary = pq.Solve();
-  ASSERT_TRUE(summary.converged()) << summary.FullReport();
+  const RunReport report = pq.Run();
+  ASSERT_TRUE(report.converged) << report.summary.FullReport();
   const PlanarityMeasures after = MeasurePlanarity(pq.Result(), mesh);
   EXPECT_LE(after.max_planarity, 1e-9);
   EXPECT_LE(after.max_displacement, 0.02);
-  EXPECT_LE(summary.num_steps(), 30);
+  EXPECT_LE(report.iterations, 30);
+  EXPECT_DOUBLE_EQ(ValueOf(report.final, "max_planarity"), after.max_planarity);
+  EXPECT_DOUBLE_EQ(ValueOf(report.initial, "max_planarity"), before.max_planarity);
+  ASSERT_EQ(report.history.size(), static_cast<size_t>(report.iterations + 1));
+  EXPECT_DOUBLE_EQ(ValueOf(report.history.back().measures, "max_planarity"), after.max_planarity);
 }
 
 TEST(PQPlanarizationTest, CholmodAndEigenBackendsAgree) {
@@ -35,13 +39,13 @@ TEST(PQPlanarizationTest, CholmodAndEigenBackendsAgree) {
   grid.noise = 0.1;
   const PolyMesh mesh = MakeQuadGrid(grid);
   PQPlanarizationOptions options;
-  options.max_iterations = 5;
+  options.solver.max_iterations = 5;
   options.tolerance = 1e-300;
   PQPlanarization a(mesh, options);
-  options.linear_solver = LinearSolverType::kEigen;
+  options.solver.linear_solver = LinearSolverType::kEigen;
   PQPlanarization b(mesh, options);
-  a.Solve();
-  b.Solve();
+  a.Run();
+  b.Run();
   EXPECT_LT((a.problem().x() - b.problem().x()).lpNorm<Eigen::Infinity>(), 1e-10);
 }
 
@@ -51,10 +55,10 @@ TEST(PQPlanarizationTest, EliminatingTheNormalsGivesTheSameIterates) {
   grid.noise = 0.1;
   const PolyMesh mesh = MakeQuadGrid(grid);
   PQPlanarizationOptions options;
-  options.max_iterations = 6;
+  options.solver.max_iterations = 6;
   options.tolerance = 1e-300;
   PQPlanarization with(mesh, options), without(mesh, options);
-  SolverOptions solver_options = options.ToSolverOptions();
+  SolverOptions solver_options = options.solver;
   const SolverSummary s1 = Solve(solver_options, &with.problem());
   solver_options.eliminate_auxiliaries = false;
   const SolverSummary s2 = Solve(solver_options, &without.problem());
@@ -74,28 +78,32 @@ TEST(PQPlanarizationTest, GuidedProjectionAndCeresReachTheSameObjective) {
   const PolyMesh mesh = MakeQuadGrid(grid);
   PQPlanarizationOptions options;
   options.closeness_weight = 1e-7;
-  options.fairness_weight = 3e-4;
-  options.soft_weight_decay = 1.0;
-  options.epsilon = 1e-7;
-  options.max_iterations = 500;
+  options.solver.fairness_weight = 3e-4;
+  options.solver.soft_weight_decay = 1.0;
+  options.solver.epsilon = 1e-7;
+  options.solver.max_iterations = 500;
   options.tolerance = 1e-300;      // run both to their own convergence
   options.ceres_soft_scale = 1.0;  // the same fixed weights as guided projection
   PQPlanarization gp(mesh, options);
   PQPlanarization ceres(mesh, options);
-  const SolverSummary summary = gp.Solve();
-  ASSERT_TRUE(summary.converged()) << summary.FullReport();
-  const CeresSummary cs = ceres.SolveWithCeres(500);
-  ASSERT_TRUE(cs.IsSolutionUsable()) << cs.FullReport();
+  // Both stop at a stationary point of the objective; the tolerance is out of reach.
+  const RunReport report = gp.Run();
+  ASSERT_TRUE(report.summary.converged()) << report.summary.FullReport();
+  EXPECT_FALSE(report.converged);
+  const RunReport cs = ceres.RunCeres(500);
+  ASSERT_FALSE(cs.failed) << cs.termination;
+  EXPECT_EQ(cs.solver, "ceres");
 
-  const double e_gp = EvaluateObjective(&gp.problem(), options.fairness_weight, gp.problem().x());
+  const double e_gp =
+      EvaluateObjective(&gp.problem(), options.solver.fairness_weight, gp.problem().x());
   const double e_ceres =
-      EvaluateObjective(&ceres.problem(), options.fairness_weight, ceres.problem().x());
+      EvaluateObjective(&ceres.problem(), options.solver.fairness_weight, ceres.problem().x());
   EXPECT_GT(e_gp, 0.0);
   EXPECT_NEAR(e_gp, e_ceres, 1e-6 * e_ceres);
   for (PQPlanarization* pq : {&gp, &ceres}) {
     LinearizedSystem system(&pq->problem());
     std::string why;
-    ASSERT_TRUE(system.Assemble(pq->problem().x(), options.fairness_weight, 1.0, &why));
+    ASSERT_TRUE(system.Assemble(pq->problem().x(), options.solver.fairness_weight, 1.0, &why));
     const int rows = pq->problem().family(0).num_rows();
     ASSERT_EQ(pq->problem().family(0).name(), "planarity");
     EXPECT_LT(system.phi().head(rows).cwiseAbs().maxCoeff(), 1e-8);
@@ -113,8 +121,9 @@ TEST(PQPlanarizationTest, CircularModeMakesQuadsConcyclic) {
   PQPlanarizationOptions options;
   options.circular = true;
   PQPlanarization circular(mesh, options);
-  const SolverSummary s = circular.Solve();
-  ASSERT_TRUE(s.converged()) << s.FullReport();
+  const RunReport s = circular.Run();
+  ASSERT_TRUE(s.converged) << s.termination;
+  EXPECT_LE(ValueOf(s.final, "max_concyclicity"), 1e-9);
   const PlanarityMeasures m = circular.Measures();
   EXPECT_LE(m.max_planarity, 1e-9);
   EXPECT_LE(m.max_concyclicity, 1e-9);
@@ -122,7 +131,8 @@ TEST(PQPlanarizationTest, CircularModeMakesQuadsConcyclic) {
   EXPECT_LT(m.max_displacement, 0.02);
 
   PQPlanarization planar(mesh, PQPlanarizationOptions{});
-  ASSERT_TRUE(planar.Solve().converged());
+  ASSERT_TRUE(planar.Run().converged);
+  EXPECT_TRUE(std::isnan(ValueOf(planar.Measure(), "max_concyclicity")));
   EXPECT_GT(MeasureCircularity(planar.Result()).max_concyclicity, 1e-5);
 }
 

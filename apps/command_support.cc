@@ -1,0 +1,167 @@
+#include "apps/command_support.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "geometry/mesh_io.h"
+
+namespace gproj {
+
+namespace fs = std::filesystem;
+
+void CheckOutputPath(const std::string& option, const std::string& path) {
+  if (path.empty()) return;
+  const std::string where = option + " " + path + ": ";
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw InputError(where + "is a directory, not a file");
+  fs::path directory = fs::path(path).parent_path();
+  if (directory.empty()) directory = ".";
+  if (!fs::is_directory(directory, ec))
+    throw InputError(where + "the directory " + directory.string() + " does not exist");
+  if (::access(directory.c_str(), W_OK) != 0)
+    throw InputError(where + "the directory " + directory.string() + " is not writable");
+}
+
+void CheckMeshOutputPath(const std::string& option, const std::string& path) {
+  CheckOutputPath(option, path);
+  try {
+    CheckMeshExtension(path);
+  } catch (const InputError& e) {
+    throw InputError(option + " " + e.what());
+  }
+}
+
+void AddSolverOptions(CLI::App* command, SolverOptions* solver, std::string* linear_solver) {
+  command->add_option("--max-iterations", solver->max_iterations, "Iterations at most")
+      ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
+  command
+      ->add_option("--fairness", solver->fairness_weight,
+                   "omega_f: weight of the fairness (second differences along polylines)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command
+      ->add_option("--soft-decay", solver->soft_weight_decay,
+                   "Closeness and fairness weights are multiplied by this each iteration ...")
+      ->check(CLI::Range(1e-12, 1.0))
+      ->capture_default_str();
+  command
+      ->add_option("--soft-floor", solver->soft_weight_floor,
+                   "... down to this fraction of their initial value")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  command
+      ->add_option("--epsilon", solver->epsilon,
+                   "epsilon: weight of the proximal term eps^2 |x - x^k|^2")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command
+      ->add_option("--linear-solver", *linear_solver,
+                   "Sparse Cholesky backend for gp: cholmod (supernodal) or eigen")
+      ->check(CLI::IsMember({"cholmod", "eigen"}))
+      ->capture_default_str();
+  command->add_option("--threads", solver->num_threads, "Threads for BLAS / Ceres (0: default)")
+      ->check(CLI::Range(0, 256))
+      ->capture_default_str();
+}
+
+void ApplyLinearSolver(const std::string& name, SolverOptions* solver) {
+  if (!ParseLinearSolverType(name, &solver->linear_solver))
+    throw InputError("--linear-solver must be cholmod or eigen, not '" + name + "'");
+}
+
+void IterationLog::PrintHeader() const {
+  std::printf("%5s %13s", "iter", "energy");
+  for (const std::string& m : measures_) std::printf(" %15s", m.c_str());
+  std::printf(" %11s %10s\n", "step", "time_s");
+  std::fflush(stdout);
+}
+
+void IterationLog::Print(const RunRecord& r) const {
+  std::printf("%5d %13.6e", r.iteration, r.energy);
+  for (const std::string& m : measures_) std::printf(" %15.3e", ValueOf(r.measures, m));
+  std::printf(" %11.3e %10.4f\n", r.step, r.seconds);
+  std::fflush(stdout);
+}
+
+namespace {
+
+// Non-finite numbers become null (JSON has no NaN).
+nlohmann::json Number(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+nlohmann::json MeasuresJson(const NamedValues& values) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const NamedValue& v : values) j[v.name] = Number(v.value);
+  return j;
+}
+
+nlohmann::json RecordJson(const RunRecord& r) {
+  nlohmann::json j = {{"iteration", r.iteration},   {"energy", Number(r.energy)},
+                      {"step", Number(r.step)},     {"epsilon", r.epsilon},
+                      {"soft_scale", r.soft_scale}, {"seconds", r.seconds}};
+  for (const NamedValue& v : r.measures) j[v.name] = Number(v.value);
+  nlohmann::json families = nlohmann::json::object();
+  for (const FamilyResidual& f : r.families)
+    families[f.name] = {{"max", Number(f.max_abs)}, {"rms", Number(f.rms)}};
+  j["families"] = families;
+  j["assembly_seconds"] = r.assembly_seconds;
+  j["factorization_seconds"] = r.factorization_seconds;
+  j["solve_seconds"] = r.solve_seconds;
+  return j;
+}
+
+}  // namespace
+
+nlohmann::json ReportJson(const std::string& command, const RunReport& report,
+                          const nlohmann::json& extra) {
+  nlohmann::json history = nlohmann::json::array();
+  for (const RunRecord& r : report.history) history.push_back(RecordJson(r));
+  nlohmann::json j = {{"command", command},
+                      {"solver", report.solver},
+                      {"converged", report.converged},
+                      {"failed", report.failed},
+                      {"termination", report.termination},
+                      {"iterations", report.iterations},
+                      {"seconds", report.seconds},
+                      {"variables", report.variables},
+                      {"initial", MeasuresJson(report.initial)},
+                      {"final", MeasuresJson(report.final)},
+                      {"history", history}};
+  for (auto it = extra.begin(); it != extra.end(); ++it) j[it.key()] = it.value();
+  return j;
+}
+
+int ExitCodeOf(const RunReport& report) {
+  if (report.failed) return kExitSolverFailure;
+  return report.converged ? kExitOk : kExitNotConverged;
+}
+
+int ConcludeRun(const std::string& command, const RunReport& report, const std::string& measure,
+                double tolerance, const std::vector<std::string>& written) {
+  std::printf("%s after %d iterations, %.3f s\n", report.termination.c_str(), report.iterations,
+              report.seconds);
+  const int code = ExitCodeOf(report);
+  if (code == kExitSolverFailure) {
+    std::fprintf(stderr, "gproj %s: solver failed (%s); nothing written\n", command.c_str(),
+                 report.termination.c_str());
+    return code;
+  }
+  std::string files;
+  for (const std::string& path : written)
+    if (!path.empty()) files += (files.empty() ? "" : ", ") + path;
+  std::printf("wrote %s\n", files.c_str());
+  if (code == kExitNotConverged)
+    std::fprintf(stderr,
+                 "gproj %s: tolerance %.1e not reached (%s %.3e); the result was written, exit "
+                 "code %d\n",
+                 command.c_str(), tolerance, measure.c_str(), ValueOf(report.final, measure),
+                 kExitNotConverged);
+  return code;
+}
+
+}  // namespace gproj

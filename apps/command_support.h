@@ -1,0 +1,62 @@
+#pragma once
+// What every subcommand shares, so that each one only parses, calls, logs and writes: output
+// paths checked before the work starts, guided projection's options on the command line, the
+// live iteration log, the JSON report (one schema for every command) and the exit codes.
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "problems/guided_problem.h"
+
+namespace gproj {
+
+// Exit codes shared by all subcommands.
+constexpr int kExitOk = 0;
+constexpr int kExitInputError = 1;     // bad file, mesh or option value: nothing written
+constexpr int kExitNotConverged = 3;   // finished without meeting the tolerance: result written
+constexpr int kExitSolverFailure = 4;  // numerical failure: nothing written
+
+// Throws InputError naming `option` and `path` when the path cannot be written: its directory
+// is missing or not writable, or the path is a directory. An empty path (option not given)
+// passes.
+void CheckOutputPath(const std::string& option, const std::string& path);
+// The same, and the extension must be a mesh format (.obj, .off or .ply).
+void CheckMeshOutputPath(const std::string& option, const std::string& path);
+
+// Guided projection's options as command-line options (--max-iterations, --epsilon,
+// --soft-decay, --soft-floor, --fairness, --linear-solver, --threads), with the problem's
+// defaults shown in --help. `linear_solver` receives the backend's name; ApplyLinearSolver
+// turns it into the option.
+void AddSolverOptions(CLI::App* command, SolverOptions* solver, std::string* linear_solver);
+void ApplyLinearSolver(const std::string& name, SolverOptions* solver);
+
+// The live log: a header line, then one line per record with the iteration, the energy, the
+// given measures, the step and the time; flushed after every line.
+class IterationLog {
+ public:
+  explicit IterationLog(std::vector<std::string> measures) : measures_(std::move(measures)) {}
+  void PrintHeader() const;
+  void Print(const RunRecord& record) const;
+
+ private:
+  std::vector<std::string> measures_;
+};
+
+// The report: command, solver, converged, failed, termination, iterations, seconds,
+// variables, initial and final measures, and the history (per record: iteration, energy, step,
+// epsilon, soft_scale, seconds, the measures, per-term residuals and the time split); `extra`
+// adds the command's own keys (input, output, options, …).
+nlohmann::json ReportJson(const std::string& command, const RunReport& report,
+                          const nlohmann::json& extra);
+
+// 0 converged, 3 tolerance not met (result written), 4 numerical failure (nothing written).
+int ExitCodeOf(const RunReport& report);
+
+// Prints how the run ended and what was written, and the error line for a failure or a missed
+// tolerance (naming `measure` and `tolerance`); returns ExitCodeOf(report).
+int ConcludeRun(const std::string& command, const RunReport& report, const std::string& measure,
+                double tolerance, const std::vector<std::string>& written);
+
+}  // namespace gproj

@@ -1,0 +1,90 @@
+#include "problems/guided_problem.h"
+
+#include <chrono>
+#include <cmath>
+
+namespace gproj {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Fills the fields every run shares once the solver has stopped.
+void Conclude(const GuidedProblem& problem, Clock::time_point start, RunReport* report) {
+  report->failed = report->failed || !problem.problem().x().allFinite();
+  if (!report->failed) report->final = problem.Measure();
+  report->converged = !report->failed && problem.MeetsTolerance(report->final);
+  report->seconds = SecondsSince(start);
+}
+
+}  // namespace
+
+double ValueOf(const NamedValues& values, const std::string& name) {
+  for (const NamedValue& v : values)
+    if (v.name == name) return v.value;
+  return NAN;
+}
+
+RunReport GuidedProblem::Run(const RunCallback& callback) {
+  const auto start = Clock::now();
+  RunReport report;
+  report.solver = "gp";
+  report.variables = problem().layout().num_variables();
+  report.initial = Measure();
+  report.summary =
+      Solve(solver_options(), &problem(), [&](const IterationRecord& r, const Eigen::VectorXd& x) {
+        RunRecord record;
+        record.iteration = r.iteration;
+        record.energy = r.energy;
+        record.step = r.step_norm;
+        record.epsilon = r.epsilon;
+        record.soft_scale = r.soft_scale;
+        record.assembly_seconds = r.assembly_seconds;
+        record.factorization_seconds = r.factorization_seconds;
+        record.solve_seconds = r.solve_seconds;
+        record.seconds = r.assembly_seconds + r.factorization_seconds + r.solve_seconds;
+        record.families = r.families;
+        record.measures = MeasureAt(x);
+        report.history.push_back(record);
+        if (callback && !callback(record)) return CallbackResult::kAbort;
+        return MeetsTolerance(record.measures) ? CallbackResult::kConverged
+                                               : CallbackResult::kContinue;
+      });
+  report.termination =
+      std::string(TerminationTypeName(report.summary.termination)) + ": " + report.summary.message;
+  report.iterations = report.summary.num_steps();
+  report.failed = report.summary.termination == TerminationType::kFailure;
+  Conclude(*this, start, &report);
+  return report;
+}
+
+RunReport GuidedProblem::RunCeres(int max_iterations, const RunCallback& callback) {
+  const auto start = Clock::now();
+  RunReport report;
+  report.solver = "ceres";
+  report.variables = problem().layout().num_variables();
+  report.initial = Measure();
+  const CeresSummary summary =
+      SolveWithCeres(ceres_options(max_iterations), &problem(),
+                     [&](const CeresIterationRecord& s, const Eigen::VectorXd& x) {
+                       RunRecord record;
+                       record.iteration = s.iteration;
+                       record.energy = s.cost;
+                       record.step = s.step_norm;
+                       record.seconds = s.iteration_time_in_seconds;
+                       record.measures = MeasureAt(x);
+                       report.history.push_back(record);
+                       if (callback && !callback(record)) return false;
+                       return !MeetsTolerance(record.measures);
+                     });
+  report.termination = "ceres " + summary.ceres_termination + ": " + summary.message;
+  report.iterations = summary.num_steps();
+  report.failed = summary.termination == TerminationType::kFailure;
+  Conclude(*this, start, &report);
+  return report;
+}
+
+}  // namespace gproj
