@@ -26,6 +26,7 @@ void CheckOutputPath(const std::string& option, const std::string& path) {
 }
 
 void CheckMeshOutputPath(const std::string& option, const std::string& path) {
+  if (path.empty()) return;
   CheckOutputPath(option, path);
   try {
     CheckMeshExtension(path);

@@ -43,9 +43,6 @@ void AddSharedOptions(CLI::App* cmd, NetArgs* args) {
                   "(n-2 quads of each star)")
       ->check(CLI::IsMember({"normals", "quads"}))
       ->capture_default_str();
-  cmd->add_option("--max-iterations", o.max_iterations, "Iterations of the A-net step at most")
-      ->check(CLI::Range(0, 100000))
-      ->capture_default_str();
   cmd->add_option("--tolerance", o.tolerance,
                   "A-net step stops when max star planarity (neighbour distance from the star "
                   "plane / mean edge) is <= this")
@@ -59,27 +56,27 @@ void AddSharedOptions(CLI::App* cmd, NetArgs* args) {
                   "Weight of the distance to the reference's closest points")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  cmd->add_option("--fairness", o.fairness_weight, "omega_f of the polyline fairness")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
   cmd->add_option("--fairness-order", o.fairness_order, "2: second differences, 3: third")
       ->check(CLI::IsMember({2, 3}))
       ->capture_default_str();
-  cmd->add_option("--epsilon", o.epsilon, "epsilon of the proximal term eps^2 |x - x^k|^2")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  cmd->add_option("--linear-solver", args->linear_solver, "cholmod or eigen")
-      ->check(CLI::IsMember({"cholmod", "eigen"}))
-      ->capture_default_str();
+  AddSolverOptions(cmd, &o.solver, &args->linear_solver);
 }
 
-// Reads the inputs and fills the options; returns false after printing the error.
+// Reads the inputs, checks the output paths and fills the options; returns false after printing
+// the error.
 bool Prepare(const char* name, NetArgs* args, PolyMesh* mesh,
              std::unique_ptr<PolyMesh>* reference) {
   args->options.anet.star_form =
       args->star_form == "quads" ? StarPlanarityForm::kQuads : StarPlanarityForm::kNormals;
-  ParseLinearSolverType(args->linear_solver, &args->options.anet.linear_solver);
   try {
+    ApplyLinearSolver(args->linear_solver, &args->options.anet.solver);
+    for (const auto& [option, path] :
+         {std::pair<const char*, const std::string&>{"--output", args->output},
+          {"--report", args->report},
+          {"--picture", args->picture}})
+      CheckOutputPath(option, path);
+    if (std::string(name) == "anet") CheckMeshOutputPath("--output", args->output);
+    CheckMeshOutputPath("--surface-mesh", args->surface_mesh);
     *mesh = ReadMesh(args->input, MeshRequirements{true});
     CheckANetTopology(*mesh, args->input);
     if (!args->reference.empty()) reference->reset(new PolyMesh(ReadMesh(args->reference)));
@@ -90,21 +87,12 @@ bool Prepare(const char* name, NetArgs* args, PolyMesh* mesh,
   return true;
 }
 
-CallbackResult LogIteration(const IterationRecord& r, const StarPlanarityMeasures& m) {
-  std::printf("%5d %13.6e %13.3e %13.3e %11.3e %10.4f\n", r.iteration, r.energy,
-              m.max_star_planarity, m.mean_star_planarity, r.step_norm,
-              r.assembly_seconds + r.factorization_seconds + r.solve_seconds);
-  std::fflush(stdout);
-  return CallbackResult::kContinue;
-}
-
-void PrintHeader() {
-  std::printf("%5s %13s %13s %13s %11s %10s\n", "iter", "energy", "max_star", "mean_star", "step",
-              "time_s");
+const IterationLog& StarLog() {
+  static const IterationLog log({"max_star_planarity", "mean_star_planarity"});
+  return log;
 }
 
 int RunANet(NetArgs& args) {
-  const auto start = std::chrono::steady_clock::now();
   PolyMesh mesh;
   std::unique_ptr<PolyMesh> reference;
   if (!Prepare("anet", &args, &mesh, &reference)) return kExitInputError;
@@ -115,55 +103,31 @@ int RunANet(NetArgs& args) {
     std::cerr << "gproj anet: " << args.input << ": " << e.what() << "\n";
     return kExitInputError;
   }
-  const StarPlanarityMeasures initial = anet->Measures();
   std::printf("gproj anet: %s: %zu vertices, %zu quads, %d variables\n", args.input.c_str(),
               mesh.n_vertices(), mesh.n_faces(), anet->problem().layout().num_variables());
-  PrintHeader();
-  nlohmann::json history = nlohmann::json::array();
-  const SolverSummary summary =
-      anet->Solve([&](const IterationRecord& r, const StarPlanarityMeasures& m) {
-        history.push_back({{"iteration", r.iteration},
-                           {"energy", r.energy},
-                           {"step", r.step_norm},
-                           {"star", StarJson(m)}});
-        return LogIteration(r, m);
-      });
-  const StarPlanarityMeasures final_measures = anet->Measures();
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const bool failed = summary.termination == TerminationType::kFailure;
-  nlohmann::json report = {{"command", "anet"},
-                           {"input", args.input},
-                           {"output", failed ? "" : args.output},
-                           {"converged", summary.converged()},
-                           {"termination", std::string(TerminationTypeName(summary.termination)) +
-                                               ": " + summary.message},
-                           {"iterations", summary.num_steps()},
-                           {"seconds", seconds},
-                           {"variables", summary.num_variables},
-                           {"initial", StarJson(initial)},
-                           {"final", StarJson(final_measures)},
-                           {"history", history}};
+  StarLog().PrintHeader();
+  const RunReport report = anet->Run([](const RunRecord& r) { return StarLog().Print(r), true; });
+  const nlohmann::json extra = {{"input", args.input},
+                                {"output", report.failed ? "" : args.output},
+                                {"vertices", mesh.n_vertices()},
+                                {"faces", mesh.n_faces()}};
   try {
-    if (!failed) WriteMeshAtomically(anet->Result(), args.output);
-    if (!args.report.empty()) WriteTextFileAtomically(args.report, report.dump(2) + "\n");
+    if (!report.failed) WriteMeshAtomically(anet->Result(), args.output);
+    if (!args.report.empty())
+      WriteTextFileAtomically(args.report, ReportJson("anet", report, extra).dump(2) + "\n");
   } catch (const InputError& e) {
     std::cerr << "gproj anet: " << e.what() << "\n";
     return kExitInputError;
   }
-  std::printf(
-      "%s after %d iterations, %.3f s\nfinal: max star planarity %.3e, mean %.3e, max "
-      "displacement %.3e of the bbox diagonal\n",
-      TerminationTypeName(summary.termination), summary.num_steps(), seconds,
-      final_measures.max_star_planarity, final_measures.mean_star_planarity,
-      final_measures.max_displacement);
-  if (failed) {
-    std::cerr << "gproj anet: solver failed (" << summary.message << "); nothing written\n";
-    return kExitSolverFailure;
+  if (!report.failed) {
+    const StarPlanarityMeasures m = anet->Measures();
+    std::printf(
+        "final: max star planarity %.3e, mean %.3e, max displacement %.3e of the bbox "
+        "diagonal\n",
+        m.max_star_planarity, m.mean_star_planarity, m.max_displacement);
   }
-  std::printf("wrote %s%s%s\n", args.output.c_str(), args.report.empty() ? "" : " and ",
-              args.report.c_str());
-  return summary.converged() ? kExitOk : kExitNotConverged;
+  return ConcludeRun("anet", report, "max_star_planarity", args.options.anet.tolerance,
+                     {args.output, args.report});
 }
 
 nlohmann::json HNetJson(const PolyMesh& mesh, const std::vector<std::array<double, 4>>& weights) {
@@ -201,13 +165,13 @@ int RunHNet(NetArgs& args) {
   bool header = false;
   nlohmann::json rounds = nlohmann::json::array();
   const HNetSummary summary = hnet->Run(
-      [&](const IterationRecord& r, const StarPlanarityMeasures& m) {
+      [&](const RunRecord& r) {
         if (!header) {
           std::printf("A-net step:\n");
-          PrintHeader();
+          StarLog().PrintHeader();
           header = true;
         }
-        return LogIteration(r, m);
+        return StarLog().Print(r), true;
       },
       [&](const HNetRound& r) {
         if (r.round == 0)

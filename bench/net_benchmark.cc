@@ -25,12 +25,12 @@ void BM_ANetIteration(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const PolyMesh exact = Enneper(n, 0.0), mesh = Enneper(n, 0.03);
   ANetOptions options;
-  options.max_iterations = 4;
+  options.solver.max_iterations = 4;
   options.tolerance = 1e-300;
   SolverSummary summary;
   for (auto _ : state) {
     ANet anet(mesh, &exact, options);
-    summary = anet.Solve();
+    summary = anet.Run().summary;
   }
   SetSolverCounters(summary, &state);
 }

@@ -35,27 +35,32 @@ bool ANetOptions::IsValid(std::string* why) const {
     *why = text;
     return false;
   };
-  for (double w : {planarity_weight, tangent_weight, point_weight, anchor_weight, fairness_weight})
+  for (double w : {planarity_weight, tangent_weight, point_weight, anchor_weight,
+                   ceres_soft_scale})
     if (!(w >= 0.0) || !std::isfinite(w)) return fail("weights must be finite and ≥ 0");
   if (!(planarity_weight > 0.0)) return fail("planarity weight must be > 0");
   if (fairness_order != 2 && fairness_order != 3) return fail("fairness order must be 2 or 3");
   if (!(tolerance > 0.0) || !std::isfinite(tolerance))
     return fail("tolerance must be finite and > 0");
-  return ToSolverOptions().IsValid(why);
+  return solver.IsValid(why);
 }
 
-SolverOptions ANetOptions::ToSolverOptions() const {
+SolverOptions ANetSolverDefaults() {
   SolverOptions s;
-  s.max_iterations = max_iterations;
-  s.residual_tolerance = 0.0;
+  s.max_iterations = 50;
+  s.residual_tolerance = 0.0;  // the star-planarity measure decides, through the callback
   s.step_tolerance = 1e-15;
-  s.fairness_weight = fairness_weight;
-  s.epsilon = epsilon;
-  s.soft_weight_decay = soft_weight_decay;
-  s.soft_weight_floor = soft_weight_floor;
-  s.linear_solver = linear_solver;
-  s.num_threads = num_threads;
+  s.fairness_weight = 0.5;
+  s.soft_weight_decay = 0.3;
+  s.soft_weight_floor = 1e-10;
   return s;
+}
+
+NamedValues ToNamedValues(const StarPlanarityMeasures& m) {
+  return {{"max_star_planarity", m.max_star_planarity},
+          {"mean_star_planarity", m.mean_star_planarity},
+          {"worst_vertex", static_cast<double>(m.worst_vertex)},
+          {"max_displacement", m.max_displacement}};
 }
 
 StarPlanarityMeasures MeasureStarPlanarity(const PolyMesh& mesh, const PolyMesh& reference) {
@@ -160,7 +165,7 @@ void AddANetFamilies(const PolyMesh& mesh, const ANetOptions& options, int verte
       anchor->AddTarget(item(v.idx()), p.data());
     }
   }
-  if (options.fairness_weight > 0.0)
+  if (options.solver.fairness_weight > 0.0)
     AddMeshFairness(mesh, options.fairness_order, vertex_block, problem);
 }
 
@@ -201,23 +206,13 @@ StarPlanarityMeasures ANet::MeasuresAt(const Eigen::VectorXd& x) const {
   return MeasureStarPlanarity(current_, input_);
 }
 
-StarPlanarityMeasures ANet::Measures() const { return MeasuresAt(problem_.x()); }
-
-SolverSummary ANet::Solve(const Callback& callback) {
-  return SolveWithMeasures<StarPlanarityMeasures>(
-      options_.ToSolverOptions(), &problem_,
-      [this](const Eigen::VectorXd& x) { return MeasuresAt(x); },
-      [this](const StarPlanarityMeasures& m) { return m.max_star_planarity <= options_.tolerance; },
-      callback);
-}
-
-CeresSummary ANet::SolveWithCeres(int max_iterations, double soft_scale) {
+CeresOptions ANet::ceres_options(int max_iterations) const {
   CeresOptions options;
   options.max_iterations = max_iterations;
-  options.fairness_weight = options_.fairness_weight;
-  options.soft_scale = soft_scale;
-  options.num_threads = std::max(1, options_.num_threads);
-  return gproj::SolveWithCeres(options, &problem_);
+  options.fairness_weight = options_.solver.fairness_weight;
+  options.soft_scale = options_.ceres_soft_scale;
+  options.num_threads = std::max(1, options_.solver.num_threads);
+  return options;
 }
 
 PolyMesh ANet::Result() const {

@@ -10,6 +10,7 @@
 
 #include "geometry/closest_point.h"
 #include "geometry/mesh_io.h"
+#include "problems/guided_problem.h"
 #include "problems/mesh_variables.h"
 #include "solver/ceres_adapter.h"
 #include "solver/guided_projection.h"
@@ -22,26 +23,26 @@ enum class StarPlanarityForm {
   kQuads,    // planarity of n − 2 quads of the star (diagonal-distance approximation)
 };
 
+// Guided projection's defaults for A-nets: 50 iterations, ω_f = 0.5, soft weights fading by 0.3
+// per iteration down to 1e-10; the star-planarity measure decides convergence.
+SolverOptions ANetSolverDefaults();
+
 struct ANetOptions {
+  // Guided projection (ω_f = solver.fairness_weight weighs the polyline fairness).
+  SolverOptions solver = ANetSolverDefaults();
   StarPlanarityForm star_form = StarPlanarityForm::kNormals;
   double planarity_weight = 1.0;
   double tangent_weight = 1.0;   // distance to the reference's tangent plane at the closest point
   double point_weight = 0.1;     // distance to the closest point itself (weaker)
   double anchor_weight = 0.0;    // distance to the input positions (fixed points; 0: off)
-  double fairness_weight = 0.5;  // ω_f
   int fairness_order = 2;
   // Stop when the max star planarity (neighbour distance from the star plane / mean edge) is
   // ≤ this.
   double tolerance = 1e-9;
-  int max_iterations = 50;
-  double soft_weight_decay = 0.3;
-  double soft_weight_floor = 1e-10;
-  double epsilon = 1e-3;
-  LinearSolverType linear_solver = LinearSolverType::kCholmod;
-  int num_threads = 0;
+  // The Ceres cross-check's fixed factor on the soft (closeness, fairness) weights.
+  double ceres_soft_scale = 1.0;
 
   bool IsValid(std::string* why) const;
-  SolverOptions ToSolverOptions() const;
 };
 
 struct StarPlanarityMeasures {
@@ -53,6 +54,10 @@ struct StarPlanarityMeasures {
 
 // Star planarity of every vertex with at least three neighbours: the largest distance of a
 // neighbour from the least-squares plane through the vertex, divided by the mean edge length.
+// As named values (the report's keys): max_star_planarity, mean_star_planarity, worst_vertex,
+// max_displacement.
+NamedValues ToNamedValues(const StarPlanarityMeasures& m);
+
 StarPlanarityMeasures MeasureStarPlanarity(const PolyMesh& mesh, const PolyMesh& reference);
 
 // Refuses (InputError naming the vertex/face) what an A-net cannot be: non-quad faces, and
@@ -77,20 +82,25 @@ void AddANetFamilies(const PolyMesh& mesh, const ANetOptions& options, int verte
 void LoadANetNormals(const PolyMesh& mesh, int vertex_block, const ANetFamilies& layout,
                      Problem* problem);
 
-class ANet {
+// Run() is guided projection to the tolerance; RunCeres() minimises the same rows with fixed
+// weights (soft terms × ceres_soft_scale) by Ceres LM.
+class ANet : public GuidedProblem {
  public:
   // `reference` may be null: the input itself is the reference surface.
   ANet(const PolyMesh& mesh, const PolyMesh* reference, const ANetOptions& options);
 
-  using Callback =
-      std::function<CallbackResult(const IterationRecord&, const StarPlanarityMeasures&)>;
-  SolverSummary Solve(const Callback& callback = nullptr);
-  // Ceres LM on the same rows with fixed weights (soft scale `soft_scale`).
-  CeresSummary SolveWithCeres(int max_iterations, double soft_scale);
+  Problem& problem() override { return problem_; }
+  SolverOptions solver_options() const override { return options_.solver; }
+  CeresOptions ceres_options(int max_iterations) const override;
+  NamedValues MeasureAt(const Eigen::VectorXd& x) const override {
+    return ToNamedValues(MeasuresAt(x));
+  }
+  bool MeetsTolerance(const NamedValues& m) const override {
+    return ValueOf(m, "max_star_planarity") <= options_.tolerance;
+  }
 
   PolyMesh Result() const;
-  StarPlanarityMeasures Measures() const;
-  Problem& problem() { return problem_; }
+  StarPlanarityMeasures Measures() const { return MeasuresAt(problem_.x()); }
 
  private:
   StarPlanarityMeasures MeasuresAt(const Eigen::VectorXd& x) const;

@@ -355,7 +355,7 @@ HNetSummary HNet::Run(const IterationCallback& on_iteration, const RoundCallback
   // 1. The A-net step, unless the stars are already planar to tolerance.
   if (MeasureStarPlanarity(mesh_, mesh_).max_star_planarity > options_.anet.tolerance) {
     ANet anet(mesh_, &reference, options_.anet);
-    summary.anet_summary = anet.Solve(on_iteration);
+    summary.anet_summary = anet.Run(on_iteration).summary;
     summary.anet_step_run = true;
     if (summary.anet_summary.termination == TerminationType::kFailure) {
       summary.message = "A-net step failed: " + summary.anet_summary.message;
@@ -392,7 +392,7 @@ HNetSummary HNet::Run(const IterationCallback& on_iteration, const RoundCallback
   }
   summary.equitwist_violations = EquitwistViolations(mesh_, colour_);
 
-  SolverOptions solver_options = options_.anet.ToSolverOptions();
+  SolverOptions solver_options = options_.anet.solver;
   solver_options.max_iterations = options_.iterations_per_round;
   solver_options.residual_tolerance = options_.residual_tolerance;
   solver_options.initial_soft_scale = options_.round_soft_scale;

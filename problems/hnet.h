@@ -124,7 +124,7 @@ class HNet {
   HNet(const PolyMesh& mesh, const PolyMesh* reference, const HNetOptions& options);
 
   using RoundCallback = std::function<void(const HNetRound&)>;
-  using IterationCallback = ANet::Callback;
+  using IterationCallback = RunCallback;  // the A-net step's records
   HNetSummary Run(const IterationCallback& on_iteration = nullptr,
                   const RoundCallback& on_round = nullptr);
 

@@ -168,6 +168,25 @@ const char* kHypar3x3 =
     "v -1 -1 1\nv -1 0 0\nv -1 1 -1\nv 0 -1 0\nv 0 0 0\nv 0 1 0\nv 1 -1 -1\nv 1 0 0\nv 1 1 1\n"
     "f 1 4 5 2\nf 2 5 6 3\nf 4 7 8 5\nf 5 8 9 6\n";
 
+TEST_F(PlanarizeCommandTest, ANetUsesTheSharedRunLayer) {
+  // A jittered hypar grid: one iteration cannot make the stars planar, so the run ends with
+  // exit 3 and converged: false; the report has the shared keys and the star measures.
+  const std::string in = Write("hypar.obj",
+                               "v -1 -1 1\nv -1 0 0.05\nv -1 1 -1\nv 0 -1 0\nv 0 0 0.04\n"
+                               "v 0 1 0\nv 1 -1 -1\nv 1 0 0\nv 1 1 1\n"
+                               "f 1 4 5 2\nf 2 5 6 3\nf 4 7 8 5\nf 5 8 9 6\n");
+  const CommandRun r = Gproj("anet " + in + " -o " + (dir_ / "a.obj").string() +
+                             " --max-iterations 1 --report " + (dir_ / "r.json").string());
+  EXPECT_EQ(r.exit_code, 3) << r.err << r.out;
+  const std::string report = Slurp(dir_ / "r.json");
+  for (const char* key : {"\"command\": \"anet\"", "\"converged\": false", "\"failed\": false",
+                          "\"max_star_planarity\"", "\"families\""})
+    EXPECT_NE(report.find(key), std::string::npos) << key;
+  const CommandRun bad = Gproj("anet " + in + " -o " + (dir_ / "missing" / "a.obj").string());
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("--output"), std::string::npos) << bad.err;
+}
+
 TEST_F(PlanarizeCommandTest, HNetWritesPatchesSurfaceAndReport) {
   const std::string in = Write("hypar.obj", kHypar3x3);
   const CommandRun r =

@@ -59,11 +59,12 @@ TEST(ANetTest, JitteredEnneperGridBecomesAnANet) {
   ANetOptions options;
   ANet anet(mesh, &exact, options);
   EXPECT_GT(anet.Measures().max_star_planarity, 1e-3);
-  const SolverSummary summary = anet.Solve();
-  ASSERT_TRUE(summary.converged()) << summary.FullReport();
+  const RunReport report = anet.Run();
+  ASSERT_TRUE(report.converged) << report.summary.FullReport();
   const StarPlanarityMeasures m = MeasureStarPlanarity(anet.Result(), mesh);
   EXPECT_LE(m.max_star_planarity, 1e-9);
   EXPECT_LE(m.max_displacement, 0.02);
+  EXPECT_DOUBLE_EQ(ValueOf(report.final, "max_star_planarity"), anet.Measures().max_star_planarity);
 }
 
 TEST(ANetTest, QuadFormAlsoConverges) {
@@ -72,8 +73,8 @@ TEST(ANetTest, QuadFormAlsoConverges) {
   ANetOptions options;
   options.star_form = StarPlanarityForm::kQuads;
   ANet anet(mesh, &exact, options);
-  const SolverSummary summary = anet.Solve();
-  ASSERT_TRUE(summary.converged()) << summary.FullReport();
+  const RunReport report = anet.Run();
+  ASSERT_TRUE(report.converged) << report.summary.FullReport();
   const StarPlanarityMeasures m = MeasureStarPlanarity(anet.Result(), mesh);
   EXPECT_LE(m.max_star_planarity, 1e-9);
   EXPECT_LE(m.max_displacement, 0.02);
@@ -118,24 +119,25 @@ TEST(ANetTest, RefusesNonQuadFaces) {
 TEST(ANetTest, CeresCrossCheckReachesTheSameObjective) {
   const PolyMesh mesh = Grid("hypar", 6, 0.04, 9);
   ANetOptions options;
-  options.soft_weight_decay = 1.0;
+  options.solver.soft_weight_decay = 1.0;
   // Closeness to fixed positions: the frozen closest points of the surface terms make guided
   // projection a fixed-point iteration rather than a minimisation, so they are left out here.
   options.tangent_weight = 0.0;
   options.point_weight = 0.0;
   options.anchor_weight = 1e-3;
-  options.fairness_weight = 0.01;
-  options.epsilon = 1e-6;
-  options.max_iterations = 300;
+  options.solver.fairness_weight = 0.01;
+  options.solver.epsilon = 1e-6;
+  options.solver.max_iterations = 300;
   options.tolerance = 1e-300;
   ANet gp(mesh, nullptr, options), ceres(mesh, nullptr, options);
-  const SolverSummary summary = gp.Solve();
-  ASSERT_TRUE(summary.converged()) << summary.FullReport();
-  const CeresSummary cs = ceres.SolveWithCeres(500, 1.0);
-  ASSERT_TRUE(cs.IsSolutionUsable()) << cs.FullReport();
-  const double e_gp = EvaluateObjective(&gp.problem(), options.fairness_weight, gp.problem().x());
+  const RunReport report = gp.Run();
+  ASSERT_TRUE(report.summary.converged()) << report.summary.FullReport();
+  const RunReport cs = ceres.RunCeres(500);
+  ASSERT_FALSE(cs.failed) << cs.termination;
+  const double e_gp =
+      EvaluateObjective(&gp.problem(), options.solver.fairness_weight, gp.problem().x());
   const double e_ceres =
-      EvaluateObjective(&ceres.problem(), options.fairness_weight, ceres.problem().x());
+      EvaluateObjective(&ceres.problem(), options.solver.fairness_weight, ceres.problem().x());
   EXPECT_GT(e_gp, 0.0);
   EXPECT_NEAR(e_gp, e_ceres, 1e-6 * e_ceres);
 }
