@@ -218,8 +218,20 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
     throw InputError("at least 5 samples per direction are needed; got " + std::to_string(su) +
                      " x " + std::to_string(sv));
   maps_ = MakeSampleMaps(input, su, sv);
+  ScaleToTargetCurvature();
+  const std::vector<SampleTerms> stencils = AddCurvatureDefinitions();
+  AddAlignment();
+  if (options.geodesic_parallel_weight > 0.0) AddGeodesicParallel();
+  AddRelations(stencils);
+  AddControlNetTerms();
+}
 
-  // Scale: mean |principal curvature| at the samples = target (003 Table 1 note).
+// Scale: mean |principal curvature| at the samples = target (003 Table 1 note).
+void WeingartenProblem::ScaleToTargetCurvature() {
+  const BSplineSurface& input = reference_;
+  const WeingartenOptions& options = options_;
+  const int sv = maps_.sv;
+
   std::vector<double> h0, k0;
   SampleCurvatures(input, maps_, &h0, &k0);
   for (int s = 0; s < maps_.num_samples(); ++s)
@@ -234,7 +246,14 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
                                                      : 1.0 / std::max(diagonal, 1e-300);
   scaled_ = input;
   scaled_.control = (input.control.rowwise() - centre_.transpose()) * scale_;
+}
 
+// Blocks, the start x, the parameter rescaling and, per sample, the stencil and the 12
+// auxiliary definitions of 003 §3.1.2.
+std::vector<WeingartenProblem::SampleTerms> WeingartenProblem::AddCurvatureDefinitions() {
+  const BSplineSurface& input = reference_;
+  const WeingartenOptions& options = options_;
+  const int su = maps_.su, sv = maps_.sv;
   VariableLayout& layout = problem_.layout();
   const int nc = input.num_control_points(), ns = maps_.num_samples();
   const bool gp = options.geodesic_parallel_weight > 0.0;
@@ -267,9 +286,6 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
   inv_dv_.assign(sv, 0.0);
   for (int a = 1; a + 1 < su; ++a) inv_du_[a] = 1.0 / ((maps_.u[a + 1] - maps_.u[a - 1]) * speed_u);
   for (int b = 1; b + 1 < sv; ++b) inv_dv_[b] = 1.0 / ((maps_.v[b + 1] - maps_.v[b - 1]) * speed_v);
-  auto inv_du = [&](int a) { return inv_du_[a]; };
-  auto inv_dv = [&](int b) { return inv_dv_[b]; };
-  auto aux = [&](int a, int b) { return layout.Item(curvature_block_, maps_.Index(a, b)); };
 
   // Auxiliary definitions, one element per sample.
   // Rows are multiplied by the weights of Table 1 (003 §3.3), so a family's weight on φ² is ω².
@@ -306,6 +322,19 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
     x.segment<kCurvatureAuxDim>(layout.ItemOffset(item)) = exact;
   }
 
+  return stencils;
+}
+
+void WeingartenProblem::AddAlignment() {
+  const WeingartenOptions& options = options_;
+  VariableLayout& layout = problem_.layout();
+  Eigen::VectorXd& x = problem_.x();
+  const int su = maps_.su, sv = maps_.sv;
+  auto squared = [](double w) { return w * w; };
+  auto inv_du = [&](int a) { return inv_du_[a]; };
+  auto inv_dv = [&](int b) { return inv_dv_[b]; };
+  auto aux = [&](int a, int b) { return layout.Item(curvature_block_, maps_.Index(a, b)); };
+  const bool definitions = options_.curvature_auxiliaries;
   // The alignment rows H_u K_v − H_v K_u are normalised by the RMS of |∇H| |∇K| over the inner
   // samples of the input (scaled units), so that ω_al weighs a dimensionless misalignment
   // against closeness and the auxiliary definitions whatever the parameter domain.
@@ -332,55 +361,71 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
         alignment->AddSample(aux(a + 1, b), aux(a - 1, b), aux(a, b + 1), aux(a, b - 1), inv_du(a),
                              inv_dv(b));
   }
-  if (gp) {
-    auto* definitions2 =
-        problem_.AddFamily<GeodesicAuxiliaries>(squared(options.definition_weight));
-    auto grad = [&](int a, int b) { return layout.Item(gradient_block_, maps_.Index(a, b)); };
-    for (int a = 1; a + 1 < su; ++a)
-      for (int b = 1; b + 1 < sv; ++b) {
-        const double cu = inv_du(a);
-        const double cv = inv_dv(b);
-        definitions2->AddSample(grad(a, b), aux(a, b), aux(a + 1, b), aux(a - 1, b), aux(a, b + 1),
-                                aux(a, b - 1), cu, cv);
+}
+
+// Geodesic parallel isolines (003 §3.2.1): gradient auxiliaries, their definitions and eq. 8.
+void WeingartenProblem::AddGeodesicParallel() {
+  const WeingartenOptions& options = options_;
+  VariableLayout& layout = problem_.layout();
+  Eigen::VectorXd& x = problem_.x();
+  const int su = maps_.su, sv = maps_.sv;
+  auto squared = [](double w) { return w * w; };
+  auto inv_du = [&](int a) { return inv_du_[a]; };
+  auto inv_dv = [&](int b) { return inv_dv_[b]; };
+  auto aux = [&](int a, int b) { return layout.Item(curvature_block_, maps_.Index(a, b)); };
+  auto* definitions2 = problem_.AddFamily<GeodesicAuxiliaries>(squared(options.definition_weight));
+  auto grad = [&](int a, int b) { return layout.Item(gradient_block_, maps_.Index(a, b)); };
+  for (int a = 1; a + 1 < su; ++a)
+    for (int b = 1; b + 1 < sv; ++b) {
+      const double cu = inv_du(a);
+      const double cv = inv_dv(b);
+      definitions2->AddSample(grad(a, b), aux(a, b), aux(a + 1, b), aux(a - 1, b), aux(a, b + 1),
+                              aux(a, b - 1), cu, cv);
+    }
+  // Exact initial values from the curvature auxiliaries, stored in units of the typical
+  // |∇K|² and |∇H|².
+  gradient_scales_ = {1.0, 1.0};
+  SetGradientAuxiliaries(&x);
+  double k_scale = 0.0, h_scale = 0.0;
+  for (int a = 1; a + 1 < su; ++a)
+    for (int b = 1; b + 1 < sv; ++b) {
+      const auto g = x.segment<kGeodesicAuxDim>(layout.ItemOffset(grad(a, b)));
+      k_scale += (g[kKuu] + g[kKvv]) / ((su - 2) * (sv - 2));
+      h_scale += (g[kHuu] + g[kHvv]) / ((su - 2) * (sv - 2));
+    }
+  gradient_scales_ = {k_scale > 0.0 ? k_scale : 1.0, h_scale > 0.0 ? h_scale : 1.0};
+  definitions2->SetGradientScales(gradient_scales_[0], gradient_scales_[1]);
+  SetGradientAuxiliaries(&x);
+  // Normalised like the alignment rows, by the RMS of |∇‖∇ψ‖²| |∇ψ| at the start.
+  double product = 0.0;
+  int count = 0;
+  for (int a = 2; a + 2 < su; ++a)
+    for (int b = 2; b + 2 < sv; ++b)
+      for (int p = 0; p < 2; ++p) {
+        const int off = p == 0 ? kK : kH, goff = p == 0 ? kGradK : kGradH;
+        auto gradient = [&](auto item, int o) {
+          auto at = [&](int aa, int bb) { return x[layout.ItemOffset(item(aa, bb)) + o]; };
+          return CentralGradient(at(a + 1, b), at(a - 1, b), at(a, b + 1), at(a, b - 1), inv_du(a),
+                                 inv_dv(b));
+        };
+        product += squared(GradientNormProduct(gradient(grad, goff), gradient(aux, off)));
+        ++count;
       }
-    // Exact initial values from the curvature auxiliaries, stored in units of the typical
-    // |∇K|² and |∇H|².
-    gradient_scales_ = {1.0, 1.0};
-    SetGradientAuxiliaries(&x);
-    double k_scale = 0.0, h_scale = 0.0;
-    for (int a = 1; a + 1 < su; ++a)
-      for (int b = 1; b + 1 < sv; ++b) {
-        const auto g = x.segment<kGeodesicAuxDim>(layout.ItemOffset(grad(a, b)));
-        k_scale += (g[kKuu] + g[kKvv]) / ((su - 2) * (sv - 2));
-        h_scale += (g[kHuu] + g[kHvv]) / ((su - 2) * (sv - 2));
-      }
-    gradient_scales_ = {k_scale > 0.0 ? k_scale : 1.0, h_scale > 0.0 ? h_scale : 1.0};
-    definitions2->SetGradientScales(gradient_scales_[0], gradient_scales_[1]);
-    SetGradientAuxiliaries(&x);
-    // Normalised like the alignment rows, by the RMS of |∇‖∇ψ‖²| |∇ψ| at the start.
-    double product = 0.0;
-    int count = 0;
-    for (int a = 2; a + 2 < su; ++a)
-      for (int b = 2; b + 2 < sv; ++b)
-        for (int p = 0; p < 2; ++p) {
-          const int off = p == 0 ? kK : kH, goff = p == 0 ? kGradK : kGradH;
-          auto gradient = [&](auto item, int o) {
-            auto at = [&](int aa, int bb) { return x[layout.ItemOffset(item(aa, bb)) + o]; };
-            return CentralGradient(at(a + 1, b), at(a - 1, b), at(a, b + 1), at(a, b - 1),
-                                   inv_du(a), inv_dv(b));
-          };
-          product += squared(GradientNormProduct(gradient(grad, goff), gradient(aux, off)));
-          ++count;
-        }
-    const double gp_scale = count > 0 && product > 0.0 ? 1.0 / std::sqrt(product / count) : 1.0;
-    auto* parallel = problem_.AddFamily<GeodesicParallelIsolines>(
-        squared(options.geodesic_parallel_weight * gp_scale));
-    for (int a = 2; a + 2 < su; ++a)
-      for (int b = 2; b + 2 < sv; ++b)
-        parallel->AddSample({grad(a + 1, b), grad(a - 1, b), grad(a, b + 1), grad(a, b - 1)},
-                            {aux(a + 1, b), aux(a - 1, b), aux(a, b + 1), aux(a, b - 1)}, inv_du(a),
-                            inv_dv(b));
-  }
+  const double gp_scale = count > 0 && product > 0.0 ? 1.0 / std::sqrt(product / count) : 1.0;
+  auto* parallel = problem_.AddFamily<GeodesicParallelIsolines>(
+      squared(options.geodesic_parallel_weight * gp_scale));
+  for (int a = 2; a + 2 < su; ++a)
+    for (int b = 2; b + 2 < sv; ++b)
+      parallel->AddSample({grad(a + 1, b), grad(a - 1, b), grad(a, b + 1), grad(a, b - 1)},
+                          {aux(a + 1, b), aux(a - 1, b), aux(a, b + 1), aux(a, b - 1)}, inv_du(a),
+                          inv_dv(b));
+}
+
+void WeingartenProblem::AddRelations(const std::vector<SampleTerms>& stencils) {
+  const WeingartenOptions& options = options_;
+  VariableLayout& layout = problem_.layout();
+  const int ns = maps_.num_samples();
+  auto squared = [](double w) { return w * w; };
   if (options.linear_relation_weight > 0.0) {
     // Input units → scaled: κ_scaled = κ / scale, so a H + b K + c = 0 becomes
     // (a scale) H' + (b scale²) K' + c = 0.
@@ -403,6 +448,15 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
         squared(options.bspline_relation_weight), options.bspline_relation_control_points);
     for (int s = 0; s < ns; ++s) curve->AddSample(layout.Item(curvature_block_, s));
   }
+}
+
+// Closeness, shape preservation, fairness and boundary gliding on the control net.
+void WeingartenProblem::AddControlNetTerms() {
+  const BSplineSurface& input = reference_;
+  const WeingartenOptions& options = options_;
+  VariableLayout& layout = problem_.layout();
+  const int nc = input.num_control_points();
+  auto squared = [](double w) { return w * w; };
   auto control = [&](int i, int j) { return layout.Item(control_block_, scaled_.Index(i, j)); };
   // Closeness and gliding are measured in units of the control net's mean edge length, so their
   // weights do not depend on the surface's size or on the net's resolution.
@@ -453,32 +507,40 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
       for (int i = 1; i + 1 < input.nu; ++i)
         fairness->AddElement({control(i - 1, j), control(i, j), control(i + 1, j)});
   }
-  if (options.boundary_weight > 0.0) {
-    auto* glide = problem_.AddFamily<PolylineGliding>(squared(options.boundary_weight / mean_edge));
-    // Held like the gliding rows, whatever the soft schedule does to closeness.
-    auto* corners = problem_.AddFamily<Closeness>(3, squared(options.boundary_weight / mean_edge),
-                                                  "boundary corners", FamilyRole::kConstraint);
-    auto row = [&](int i0, int j0, int di, int dj, int count) {
-      std::vector<Eigen::Vector3d> line;
-      for (int t = 0; t < count; ++t)
-        line.push_back(scaled_.control.row(scaled_.Index(i0 + t * di, j0 + t * dj)).transpose());
-      return line;
-    };
-    const int nu = input.nu, nv = input.nv;
-    const std::vector<Eigen::Vector3d> sides[4] = {row(0, 0, 0, 1, nv), row(nu - 1, 0, 0, 1, nv),
-                                                   row(0, 0, 1, 0, nu), row(0, nv - 1, 1, 0, nu)};
-    for (int j = 1; j + 1 < nv; ++j) {
-      glide->AddPoint(control(0, j), sides[0]);
-      glide->AddPoint(control(nu - 1, j), sides[1]);
-    }
-    for (int i = 1; i + 1 < nu; ++i) {
-      glide->AddPoint(control(i, 0), sides[2]);
-      glide->AddPoint(control(i, nv - 1), sides[3]);
-    }
-    for (auto [i, j] : {std::pair{0, 0}, {0, nv - 1}, {nu - 1, 0}, {nu - 1, nv - 1}}) {
-      const Eigen::Vector3d p = scaled_.control.row(scaled_.Index(i, j)).transpose();
-      corners->AddTarget(control(i, j), p.data());
-    }
+  if (options.boundary_weight > 0.0) AddBoundaryGliding(mean_edge);
+}
+
+// Boundary control points glide on the reference's boundary polygon; the corners are held.
+void WeingartenProblem::AddBoundaryGliding(double mean_edge) {
+  const BSplineSurface& input = reference_;
+  const WeingartenOptions& options = options_;
+  VariableLayout& layout = problem_.layout();
+  auto squared = [](double w) { return w * w; };
+  auto control = [&](int i, int j) { return layout.Item(control_block_, scaled_.Index(i, j)); };
+  auto* glide = problem_.AddFamily<PolylineGliding>(squared(options.boundary_weight / mean_edge));
+  // Held like the gliding rows, whatever the soft schedule does to closeness.
+  auto* corners = problem_.AddFamily<Closeness>(3, squared(options.boundary_weight / mean_edge),
+                                                "boundary corners", FamilyRole::kConstraint);
+  auto row = [&](int i0, int j0, int di, int dj, int count) {
+    std::vector<Eigen::Vector3d> line;
+    for (int t = 0; t < count; ++t)
+      line.push_back(scaled_.control.row(scaled_.Index(i0 + t * di, j0 + t * dj)).transpose());
+    return line;
+  };
+  const int nu = input.nu, nv = input.nv;
+  const std::vector<Eigen::Vector3d> sides[4] = {row(0, 0, 0, 1, nv), row(nu - 1, 0, 0, 1, nv),
+                                                 row(0, 0, 1, 0, nu), row(0, nv - 1, 1, 0, nu)};
+  for (int j = 1; j + 1 < nv; ++j) {
+    glide->AddPoint(control(0, j), sides[0]);
+    glide->AddPoint(control(nu - 1, j), sides[1]);
+  }
+  for (int i = 1; i + 1 < nu; ++i) {
+    glide->AddPoint(control(i, 0), sides[2]);
+    glide->AddPoint(control(i, nv - 1), sides[3]);
+  }
+  for (auto [i, j] : {std::pair{0, 0}, {0, nv - 1}, {nu - 1, 0}, {nu - 1, nv - 1}}) {
+    const Eigen::Vector3d p = scaled_.control.row(scaled_.Index(i, j)).transpose();
+    corners->AddTarget(control(i, j), p.data());
   }
 }
 

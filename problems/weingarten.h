@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "constraints/curvature_auxiliaries.h"
 #include "geometry/bspline_surface.h"
 #include "solver/ceres_adapter.h"
 #include "solver/guided_projection.h"
@@ -132,6 +133,17 @@ class WeingartenProblem {
   Eigen::Vector3d LinearRelation() const;
 
  private:
+  // The control items of a sample's stencil and the stencil.
+  using SampleTerms = std::pair<std::vector<int>, SampleStencil>;
+  // The build steps of the constructor, in order.
+  void ScaleToTargetCurvature();
+  std::vector<SampleTerms> AddCurvatureDefinitions();
+  void AddAlignment();
+  void AddGeodesicParallel();
+  void AddRelations(const std::vector<SampleTerms>& stencils);
+  void AddControlNetTerms();
+  void AddBoundaryGliding(double mean_edge);
+
   BSplineSurface ScaledToInput(const Eigen::VectorXd& x) const;
   // Exact auxiliaries from the control points in x (curvature) or from the curvature
   // auxiliaries in x (geodesic parallel; nothing without them).
