@@ -104,7 +104,8 @@ nlohmann::json MeasuresJson(const NamedValues& values) {
 nlohmann::json RecordJson(const RunRecord& r) {
   nlohmann::json j = {{"iteration", r.iteration},   {"energy", Number(r.energy)},
                       {"step", Number(r.step)},     {"epsilon", r.epsilon},
-                      {"soft_scale", r.soft_scale}, {"seconds", r.seconds}};
+                      {"soft_scale", r.soft_scale}, {"max_constraint", Number(r.max_constraint)},
+                      {"seconds", r.seconds}};
   for (const NamedValue& v : r.measures) j[v.name] = Number(v.value);
   nlohmann::json families = nlohmann::json::object();
   for (const FamilyResidual& f : r.families)

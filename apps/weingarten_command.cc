@@ -45,213 +45,220 @@ std::string CurvatureCsv(const SampleMaps& maps, const WeingartenMeasures& befor
   return out.str();
 }
 
-int RunWeingarten(const WeingartenArgs& args) {
+WeingartenOptions OptionsFromArgs(const WeingartenArgs& args) {
+  WeingartenOptions options = WeingartenPreset(args.preset);
+  if (args.samples.size() == 2) {
+    options.samples_u = args.samples[0];
+    options.samples_v = args.samples[1];
+  } else if (!args.samples.empty()) {
+    throw InputError("--samples needs two numbers: NU NV");
+  }
+  if (!args.relation.empty()) {
+    const double w = args.relation == "none" ? 0.0 : 1.0;
+    options.linear_relation_weight = args.relation == "linear" ? w : 0.0;
+    options.bspline_relation_weight = args.relation == "bspline" ? 10.0 * w : 0.0;
+  }
+  if (!args.linear.empty()) {
+    if (args.linear.size() != 3) throw InputError("--linear needs a,b,c");
+    options.fixed_linear_relation = true;
+    options.linear_coefficients = Eigen::Vector3d(args.linear[0], args.linear[1], args.linear[2]);
+    if (options.linear_relation_weight == 0.0) options.linear_relation_weight = 1.0;
+    options.bspline_relation_weight = 0.0;
+  }
+  if (args.alignment >= 0) options.alignment_weight = args.alignment;
+  if (args.closeness >= 0) options.closeness_weight = args.closeness;
+  if (args.shape >= 0) options.shape_weight = args.shape;
+  if (args.geodesic >= 0) options.geodesic_parallel_weight = args.geodesic;
+  if (args.boundary >= 0) options.boundary_weight = args.boundary;
+  if (args.epsilon > 0) options.epsilon = args.epsilon;
+  if (args.fairness >= 0) options.fairness_weight = args.fairness;
+  if (args.definitions > 0) options.definition_weight = args.definitions;
+  if (args.soft_start >= 1) options.soft_start = args.soft_start;
+  if (args.max_iterations > 0) options.max_iterations = args.max_iterations;
+  if (!args.steps.empty()) {
+    options.monotone = args.steps != "plain";
+    options.project_auxiliaries = args.steps == "projected";
+  }
+  if (!args.relation_on.empty()) options.relation_on_surface = args.relation_on == "surface";
+  if (args.no_auxiliaries) options.curvature_auxiliaries = false;
+  options.refine_levels = args.refine;
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError(why);
+  return options;
+}
+
+nlohmann::json FamiliesJson(const RunRecord& r) {
+  nlohmann::json families = nlohmann::json::object();
+  for (const auto& f : r.families) families[f.name] = {{"max", f.max_abs}, {"rms", f.rms}};
+  return families;
+}
+
+nlohmann::json WeingartenReport(const WeingartenArgs& args, const WeingartenOptions& options,
+                                const WeingartenRun& run, double seconds) {
+  nlohmann::json history = nlohmann::json::array(), levels = nlohmann::json::array();
+  for (size_t i = 0; i < run.history.size(); ++i) {
+    const RunRecord& r = run.history[i];
+    history.push_back(
+        {{"level", run.history_level[i]},
+         {"iteration", r.iteration},
+         {"energy", r.energy},
+         {"max_constraint", std::isfinite(r.max_constraint) ? nlohmann::json(r.max_constraint)
+                                                            : nlohmann::json(nullptr)},
+         {"step", r.step},
+         {"families", FamiliesJson(r)}});
+  }
+  for (const WeingartenLevel& l : run.levels)
+    levels.push_back({{"level", l.level},
+                      {"control_points", {l.nu, l.nv}},
+                      {"samples", {l.su, l.sv}},
+                      {"variables", l.variables},
+                      {"iterations", l.iterations},
+                      {"misalignment", l.misalignment}});
+  const WeingartenMeasures& before = run.before;
+  const WeingartenMeasures& after = run.after;
+  nlohmann::json report = {
+      {"command", "weingarten"},
+      {"input", args.input},
+      {"output", args.output},
+      {"preset", args.preset},
+      {"solver", args.solver},
+      {"steps", options.project_auxiliaries ? "projected"
+                : options.monotone          ? "monotone"
+                                            : "plain"},
+      {"converged", run.converged},
+      {"termination", run.termination},
+      {"iterations", run.iterations},
+      {"seconds", seconds},
+      {"variables", run.variables},
+      {"samples", {run.su, run.sv}},
+      {"levels", levels},
+      {"history", history},
+      {"initial", {{"misalignment", before.misalignment}}},
+      {"final",
+       {{"misalignment", after.misalignment},
+        {"max_deviation", after.max_deviation},
+        {"mean_deviation", after.mean_deviation},
+        {"worst_sample", {after.worst_sample / run.sv, after.worst_sample % run.sv}},
+        {"misalignment_ratio", before.misalignment / std::max(after.misalignment, 1e-300)}}}};
+  if (!run.history.empty()) report["final"]["families"] = FamiliesJson(run.history.back());
+  return report;
+}
+
+// The relation's worst residual over the samples (a² + b² = 1, input units).
+double MaxRelationResidual(const WeingartenRun& run) {
+  double worst = 0.0;
+  for (size_t i = 0; i < run.after.h.size(); ++i)
+    worst = std::max(worst, std::abs(run.relation[0] * run.after.h[i] +
+                                     run.relation[1] * run.after.k[i] + run.relation[2]));
+  return worst;
+}
+
+// The relation's coefficients and worst residual, and the mold clustering, into the report.
+std::unique_ptr<MoldClustering> AddRelationAndMolds(const WeingartenArgs& args,
+                                                    const WeingartenOptions& options,
+                                                    const WeingartenRun& run,
+                                                    nlohmann::json* report) {
+  if (options.linear_relation_weight > 0.0) {
+    const double worst = MaxRelationResidual(run);
+    (*report)["final"]["linear_relation"] = {run.relation[0], run.relation[1], run.relation[2]};
+    (*report)["final"]["max_relation_residual"] = worst;
+    std::printf("linear relation %.6g H + %.6g K + %.6g = 0 (input units): max residual %.3e\n",
+                run.relation[0], run.relation[1], run.relation[2], worst);
+  }
+  if (args.molds <= 0) return nullptr;
+  auto molds = std::make_unique<MoldClustering>(ClusterMolds(run.after.h, run.after.k, args.molds));
+  const MoldClustering molds_before = ClusterMolds(run.before.h, run.before.k, args.molds);
+  (*report)["molds"] = {{"asked", args.molds},
+                        {"clusters", molds->num_clusters},
+                        {"cells_per_axis", molds->cells_per_axis},
+                        {"cluster_sizes", molds->cluster_size},
+                        {"before_cells_per_axis", molds_before.cells_per_axis}};
+  return molds;
+}
+
+void WriteWeingartenOutputs(const WeingartenArgs& args, const WeingartenRun& run,
+                            const MoldClustering* molds) {
+  const BSplineSurface& current = run.result;
+  WriteBSplineJson(current, args.output);
+  const SampleMaps maps = MakeSampleMaps(current, run.su, run.sv);
+  if (!args.curvature.empty())
+    WriteTextFileAtomically(args.curvature, CurvatureCsv(maps, run.before, run.after, molds));
+  if (!args.diagram.empty()) {
+    DiagramOptions d;
+    char title[160];
+    std::snprintf(title, sizeof(title), "Curvature diagram: misalignment %.3g -> %.3g",
+                  run.before.misalignment, run.after.misalignment);
+    d.title = title;
+    WriteTextFileAtomically(
+        args.diagram, RenderCurvatureDiagramSvg({{"before", "#c0392b", run.before.h, run.before.k},
+                                                 {"after", "#2c6fbb", run.after.h, run.after.k}},
+                                                d));
+  }
+  if (!args.surface_mesh.empty())
+    WriteMeshAtomically(SampleSurfaceMesh(current, 4 * current.nu, 4 * current.nv),
+                        args.surface_mesh);
+  if (!args.picture.empty()) {
+    SvgOptions svg;
+    svg.title = "Weingarten surface (" + std::to_string(current.nu) + " x " +
+                std::to_string(current.nv) + " control points)";
+    WriteTextFileAtomically(args.picture, RenderMeshSvg(SampleSurfaceMesh(current, 60, 60), svg));
+  }
+}
+
+int RunWeingartenCommand(const WeingartenArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   try {
-    WeingartenOptions options = WeingartenPreset(args.preset);
-    if (args.samples.size() == 2) {
-      options.samples_u = args.samples[0];
-      options.samples_v = args.samples[1];
-    } else if (!args.samples.empty()) {
-      throw InputError("--samples needs two numbers: NU NV");
-    }
-    if (!args.relation.empty()) {
-      const double w = args.relation == "none" ? 0.0 : 1.0;
-      options.linear_relation_weight = args.relation == "linear" ? w : 0.0;
-      options.bspline_relation_weight = args.relation == "bspline" ? 10.0 * w : 0.0;
-    }
-    if (!args.linear.empty()) {
-      if (args.linear.size() != 3) throw InputError("--linear needs a,b,c");
-      options.fixed_linear_relation = true;
-      options.linear_coefficients = Eigen::Vector3d(args.linear[0], args.linear[1], args.linear[2]);
-      if (options.linear_relation_weight == 0.0) options.linear_relation_weight = 1.0;
-      options.bspline_relation_weight = 0.0;
-    }
-    if (args.alignment >= 0) options.alignment_weight = args.alignment;
-    if (args.closeness >= 0) options.closeness_weight = args.closeness;
-    if (args.shape >= 0) options.shape_weight = args.shape;
-    if (args.geodesic >= 0) options.geodesic_parallel_weight = args.geodesic;
-    if (args.boundary >= 0) options.boundary_weight = args.boundary;
-    if (args.epsilon > 0) options.epsilon = args.epsilon;
-    if (args.fairness >= 0) options.fairness_weight = args.fairness;
-    if (args.definitions > 0) options.definition_weight = args.definitions;
-    if (args.soft_start >= 1) options.soft_start = args.soft_start;
-    if (args.max_iterations > 0) options.max_iterations = args.max_iterations;
-    if (!args.steps.empty()) {
-      options.monotone = args.steps != "plain";
-      options.project_auxiliaries = args.steps == "projected";
-    }
-    if (!args.relation_on.empty()) options.relation_on_surface = args.relation_on == "surface";
-    if (args.no_auxiliaries) options.curvature_auxiliaries = false;
-    options.refine_levels = args.refine;
-    std::string why;
-    if (!options.IsValid(&why)) throw InputError(why);
-
+    const WeingartenOptions options = OptionsFromArgs(args);
+    CheckOutputPath("--output", args.output);
+    for (const auto& [option, path] :
+         {std::pair<const char*, const std::string*>{"--report", &args.report},
+          {"--diagram", &args.diagram},
+          {"--curvature", &args.curvature},
+          {"--picture", &args.picture}})
+      CheckOutputPath(option, *path);
+    CheckMeshOutputPath("--surface-mesh", args.surface_mesh);
     const BSplineSurface input = ReadBSplineJson(args.input);
-    BSplineSurface current = input;
-    nlohmann::json history = nlohmann::json::array(), levels = nlohmann::json::array();
-    bool converged = true, failed = false;
-    int iterations = 0, variables = 0, su = 0, sv = 0;
-    std::string message;
-    WeingartenMeasures before;
-    Eigen::Vector3d relation = Eigen::Vector3d::Zero();
-    for (int level = 0; level <= options.refine_levels; ++level) {
-      if (level > 0) current = InsertKnotsUniform(current, 1);
-      WeingartenProblem problem(current, options);
-      su = problem.maps().su;
-      sv = problem.maps().sv;
-      variables = problem.num_variables();
-      if (level == 0) before = MeasureWeingarten(input, input, su, sv);
-      const WeingartenMeasures start_measures = problem.Measures();
+    const auto on_level = [&](int level, const WeingartenProblem& problem) {
+      const WeingartenMeasures m = problem.Measures();
+      const BSplineSurface surface = problem.Result();  // the level's start
       std::printf(
           "gproj weingarten: %s%s: %d x %d control points, bi-degree (%d, %d), %d x %d samples, "
           "%d unknowns; preset %s\n",
           args.input.c_str(), level > 0 ? (" (level " + std::to_string(level) + ")").c_str() : "",
-          current.nu, current.nv, current.degree_u, current.degree_v, su, sv, variables,
-          args.preset.c_str());
+          surface.nu, surface.nv, surface.degree_u, surface.degree_v, problem.maps().su,
+          problem.maps().sv, problem.num_variables(), args.preset.c_str());
       std::printf("start: misalignment %.4e, mean |principal curvature| %.4g (scaled by %.4g)\n",
-                  start_measures.misalignment, start_measures.mean_abs_principal_curvature,
-                  problem.scale());
+                  m.misalignment, m.mean_abs_principal_curvature, problem.scale());
       std::printf("%5s %13s %12s %11s %10s\n", "iter", "energy", "max_constr", "step", "seconds");
-      auto record = [&](int iteration, double energy, double max_constraint, double step,
-                        const nlohmann::json& families) {
-        char constraint[32] = "           -";  // Ceres reports no per-row maximum
-        if (std::isfinite(max_constraint))
-          std::snprintf(constraint, sizeof(constraint), "%12.4e", max_constraint);
-        std::printf(
-            "%5d %13.6e %s %11.3e %10.3f\n", iteration, energy, constraint, step,
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-        std::fflush(stdout);
-        history.push_back({{"level", level},
-                           {"iteration", iteration},
-                           {"energy", energy},
-                           {"max_constraint", max_constraint},
-                           {"step", step},
-                           {"families", families}});
-      };
-      int level_iterations = 0;
-      if (args.solver == "gp") {
-        const SolverSummary summary = problem.Solve([&](const IterationRecord& r) {
-          nlohmann::json families = nlohmann::json::object();
-          for (const auto& f : r.families) families[f.name] = {{"max", f.max_abs}, {"rms", f.rms}};
-          record(r.iteration, r.energy, r.max_constraint, r.step_norm, families);
-          return CallbackResult::kContinue;
-        });
-        level_iterations = summary.num_steps();
-        message = summary.message;
-        failed = summary.termination == TerminationType::kFailure;
-        converged = converged && summary.termination == TerminationType::kConvergence;
-      } else {
-        const CeresSummary summary =
-            problem.SolveWithCeres(options.max_iterations, [&](const CeresIterationRecord& s) {
-              record(s.iteration, s.cost, NAN, s.step_norm, nlohmann::json::object());
-              return true;
-            });
-        level_iterations = summary.num_steps();
-        message = "ceres " + summary.ceres_termination + ": " + summary.message;
-        failed = summary.termination == TerminationType::kFailure;
-        converged = converged && summary.ceres_termination == "CONVERGENCE";
-      }
-      iterations += level_iterations;
-      if (failed || !problem.problem().x().allFinite()) {
-        failed = true;
-        break;
-      }
-      current = problem.Result();
-      relation = problem.LinearRelation();
-      const WeingartenMeasures m = problem.Measures();
-      levels.push_back({{"level", level},
-                        {"control_points", {current.nu, current.nv}},
-                        {"samples", {su, sv}},
-                        {"variables", variables},
-                        {"iterations", level_iterations},
-                        {"misalignment", m.misalignment}});
-    }
-    if (failed) {
-      std::cerr << "gproj weingarten: solver failed: " << message << "; nothing written\n";
+    };
+    const auto on_iteration = [&](const RunRecord& r) {
+      char constraint[32] = "           -";  // Ceres reports no per-row maximum
+      if (std::isfinite(r.max_constraint))
+        std::snprintf(constraint, sizeof(constraint), "%12.4e", r.max_constraint);
+      std::printf("%5d %13.6e %s %11.3e %10.3f\n", r.iteration, r.energy, constraint, r.step,
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      std::fflush(stdout);
+      return true;
+    };
+    const WeingartenRun run =
+        RunWeingarten(input, options, args.solver != "gp", on_iteration, on_level);
+    if (run.failed) {
+      std::cerr << "gproj weingarten: solver failed: " << run.termination << "; nothing written\n";
       return kExitSolverFailure;
     }
-    const WeingartenMeasures after = MeasureWeingarten(current, input, su, sv);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    nlohmann::json report = {
-        {"command", "weingarten"},
-        {"input", args.input},
-        {"output", args.output},
-        {"preset", args.preset},
-        {"solver", args.solver},
-        {"steps", options.project_auxiliaries ? "projected"
-                  : options.monotone          ? "monotone"
-                                              : "plain"},
-        {"converged", converged},
-        {"termination", message},
-        {"iterations", iterations},
-        {"seconds", seconds},
-        {"variables", variables},
-        {"samples", {su, sv}},
-        {"levels", levels},
-        {"history", history},
-        {"initial", {{"misalignment", before.misalignment}}},
-        {"final",
-         {{"misalignment", after.misalignment},
-          {"max_deviation", after.max_deviation},
-          {"mean_deviation", after.mean_deviation},
-          {"worst_sample", {after.worst_sample / sv, after.worst_sample % sv}},
-          {"misalignment_ratio", before.misalignment / std::max(after.misalignment, 1e-300)}}}};
-    if (!history.empty()) report["final"]["families"] = history.back()["families"];
-    if (options.linear_relation_weight > 0.0) {
-      double worst = 0.0;
-      for (size_t i = 0; i < after.h.size(); ++i)
-        worst = std::max(
-            worst, std::abs(relation[0] * after.h[i] + relation[1] * after.k[i] + relation[2]));
-      report["final"]["linear_relation"] = {relation[0], relation[1], relation[2]};
-      report["final"]["max_relation_residual"] = worst;
-      std::printf("linear relation %.6g H + %.6g K + %.6g = 0 (input units): max residual %.3e\n",
-                  relation[0], relation[1], relation[2], worst);
-    }
-    std::unique_ptr<MoldClustering> molds;
-    if (args.molds > 0) {
-      std::vector<double> k = after.k;
-      molds = std::make_unique<MoldClustering>(ClusterMolds(after.h, k, args.molds));
-      const MoldClustering molds_before = ClusterMolds(before.h, before.k, args.molds);
-      report["molds"] = {{"asked", args.molds},
-                         {"clusters", molds->num_clusters},
-                         {"cells_per_axis", molds->cells_per_axis},
-                         {"cluster_sizes", molds->cluster_size},
-                         {"before_cells_per_axis", molds_before.cells_per_axis}};
-    }
-    WriteBSplineJson(current, args.output);
-    const SampleMaps maps = MakeSampleMaps(current, su, sv);
-    if (!args.curvature.empty())
-      WriteTextFileAtomically(args.curvature, CurvatureCsv(maps, before, after, molds.get()));
-    if (!args.diagram.empty()) {
-      DiagramOptions d;
-      char title[160];
-      std::snprintf(title, sizeof(title), "Curvature diagram: misalignment %.3g -> %.3g",
-                    before.misalignment, after.misalignment);
-      d.title = title;
-      WriteTextFileAtomically(args.diagram,
-                              RenderCurvatureDiagramSvg({{"before", "#c0392b", before.h, before.k},
-                                                         {"after", "#2c6fbb", after.h, after.k}},
-                                                        d));
-    }
-    if (!args.surface_mesh.empty())
-      WriteMeshAtomically(SampleSurfaceMesh(current, 4 * current.nu, 4 * current.nv),
-                          args.surface_mesh);
-    if (!args.picture.empty()) {
-      SvgOptions svg;
-      svg.title = "Weingarten surface (" + std::to_string(current.nu) + " x " +
-                  std::to_string(current.nv) + " control points)";
-      WriteTextFileAtomically(args.picture, RenderMeshSvg(SampleSurfaceMesh(current, 60, 60), svg));
-    }
+    nlohmann::json report = WeingartenReport(args, options, run, seconds);
+    const std::unique_ptr<MoldClustering> molds = AddRelationAndMolds(args, options, run, &report);
+    WriteWeingartenOutputs(args, run, molds.get());
     if (!args.report.empty()) WriteTextFileAtomically(args.report, report.dump(2) + "\n");
     std::printf(
         "misalignment %.4e -> %.4e (%.1fx lower), deviation max %.3e (sample %d, %d) / "
         "mean %.3e of the bbox diagonal, %d iterations, %.2f s\n",
-        before.misalignment, after.misalignment,
-        before.misalignment / std::max(after.misalignment, 1e-300), after.max_deviation,
-        after.worst_sample / sv, after.worst_sample % sv, after.mean_deviation, iterations,
-        seconds);
+        run.before.misalignment, run.after.misalignment,
+        run.before.misalignment / std::max(run.after.misalignment, 1e-300), run.after.max_deviation,
+        run.after.worst_sample / run.sv, run.after.worst_sample % run.sv, run.after.mean_deviation,
+        run.iterations, seconds);
     if (molds)
       std::printf("molds: %d clusters in the (H, sqrt K) plane (grid %d x %d)\n",
                   molds->num_clusters, molds->cells_per_axis, molds->cells_per_axis);
@@ -334,7 +341,7 @@ void RegisterWeingartenCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--surface-mesh", args->surface_mesh, "The result sampled as a quad mesh");
   cmd->add_option("--picture", args->picture, "A shaded picture of the result (.svg)");
   cmd->add_option("--report", args->report, "Write a JSON report");
-  cmd->callback([args, exit_code]() { *exit_code = RunWeingarten(*args); });
+  cmd->callback([args, exit_code]() { *exit_code = RunWeingartenCommand(*args); });
 }
 
 }  // namespace gproj

@@ -22,6 +22,32 @@ void Conclude(const GuidedProblem& problem, Clock::time_point start, RunReport* 
 
 }  // namespace
 
+RunRecord ToRunRecord(const IterationRecord& r) {
+  RunRecord record;
+  record.iteration = r.iteration;
+  record.energy = r.energy;
+  record.step = r.step_norm;
+  record.epsilon = r.epsilon;
+  record.soft_scale = r.soft_scale;
+  record.max_constraint = r.max_constraint;
+  record.assembly_seconds = r.assembly_seconds;
+  record.factorization_seconds = r.factorization_seconds;
+  record.solve_seconds = r.solve_seconds;
+  record.seconds = r.assembly_seconds + r.factorization_seconds + r.solve_seconds;
+  record.families = r.families;
+  return record;
+}
+
+RunRecord ToRunRecord(const CeresIterationRecord& s) {
+  RunRecord record;
+  record.iteration = s.iteration;
+  record.energy = s.cost;
+  record.step = s.step_norm;
+  record.max_constraint = NAN;  // Ceres reports no per-row maximum
+  record.seconds = s.iteration_time_in_seconds;
+  return record;
+}
+
 double ValueOf(const NamedValues& values, const std::string& name) {
   for (const NamedValue& v : values)
     if (v.name == name) return v.value;
@@ -36,17 +62,7 @@ RunReport GuidedProblem::Run(const RunCallback& callback) {
   report.initial = Measure();
   report.summary =
       Solve(solver_options(), &problem(), [&](const IterationRecord& r, const Eigen::VectorXd& x) {
-        RunRecord record;
-        record.iteration = r.iteration;
-        record.energy = r.energy;
-        record.step = r.step_norm;
-        record.epsilon = r.epsilon;
-        record.soft_scale = r.soft_scale;
-        record.assembly_seconds = r.assembly_seconds;
-        record.factorization_seconds = r.factorization_seconds;
-        record.solve_seconds = r.solve_seconds;
-        record.seconds = r.assembly_seconds + r.factorization_seconds + r.solve_seconds;
-        record.families = r.families;
+        RunRecord record = ToRunRecord(r);
         record.measures = MeasureAt(x);
         report.history.push_back(record);
         if (callback && !callback(record)) return CallbackResult::kAbort;
@@ -70,11 +86,7 @@ RunReport GuidedProblem::RunCeres(int max_iterations, const RunCallback& callbac
   const CeresSummary summary =
       SolveWithCeres(ceres_options(max_iterations), &problem(),
                      [&](const CeresIterationRecord& s, const Eigen::VectorXd& x) {
-                       RunRecord record;
-                       record.iteration = s.iteration;
-                       record.energy = s.cost;
-                       record.step = s.step_norm;
-                       record.seconds = s.iteration_time_in_seconds;
+                       RunRecord record = ToRunRecord(s);
                        record.measures = MeasureAt(x);
                        report.history.push_back(record);
                        if (callback && !callback(record)) return false;

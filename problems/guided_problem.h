@@ -32,11 +32,16 @@ struct RunRecord {
   double step = 0.0;  // ‖x^k − x^{k−1}‖ (∞-norm for guided projection, 2-norm for Ceres)
   double epsilon = 0.0;
   double soft_scale = 1.0;
-  double seconds = 0.0;                  // time of the step that led here
-  NamedValues measures;                  // the problem's measures at the iterate
+  double max_constraint = 0.0;  // max |φ| over constraint rows (guided projection; NaN for Ceres)
+  double seconds = 0.0;         // time of the step that led here
+  NamedValues measures;         // the problem's measures at the iterate
   std::vector<FamilyResidual> families;  // per named term: max and RMS |φ| (guided projection)
   double assembly_seconds = 0.0, factorization_seconds = 0.0, solve_seconds = 0.0;
 };
+
+// The solvers' own records as RunRecords (measures left empty).
+RunRecord ToRunRecord(const IterationRecord& record);
+RunRecord ToRunRecord(const CeresIterationRecord& record);
 
 // What a run did: the report every command writes (see README, "Reports").
 struct RunReport {

@@ -17,6 +17,7 @@
 
 #include "constraints/curvature_auxiliaries.h"
 #include "geometry/bspline_surface.h"
+#include "problems/guided_problem.h"
 #include "solver/ceres_adapter.h"
 #include "solver/guided_projection.h"
 #include "solver/problem.h"
@@ -168,5 +169,37 @@ class WeingartenProblem {
   class LinearWeingarten* linear_ = nullptr;
   class SurfaceLinearWeingarten* surface_linear_ = nullptr;
 };
+
+// One level of a multiresolution run (003 §4.1.1).
+struct WeingartenLevel {
+  int level = 0;
+  int nu = 0, nv = 0;  // control points
+  int su = 0, sv = 0;  // samples
+  int variables = 0;
+  int iterations = 0;
+  double misalignment = 0.0;  // of the level's result
+};
+
+// A whole Weingarten run: the levels, every iterate, the result and its measures.
+struct WeingartenRun {
+  BSplineSurface result;             // input units
+  WeingartenMeasures before, after;  // the input and the result, at the last level's samples
+  std::vector<WeingartenLevel> levels;
+  std::vector<RunRecord> history;  // all levels, in order
+  std::vector<int> history_level;  // the level of each record
+  bool converged = true;           // every level's solver converged
+  bool failed = false;             // numerical failure: no result
+  std::string termination;
+  int iterations = 0, variables = 0, su = 0, sv = 0;
+  Eigen::Vector3d relation = Eigen::Vector3d::Zero();  // the linear relation, input units
+};
+
+// Optimises `input` with `options` (guided projection, or Ceres' LM with `use_ceres`), then
+// for every refinement level inserts a knot in every span and optimises again. on_level(level,
+// problem) is called before each level's solve, on_iteration with every record.
+WeingartenRun RunWeingarten(
+    const BSplineSurface& input, const WeingartenOptions& options, bool use_ceres,
+    const RunCallback& on_iteration = nullptr,
+    const std::function<void(int, const WeingartenProblem&)>& on_level = nullptr);
 
 }  // namespace gproj
