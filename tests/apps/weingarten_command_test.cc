@@ -1,12 +1,15 @@
 // `gproj weingarten` as a user runs it, on the shipped B-spline.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 
 #include "apps/command_test_util.h"
 
 namespace gproj {
 namespace {
+
+namespace fs = std::filesystem;
 
 class WeingartenCommandTest : public CommandTest {};
 
@@ -61,6 +64,21 @@ TEST_F(WeingartenCommandTest, CeresSolverPathRunsOnTheShippedSurface) {
   EXPECT_GE(report["history"].size(), 2u);
   EXPECT_LT(report["history"].back()["energy"].get<double>(),
             report["history"].front()["energy"].get<double>());
+}
+
+TEST_F(WeingartenCommandTest, ChecksEveryOutputPathBeforeOptimising) {
+  for (const std::string option : {"--report", "--diagram", "--curvature", "--picture"}) {
+    const CommandRun r = Gproj("weingarten " + Data("freeform_10x10.json") + " -o " +
+                               Path("out.json") + " " + option + " " + Path("missing/x"));
+    EXPECT_EQ(r.exit_code, 1) << option << ": " << r.err;
+    EXPECT_NE(r.err.find(option), std::string::npos) << r.err;
+    EXPECT_EQ(r.out.find("iter"), std::string::npos) << "the solve started before the check";
+    EXPECT_FALSE(fs::exists(dir_ / "out.json"));
+  }
+  const CommandRun mesh = Gproj("weingarten " + Data("freeform_10x10.json") + " -o " +
+                                Path("out.json") + " --surface-mesh " + Path("s.stl"));
+  EXPECT_EQ(mesh.exit_code, 1);
+  EXPECT_NE(mesh.err.find("--surface-mesh"), std::string::npos) << mesh.err;
 }
 
 TEST_F(WeingartenCommandTest, RefusesBadSplinesAndPresets) {
