@@ -21,8 +21,20 @@ int Position(const CscMatrix& s, int row, int col) {
 }  // namespace
 
 bool SchurComplement::Init(const VariableLayout& layout, const CscMatrix& a, std::string* message) {
-  const int n = a.num_rows, m = a.num_cols;
-  std::vector<int> item_of_var(n, -1);
+  std::vector<int> item_of_var;
+  if (!CollectItems(layout, a.num_rows, &item_of_var, message)) return false;
+  if (!SplitColumns(a, item_of_var, message)) return false;
+  GroupColumnsByItem(a.num_cols);
+  BuildPattern(a.num_cols);
+  return true;
+}
+
+// The items of the eliminable blocks; item_of_var maps each variable to its item (or −1), and
+// the kept variables are numbered in order.
+bool SchurComplement::CollectItems(const VariableLayout& layout, int n,
+                                   std::vector<int>* item_of_var_out, std::string* message) {
+  std::vector<int>& item_of_var = *item_of_var_out;
+  item_of_var.assign(n, -1);
   items_.clear();
   num_eliminated_ = 0;
   for (int b = 0; b < layout.num_blocks(); ++b) {
@@ -53,9 +65,13 @@ bool SchurComplement::Init(const VariableLayout& layout, const CscMatrix& a, std
     kept_of_var_[v] = static_cast<int>(kept_var_.size());
     kept_var_.push_back(v);
   }
-  const int num_kept = static_cast<int>(kept_var_.size());
+  return true;
+}
 
-  // Split every column of A into kept and eliminated entries.
+// Every column of A split into kept and eliminated entries; a column may touch one item only.
+bool SchurComplement::SplitColumns(const CscMatrix& a, const std::vector<int>& item_of_var,
+                                   std::string* message) {
+  const int m = a.num_cols;
   col_item_.assign(m, -1);
   col_kept_begin_.assign(1, 0);
   col_elim_begin_.assign(1, 0);
@@ -81,7 +97,11 @@ bool SchurComplement::Init(const VariableLayout& layout, const CscMatrix& a, std
     col_elim_begin_.push_back(static_cast<int>(elim_pos_.size()));
   }
 
-  // Columns of each item (counting sort), and K_e, the kept variables coupled to it.
+  return true;
+}
+
+// Columns of each item (counting sort), and K_e, the kept variables coupled to it.
+void SchurComplement::GroupColumnsByItem(int m) {
   std::vector<int> count(items_.size() + 1, 0);
   for (int c = 0; c < m; ++c)
     if (col_item_[c] >= 0) ++count[col_item_[c] + 1];
@@ -122,8 +142,12 @@ bool SchurComplement::Init(const VariableLayout& layout, const CscMatrix& a, std
     for (int k = col_kept_begin_[c]; k < col_kept_begin_[c + 1]; ++k)
       kept_local_[k] = static_cast<int>(std::lower_bound(begin, end, kept_idx_[k]) - begin);
   }
+}
 
-  // Pattern of S (upper triangle): the diagonal, kept pairs of every column, item cliques.
+// Pattern of S (upper triangle): the diagonal, kept pairs of every column, item cliques; and the
+// positions in S that each column pair and each clique entry adds to.
+void SchurComplement::BuildPattern(int m) {
+  const int num_kept = static_cast<int>(kept_var_.size());
   std::vector<std::vector<int>> rows(num_kept);
   for (int j = 0; j < num_kept; ++j) rows[j].push_back(j);
   for (int c = 0; c < m; ++c)
@@ -159,7 +183,6 @@ bool SchurComplement::Init(const VariableLayout& layout, const CscMatrix& a, std
       for (int q = p; q < item.kept_end; ++q)
         clique_pos_.push_back(Position(s_, kept_vars_[p], kept_vars_[q]));
   }
-  return true;
 }
 
 bool SchurComplement::Form(const CscMatrix& a, double beta, std::string* message) {

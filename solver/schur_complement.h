@@ -39,6 +39,13 @@ class SchurComplement {
                       Eigen::VectorXd* d) const;
 
  private:
+  // The steps of Init.
+  bool CollectItems(const VariableLayout& layout, int n, std::vector<int>* item_of_var,
+                    std::string* message);
+  bool SplitColumns(const CscMatrix& a, const std::vector<int>& item_of_var, std::string* message);
+  void GroupColumnsByItem(int m);
+  void BuildPattern(int m);
+
   struct Item {
     int first_var = 0;  // global index of component 0
     int dim = 0;
