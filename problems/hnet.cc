@@ -6,6 +6,7 @@
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <memory>
 
 #include "constraints/frame_point_planarity.h"
 
@@ -346,77 +347,129 @@ HNet::HNet(const PolyMesh& mesh, const PolyMesh* reference, const HNetOptions& o
   colour_ = TwoColourVertices(mesh);
 }
 
+namespace {
+
+// The vertex-update problem of 004 §3.2: the A-net families and frame-point planarity per
+// inner edge, with an eliminable frame normal per edge.
+struct VertexUpdate {
+  Problem problem;
+  MeshNormalization norm;
+  int vertex_block = -1, edge_block = -1;
+  FramePointPlanarity* frame = nullptr;
+  std::vector<EdgeStencil> stencils;  // per inner edge
+};
+
+std::unique_ptr<VertexUpdate> BuildVertexUpdate(const PolyMesh& mesh,
+                                                const std::vector<int>& colour,
+                                                const HNetOptions& options,
+                                                const ClosestPointQuery& query) {
+  auto u = std::make_unique<VertexUpdate>();
+  Problem& problem = u->problem;
+  u->norm = MeshNormalization::Of(mesh);
+  u->vertex_block = problem.layout().AddBlock("vertices", static_cast<int>(mesh.n_vertices()), 3);
+  const ANetFamilies anet = AddANetLayout(mesh, options.anet, &problem);
+  std::vector<PolyMesh::EdgeHandle> inner_edges;
+  for (auto e : mesh.edges())
+    if (!mesh.is_boundary(e)) inner_edges.push_back(e);
+  u->edge_block = problem.layout().AddBlock("frame_normals", static_cast<int>(inner_edges.size()),
+                                            3, /*eliminable=*/true);
+  problem.ResizeToLayout();
+  LoadVertices(mesh, u->norm, u->vertex_block, &problem);
+  LoadANetNormals(mesh, u->vertex_block, anet, &problem);
+  AddANetFamilies(mesh, options.anet, u->vertex_block, anet, &query, u->norm, &problem);
+  u->frame = problem.AddFamily<FramePointPlanarity>(options.frame_weight);
+  for (size_t k = 0; k < inner_edges.size(); ++k) {
+    const EdgeStencil s = EdgeStencilOf(mesh, colour, inner_edges[k]);
+    u->stencils.push_back(s);
+    std::vector<int> items = {problem.layout().Item(u->edge_block, static_cast<int>(k))};
+    for (int i = 0; i < 6; ++i) items.push_back(problem.layout().Item(u->vertex_block, s.b[i]));
+    u->frame->AddEdge(items[0], items[1], items[2], items[3], items[4], items[5], items[6], 1.0,
+                      1.0);
+  }
+  return u;
+}
+
+// Freezes the shape parameters w in the frame rows and starts each frame normal from the
+// current frame points.
+void FreezeWeights(const std::vector<double>& w, VertexUpdate* u) {
+  Eigen::VectorXd& x = u->problem.x();
+  const VariableLayout& layout = u->problem.layout();
+  for (size_t k = 0; k < u->stencils.size(); ++k) {
+    const EdgeStencil& s = u->stencils[k];
+    const double wl = w[s.left_face], wr = w[s.right_face];
+    u->frame->SetShapeParameters(static_cast<int>(k), wl, wr);
+    auto b = [&](int i) {
+      return Eigen::Vector3d(x.segment<3>(layout.Index(u->vertex_block, s.b[i], 0)));
+    };
+    const Eigen::Vector3d f1 = (b(1) + wl * b(2)) / (1 + wl), f4 = (b(5) + wr * b(4)) / (1 + wr);
+    Eigen::Vector3d n = (b(3) - b(0)).cross(f1 - f4);
+    if (n.norm() > 0) n.normalize();
+    x.segment<3>(layout.Index(u->edge_block, static_cast<int>(k), 0)) = n;
+  }
+}
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+bool HNet::RunANetStep(const PolyMesh& reference, const IterationCallback& on_iteration,
+                       HNetSummary* summary) {
+  if (MeasureStarPlanarity(mesh_, mesh_).max_star_planarity <= options_.anet.tolerance) return true;
+  ANet anet(mesh_, &reference, options_.anet);
+  summary->anet_summary = anet.Run(on_iteration).summary;
+  summary->anet_step_run = true;
+  if (summary->anet_summary.termination == TerminationType::kFailure) {
+    summary->message = "A-net step failed: " + summary->anet_summary.message;
+    return false;
+  }
+  mesh_ = anet.Result();
+  return true;
+}
+
+HNetRound HNet::UpdateWeights(int round, const PolyMesh& reference) {
+  const ShapeParameters shape = PropagateShapeParameters(mesh_, colour_, 0);
+  HNetRound r;
+  r.round = round;
+  r.max_inconsistency = shape.max_inconsistency;
+  if (!w_.empty())
+    for (size_t f = 0; f < w_.size(); ++f)
+      r.weight_change = std::max(r.weight_change, std::abs(shape.w[f] / w_[f] - 1.0));
+  w_ = shape.w;
+  weights_.clear();
+  for (auto f : mesh_.faces()) weights_.push_back(CornerWeights(mesh_, colour_, f, w_[f.idx()]));
+  r.min_w = *std::min_element(w_.begin(), w_.end());
+  r.max_w = *std::max_element(w_.begin(), w_.end());
+  r.max_tangent_angle_deg = MaxTangentPlaneAngle(mesh_, weights_);
+  r.star = MeasureStarPlanarity(mesh_, reference);
+  return r;
+}
+
 HNetSummary HNet::Run(const IterationCallback& on_iteration, const RoundCallback& on_round) {
   const auto start = std::chrono::steady_clock::now();
   HNetSummary summary;
   summary.simply_connected = topology_note_.empty();
   const PolyMesh& reference = reference_ != nullptr ? *reference_ : input_;
-
   // 1. The A-net step, unless the stars are already planar to tolerance.
-  if (MeasureStarPlanarity(mesh_, mesh_).max_star_planarity > options_.anet.tolerance) {
-    ANet anet(mesh_, &reference, options_.anet);
-    summary.anet_summary = anet.Run(on_iteration).summary;
-    summary.anet_step_run = true;
-    if (summary.anet_summary.termination == TerminationType::kFailure) {
-      summary.message = "A-net step failed: " + summary.anet_summary.message;
-      return summary;
-    }
-    mesh_ = anet.Result();
-  }
-
-  // 2. The vertex-update problem: A-net families + frame-point planarity per inner edge.
-  const MeshNormalization norm = MeshNormalization::Of(mesh_);
-  ClosestPointQuery query(reference);
-  Problem problem;
-  const int vertex_block =
-      problem.layout().AddBlock("vertices", static_cast<int>(mesh_.n_vertices()), 3);
-  const ANetFamilies anet = AddANetLayout(mesh_, options_.anet, &problem);
-  std::vector<PolyMesh::EdgeHandle> inner_edges;
-  for (auto e : mesh_.edges())
-    if (!mesh_.is_boundary(e)) inner_edges.push_back(e);
-  const int edge_block = problem.layout().AddBlock(
-      "frame_normals", static_cast<int>(inner_edges.size()), 3, /*eliminable=*/true);
-  problem.ResizeToLayout();
-  summary.variables = problem.layout().num_variables();
-  LoadVertices(mesh_, norm, vertex_block, &problem);
-  LoadANetNormals(mesh_, vertex_block, anet, &problem);
-  AddANetFamilies(mesh_, options_.anet, vertex_block, anet, &query, norm, &problem);
-  auto* frame = problem.AddFamily<FramePointPlanarity>(options_.frame_weight);
-  std::vector<EdgeStencil> stencils;
-  for (size_t k = 0; k < inner_edges.size(); ++k) {
-    const EdgeStencil s = EdgeStencilOf(mesh_, colour_, inner_edges[k]);
-    stencils.push_back(s);
-    std::vector<int> items = {problem.layout().Item(edge_block, static_cast<int>(k))};
-    for (int i = 0; i < 6; ++i) items.push_back(problem.layout().Item(vertex_block, s.b[i]));
-    frame->AddEdge(items[0], items[1], items[2], items[3], items[4], items[5], items[6], 1.0, 1.0);
-  }
+  if (!RunANetStep(reference, on_iteration, &summary)) return summary;
+  // 2. The vertex-update problem.
+  const ClosestPointQuery query(reference);
+  const std::unique_ptr<VertexUpdate> update = BuildVertexUpdate(mesh_, colour_, options_, query);
+  summary.variables = update->problem.layout().num_variables();
   summary.equitwist_violations = EquitwistViolations(mesh_, colour_);
-
   SolverOptions solver_options = options_.anet.solver;
   solver_options.max_iterations = options_.iterations_per_round;
   solver_options.residual_tolerance = options_.residual_tolerance;
   solver_options.initial_soft_scale = options_.round_soft_scale;
+  // 3. Rounds: weights from the vertices, then vertices with the weights frozen.
   for (int round = 0; round < options_.max_rounds; ++round) {
     const auto round_start = std::chrono::steady_clock::now();
-    StoreVertices(problem, vertex_block, norm, &mesh_);
-    const ShapeParameters shape = PropagateShapeParameters(mesh_, colour_, 0);
-    HNetRound r;
-    r.round = round;
-    r.max_inconsistency = shape.max_inconsistency;
-    if (!w_.empty())
-      for (size_t f = 0; f < w_.size(); ++f)
-        r.weight_change = std::max(r.weight_change, std::abs(shape.w[f] / w_[f] - 1.0));
-    w_ = shape.w;
-    weights_.clear();
-    for (auto f : mesh_.faces()) weights_.push_back(CornerWeights(mesh_, colour_, f, w_[f.idx()]));
-    r.min_w = *std::min_element(w_.begin(), w_.end());
-    r.max_w = *std::max_element(w_.begin(), w_.end());
-    r.max_tangent_angle_deg = MaxTangentPlaneAngle(mesh_, weights_);
-    r.star = MeasureStarPlanarity(mesh_, reference);
+    StoreVertices(update->problem, update->vertex_block, update->norm, &mesh_);
+    HNetRound r = UpdateWeights(round, reference);
     const bool settled = round > 0 && r.weight_change <= options_.weight_tolerance;
     if (settled || round + 1 == options_.max_rounds) {
-      r.seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - round_start).count();
+      r.seconds = SecondsSince(round_start);
       summary.rounds.push_back(r);
       if (on_round) on_round(r);
       summary.converged = settled;
@@ -424,33 +477,19 @@ HNetSummary HNet::Run(const IterationCallback& on_iteration, const RoundCallback
           settled ? "weights and vertices settled" : "maximum number of rounds reached";
       break;
     }
-    // 3. Vertex update with the weights frozen.
-    Eigen::VectorXd& x = problem.x();
-    for (size_t k = 0; k < stencils.size(); ++k) {
-      const EdgeStencil& s = stencils[k];
-      const double wl = w_[s.left_face], wr = w_[s.right_face];
-      frame->SetShapeParameters(static_cast<int>(k), wl, wr);
-      auto b = [&](int i) {
-        return Eigen::Vector3d(x.segment<3>(problem.layout().Index(vertex_block, s.b[i], 0)));
-      };
-      const Eigen::Vector3d f1 = (b(1) + wl * b(2)) / (1 + wl), f4 = (b(5) + wr * b(4)) / (1 + wr);
-      Eigen::Vector3d n = (b(3) - b(0)).cross(f1 - f4);
-      if (n.norm() > 0) n.normalize();
-      x.segment<3>(problem.layout().Index(edge_block, static_cast<int>(k), 0)) = n;
-    }
-    const SolverSummary s = gproj::Solve(solver_options, &problem);
+    FreezeWeights(w_, update.get());
+    const SolverSummary s = gproj::Solve(solver_options, &update->problem);
     if (s.termination == TerminationType::kFailure) {
       summary.message = "vertex update failed: " + s.message;
       break;
     }
     r.vertex_update_converged = s.converged();
     r.solver_iterations = s.num_steps();
-    r.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - round_start).count();
+    r.seconds = SecondsSince(round_start);
     summary.rounds.push_back(r);
     if (on_round) on_round(r);
   }
-  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.seconds = SecondsSince(start);
   return summary;
 }
 

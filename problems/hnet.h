@@ -133,6 +133,13 @@ class HNet {
   const std::vector<double>& shape_parameters() const { return w_; }
 
  private:
+  // Runs the A-net step when the stars are not planar to tolerance; false (with the message in
+  // *summary) when it fails.
+  bool RunANetStep(const PolyMesh& reference, const IterationCallback& on_iteration,
+                   HNetSummary* summary);
+  // Shape parameters and corner weights from the current vertices, with the round's measures.
+  HNetRound UpdateWeights(int round, const PolyMesh& reference);
+
   HNetOptions options_;
   PolyMesh input_, mesh_;
   const PolyMesh* reference_;
