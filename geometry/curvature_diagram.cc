@@ -172,17 +172,19 @@ std::string TickLabel(double value, const Axis& axis) {
   return label;
 }
 
-}  // namespace
+// The plot area and its axes: px, py map (H, K) to pixels.
+struct PlotFrame {
+  double left, right, top, bottom;
+  Axis x, y;
+  double px(double h) const { return left + (h - x.lo) / (x.hi - x.lo) * (right - left); }
+  double py(double k) const { return bottom - (k - y.lo) / (y.hi - y.lo) * (bottom - top); }
+};
 
-std::string RenderCurvatureDiagramSvg(const std::vector<DiagramSeries>& series,
-                                      const DiagramOptions& options) {
-  if (options.width < 200 || options.height < 150)
-    throw std::invalid_argument("curvature diagram: size " + std::to_string(options.width) + "×" +
-                                std::to_string(options.height) + " is below 200×150 pixels");
-  // Finite points per series, and their common range.
+// Indices of the finite points of every series; widens [min_h, max_h] × [min_k, max_k] to
+// hold them. Throws std::invalid_argument when a series' H and K differ in length.
+std::vector<std::vector<int>> FinitePoints(const std::vector<DiagramSeries>& series, double* min_h,
+                                           double* max_h, double* min_k, double* max_k) {
   std::vector<std::vector<int>> finite(series.size());
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  double min_h = kInf, max_h = -kInf, min_k = kInf, max_k = -kInf;
   for (size_t s = 0; s < series.size(); ++s) {
     const DiagramSeries& d = series[s];
     if (d.h.size() != d.k.size())
@@ -192,30 +194,24 @@ std::string RenderCurvatureDiagramSvg(const std::vector<DiagramSeries>& series,
     for (size_t i = 0; i < d.h.size(); ++i) {
       if (!std::isfinite(d.h[i]) || !std::isfinite(d.k[i])) continue;
       finite[s].push_back(static_cast<int>(i));
-      min_h = std::min(min_h, d.h[i]);
-      max_h = std::max(max_h, d.h[i]);
-      min_k = std::min(min_k, d.k[i]);
-      max_k = std::max(max_k, d.k[i]);
+      *min_h = std::min(*min_h, d.h[i]);
+      *max_h = std::max(*max_h, d.h[i]);
+      *min_k = std::min(*min_k, d.k[i]);
+      *max_k = std::max(*max_k, d.k[i]);
     }
   }
+  return finite;
+}
 
-  // Frame: title and legend above, tick labels left and below.
-  const double left = 72, right = options.width - 20.0;
-  const double top = series.empty() ? 40.0 : 58.0, bottom = options.height - 46.0;
-  const Axis x = MakeAxis(min_h, max_h, static_cast<int>((right - left) / 90));
-  const Axis y = MakeAxis(min_k, max_k, static_cast<int>((bottom - top) / 60));
-  const auto px = [&](double h) { return left + (h - x.lo) / (x.hi - x.lo) * (right - left); };
-  const auto py = [&](double k) { return bottom - (k - y.lo) / (y.hi - y.lo) * (bottom - top); };
-
-  std::string svg;
+// Grid lines, the H = 0 and K = 0 lines, the frame, ticks and axis names.
+void AppendAxes(const PlotFrame& f, std::string* out) {
+  std::string& svg = *out;
+  const Axis& x = f.x;
+  const Axis& y = f.y;
+  const double left = f.left, right = f.right, top = f.top, bottom = f.bottom;
+  const auto px = [&](double h) { return f.px(h); };
+  const auto py = [&](double k) { return f.py(k); };
   char buffer[256];
-  std::snprintf(buffer, sizeof(buffer),
-                "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" "
-                "font-family=\"sans-serif\">\n"
-                "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n",
-                options.width, options.height);
-  svg += buffer;
-
   // Grid lines and tick labels.
   svg += "<g stroke=\"#e4e4e4\" stroke-width=\"1\">\n";
   for (double t : Ticks(x)) {
@@ -273,8 +269,13 @@ std::string RenderCurvatureDiagramSvg(const std::vector<DiagramSeries>& series,
                 "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">K</text></g>\n",
                 (left + right) / 2, bottom + 36.0, 14.0, (top + bottom) / 2);
   svg += buffer;
+}
 
-  // Points: one group per series, at most kMaxDrawnPointsPerSeries each (uniform subsample).
+// Points: one group per series, at most kMaxDrawnPointsPerSeries each (uniform subsample).
+void AppendPoints(const PlotFrame& f, const std::vector<DiagramSeries>& series,
+                  const std::vector<std::vector<int>>& finite, std::string* out) {
+  std::string& svg = *out;
+  char buffer[256];
   for (size_t s = 0; s < series.size(); ++s) {
     const DiagramSeries& d = series[s];
     const size_t count = finite[s].size();
@@ -284,13 +285,19 @@ std::string RenderCurvatureDiagramSvg(const std::vector<DiagramSeries>& series,
     for (size_t j = 0; j < drawn; ++j) {
       const int i = finite[s][j * count / drawn];
       std::snprintf(buffer, sizeof(buffer), "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"2\"/>\n",
-                    px(d.h[i]), py(d.k[i]));
+                    f.px(d.h[i]), f.py(d.k[i]));
       svg += buffer;
     }
     svg += "</g>\n";
   }
+}
 
-  // Legend (one row under the title) and title.
+// Legend (one row under the title) and title.
+void AppendLegendAndTitle(const std::vector<DiagramSeries>& series,
+                          const std::vector<std::vector<int>>& finite,
+                          const DiagramOptions& options, double left, std::string* out) {
+  std::string& svg = *out;
+  char buffer[256];
   double legend_x = left;
   for (size_t s = 0; s < series.size(); ++s) {
     const DiagramSeries& d = series[s];
@@ -310,6 +317,37 @@ std::string RenderCurvatureDiagramSvg(const std::vector<DiagramSeries>& series,
                   options.width / 2.0);
     svg += buffer + Escape(options.title) + "</text>\n";
   }
+}
+
+}  // namespace
+
+std::string RenderCurvatureDiagramSvg(const std::vector<DiagramSeries>& series,
+                                      const DiagramOptions& options) {
+  if (options.width < 200 || options.height < 150)
+    throw std::invalid_argument("curvature diagram: size " + std::to_string(options.width) + "×" +
+                                std::to_string(options.height) + " is below 200×150 pixels");
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  double min_h = kInf, max_h = -kInf, min_k = kInf, max_k = -kInf;
+  const std::vector<std::vector<int>> finite = FinitePoints(series, &min_h, &max_h, &min_k, &max_k);
+  // Frame: title and legend above, tick labels left and below.
+  PlotFrame f;
+  f.left = 72;
+  f.right = options.width - 20.0;
+  f.top = series.empty() ? 40.0 : 58.0;
+  f.bottom = options.height - 46.0;
+  f.x = MakeAxis(min_h, max_h, static_cast<int>((f.right - f.left) / 90));
+  f.y = MakeAxis(min_k, max_k, static_cast<int>((f.bottom - f.top) / 60));
+  std::string svg;
+  char buffer[256];
+  std::snprintf(buffer, sizeof(buffer),
+                "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" "
+                "font-family=\"sans-serif\">\n"
+                "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n",
+                options.width, options.height);
+  svg += buffer;
+  AppendAxes(f, &svg);
+  AppendPoints(f, series, finite, &svg);
+  AppendLegendAndTitle(series, finite, options, f.left, &svg);
   svg += "</svg>\n";
   return svg;
 }
