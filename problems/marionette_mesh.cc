@@ -189,22 +189,34 @@ std::vector<int> TraceMeshPolyline(const PolyMesh& mesh, int start, int next, in
   return poly;
 }
 
-MarionettePatchLayout DecomposeIntoPatches(const PolyMesh& mesh) {
-  MarionettePatchLayout layout;
-  const int nv = static_cast<int>(mesh.n_vertices()), nf = static_cast<int>(mesh.n_faces()),
-            ne = static_cast<int>(mesh.n_edges());
-  std::vector<char> on_separatrix(nv, 0), separatrix_edge(ne, 0);
+namespace {
+
+// What the steps of DecomposeIntoPatches share.
+struct Decomposition {
+  std::vector<char> on_separatrix, separatrix_edge;  // per vertex, per edge
+  std::vector<int> strip_of;                         // (face, direction) → face strip
+  std::vector<std::vector<int>> strip_patches;       // per face strip, the patches it crosses
+  std::vector<char> strip_closed;                    // per face strip
+};
+
+// Singular vertices and the separatrices traced from them along straight mesh lines.
+void TraceSeparatrices(const PolyMesh& mesh, MarionettePatchLayout* layout, Decomposition* d) {
+  const int nv = static_cast<int>(mesh.n_vertices()), ne = static_cast<int>(mesh.n_edges());
+  d->on_separatrix.assign(nv, 0);
+  d->separatrix_edge.assign(ne, 0);
+  std::vector<char>& on_separatrix = d->on_separatrix;
+  std::vector<char>& separatrix_edge = d->separatrix_edge;
   for (auto v : mesh.vertices()) {
     const int valence = static_cast<int>(mesh.valence(v));
     const bool boundary = mesh.is_boundary(v);
     if (boundary) on_separatrix[v.idx()] = 1;
     if ((!boundary && valence != 4) || (boundary && (valence == 2 || valence >= 4)))
-      layout.singular_vertices.push_back(v.idx());
+      layout->singular_vertices.push_back(v.idx());
   }
-  for (int v : layout.singular_vertices) on_separatrix[v] = 1;
+  for (int v : layout->singular_vertices) on_separatrix[v] = 1;
   for (auto e : mesh.edges())
     if (mesh.is_boundary(e)) separatrix_edge[e.idx()] = 1;
-  for (int s : layout.singular_vertices) {
+  for (int s : layout->singular_vertices) {
     for (auto out : mesh.voh_range(PolyMesh::VertexHandle(s))) {
       if (separatrix_edge[mesh.edge_handle(out).idx()]) continue;
       std::vector<int> poly = {s};
@@ -217,17 +229,24 @@ MarionettePatchLayout DecomposeIntoPatches(const PolyMesh& mesh) {
         on_separatrix[w] = 1;
         h = Straight(mesh, h);  // w is an inner valence-4 vertex
       }
-      layout.separatrices.push_back(std::move(poly));
+      layout->separatrices.push_back(std::move(poly));
     }
   }
-  // Patches: faces connected across edges that are not on a separatrix.
-  layout.patch_of_face.assign(nf, -1);
+}
+
+// Patches: faces connected across edges that are not on a separatrix; a patch whose corners
+// and boundary make a grid gets its rows and columns.
+void FloodPatches(const PolyMesh& mesh, const Decomposition& d, MarionettePatchLayout* layout) {
+  const int nf = static_cast<int>(mesh.n_faces());
+  const std::vector<char>& on_separatrix = d.on_separatrix;
+  const std::vector<char>& separatrix_edge = d.separatrix_edge;
+  layout->patch_of_face.assign(nf, -1);
   for (int seed = 0; seed < nf; ++seed) {
-    if (layout.patch_of_face[seed] >= 0) continue;
-    const int id = static_cast<int>(layout.patches.size());
+    if (layout->patch_of_face[seed] >= 0) continue;
+    const int id = static_cast<int>(layout->patches.size());
     MarionettePatch patch;
     std::vector<int> stack = {seed};
-    layout.patch_of_face[seed] = id;
+    layout->patch_of_face[seed] = id;
     while (!stack.empty()) {
       const int f = stack.back();
       stack.pop_back();
@@ -235,8 +254,8 @@ MarionettePatchLayout DecomposeIntoPatches(const PolyMesh& mesh) {
       for (auto h : FaceHalfedges(mesh, f)) {
         if (separatrix_edge[mesh.edge_handle(h).idx()]) continue;
         const int g = mesh.face_handle(mesh.opposite_halfedge_handle(h)).idx();
-        if (g >= 0 && layout.patch_of_face[g] < 0) {
-          layout.patch_of_face[g] = id;
+        if (g >= 0 && layout->patch_of_face[g] < 0) {
+          layout->patch_of_face[g] = id;
           stack.push_back(g);
         }
       }
@@ -265,17 +284,22 @@ MarionettePatchLayout DecomposeIntoPatches(const PolyMesh& mesh) {
         patch.cols = half - rows;
       }
     }
-    layout.patches.push_back(std::move(patch));
+    layout->patches.push_back(std::move(patch));
   }
-  // Face strips: (face, direction) → strip, walking through opposite edges.
-  layout.face_strip_of_edge.assign(ne, -1);
-  std::vector<int> strip_of(2 * nf, -1);
-  std::vector<std::vector<int>> strip_patches;
-  std::vector<char> strip_closed;
+}
+
+// Face strips: (face, direction) → strip, walking through opposite edges.
+void TraceFaceStrips(const PolyMesh& mesh, MarionettePatchLayout* layout, Decomposition* d) {
+  const int nf = static_cast<int>(mesh.n_faces()), ne = static_cast<int>(mesh.n_edges());
+  d->strip_of.assign(2 * nf, -1);
+  std::vector<int>& strip_of = d->strip_of;
+  std::vector<std::vector<int>>& strip_patches = d->strip_patches;
+  std::vector<char>& strip_closed = d->strip_closed;
+  layout->face_strip_of_edge.assign(ne, -1);
   for (int f0 = 0; f0 < nf; ++f0)
     for (int k0 = 0; k0 < 2; ++k0) {
       if (strip_of[2 * f0 + k0] >= 0) continue;
-      const int s = layout.num_face_strips++;
+      const int s = layout->num_face_strips++;
       bool closed = false;
       std::vector<int> sequence[2];  // patches met leaving through edge k0 and through k0 + 2
       strip_of[2 * f0 + k0] = s;
@@ -283,7 +307,7 @@ MarionettePatchLayout DecomposeIntoPatches(const PolyMesh& mesh) {
         int f = f0, j = k0 + 2 * side;
         while (true) {
           const HalfedgeHandle h = FaceHalfedges(mesh, f)[j];
-          layout.face_strip_of_edge[mesh.edge_handle(h).idx()] = s;
+          layout->face_strip_of_edge[mesh.edge_handle(h).idx()] = s;
           const HalfedgeHandle o = mesh.opposite_halfedge_handle(h);
           const int g = mesh.face_handle(o).idx();
           if (g < 0) break;
@@ -294,25 +318,32 @@ MarionettePatchLayout DecomposeIntoPatches(const PolyMesh& mesh) {
             break;
           }
           strip_of[2 * g + jg % 2] = s;
-          const int p = layout.patch_of_face[g];
+          const int p = layout->patch_of_face[g];
           if (sequence[side].empty() || sequence[side].back() != p) sequence[side].push_back(p);
           f = g;
           j = (jg + 2) % 4;
         }
       }
-      if (closed) ++layout.num_closed_face_strips;
+      if (closed) ++layout->num_closed_face_strips;
       // The patches along the strip, from one end to the other.
       std::vector<int> patches(sequence[1].rbegin(), sequence[1].rend());
-      if (patches.empty() || patches.back() != layout.patch_of_face[f0])
-        patches.push_back(layout.patch_of_face[f0]);
+      if (patches.empty() || patches.back() != layout->patch_of_face[f0])
+        patches.push_back(layout->patch_of_face[f0]);
       for (int p : sequence[0])
         if (patches.back() != p) patches.push_back(p);
       strip_patches.push_back(std::move(patches));
       strip_closed.push_back(closed);
     }
-  // Strips of patches: face strips side by side across an edge that is not a separatrix.
-  std::vector<int> parent(layout.num_face_strips);
-  for (int s = 0; s < layout.num_face_strips; ++s) parent[s] = s;
+}
+
+// Strips of patches: face strips side by side across an edge that is not a separatrix.
+void GroupPatchStrips(const PolyMesh& mesh, const Decomposition& d, MarionettePatchLayout* layout) {
+  const std::vector<char>& separatrix_edge = d.separatrix_edge;
+  const std::vector<int>& strip_of = d.strip_of;
+  const std::vector<std::vector<int>>& strip_patches = d.strip_patches;
+  const std::vector<char>& strip_closed = d.strip_closed;
+  std::vector<int> parent(layout->num_face_strips);
+  for (int s = 0; s < layout->num_face_strips; ++s) parent[s] = s;
   auto find = [&](int s) {
     while (parent[s] != s) s = parent[s] = parent[parent[s]];
     return s;
@@ -329,17 +360,28 @@ MarionettePatchLayout DecomposeIntoPatches(const PolyMesh& mesh) {
     }
     parent[side[0]] = side[1];
   }
-  std::vector<int> patch_strip_of_root(layout.num_face_strips, -1);
-  for (int s = 0; s < layout.num_face_strips; ++s) {
+  std::vector<int> patch_strip_of_root(layout->num_face_strips, -1);
+  for (int s = 0; s < layout->num_face_strips; ++s) {
     int& id = patch_strip_of_root[find(s)];
     if (id < 0) {
-      id = static_cast<int>(layout.patch_strips.size());
-      layout.patch_strips.push_back({strip_patches[s], {}, false});
+      id = static_cast<int>(layout->patch_strips.size());
+      layout->patch_strips.push_back({strip_patches[s], {}, false});
     }
-    layout.patch_strips[id].face_strips.push_back(s);
-    layout.patch_strips[id].closed = layout.patch_strips[id].closed || strip_closed[s];
-    layout.patch_strip_of_face_strip.push_back(id);
+    layout->patch_strips[id].face_strips.push_back(s);
+    layout->patch_strips[id].closed = layout->patch_strips[id].closed || strip_closed[s];
+    layout->patch_strip_of_face_strip.push_back(id);
   }
+}
+
+}  // namespace
+
+MarionettePatchLayout DecomposeIntoPatches(const PolyMesh& mesh) {
+  MarionettePatchLayout layout;
+  Decomposition d;
+  TraceSeparatrices(mesh, &layout, &d);
+  FloodPatches(mesh, d, &layout);
+  TraceFaceStrips(mesh, &layout, &d);
+  GroupPatchStrips(mesh, d, &layout);
   return layout;
 }
 
