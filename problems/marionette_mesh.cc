@@ -439,6 +439,65 @@ std::vector<MarionetteTarget> ResolveMarionetteGuides(const PolyMesh& mesh,
   return out;
 }
 
+namespace {
+
+// Why face f cannot propagate the parameter of its vertex u from a, b, c.
+std::string DegenerateFaceMessage(const MarionetteLines& lines, const MarionettePatchLayout& layout,
+                                  int f, int u, int a, int b, int c) {
+  return "face " + std::to_string(f) + " (patch " + std::to_string(layout.patch_of_face[f]) +
+         (lines.projection == MarionetteProjection::kVertical
+              ? ") has a degenerate plan view: its vertices " + std::to_string(a) + ", " +
+                    std::to_string(b) + " and " + std::to_string(c) +
+                    " are collinear in x, y, so the height of vertex " + std::to_string(u) +
+                    " cannot be propagated"
+              : "): the line of vertex " + std::to_string(u) +
+                    " is parallel to the plane through vertices " + std::to_string(a) + ", " +
+                    std::to_string(b) + " and " + std::to_string(c) +
+                    " (or they are collinear), so its parameter cannot be propagated");
+}
+
+// The error for guides that leave vertices without a value: the patches concerned and the
+// strips of patches no guide crosses.
+[[noreturn]] void ThrowUnderDetermined(const PolyMesh& mesh, const MarionettePatchLayout& layout,
+                                       const std::vector<char>& known,
+                                       const std::vector<char>& done,
+                                       const std::vector<int>& missing, size_t num_prescribed) {
+  const int nf = static_cast<int>(mesh.n_faces());
+  std::vector<int> patches;
+  for (int f = 0; f < nf; ++f)
+    if (!done[f]) {
+      const int p = layout.patch_of_face[f];
+      if (std::find(patches.begin(), patches.end(), p) == patches.end()) patches.push_back(p);
+    }
+  std::sort(patches.begin(), patches.end());
+  // Strips of patches with a face strip that no prescribed edge crosses.
+  std::vector<char> crossed(layout.num_face_strips, 0);
+  for (auto e : mesh.edges()) {
+    const auto h = mesh.halfedge_handle(e, 0);
+    if (known[mesh.from_vertex_handle(h).idx()] && known[mesh.to_vertex_handle(h).idx()] &&
+        layout.face_strip_of_edge[e.idx()] >= 0)
+      crossed[layout.face_strip_of_edge[e.idx()]] = 1;
+  }
+  std::vector<int> uncrossed;
+  for (int s = 0; s < layout.num_face_strips; ++s) {
+    const int ps = layout.patch_strip_of_face_strip[s];
+    if (!crossed[s] && std::find(uncrossed.begin(), uncrossed.end(), ps) == uncrossed.end())
+      uncrossed.push_back(ps);
+  }
+  std::string strips;
+  for (size_t k = 0; k < uncrossed.size() && k < 4; ++k)
+    strips += std::string(k ? "; " : "") + "strip of patches " +
+              JoinIds(layout.patch_strips[uncrossed[k]].patches);
+  throw InputError(
+      "the guides do not determine patch" + std::string(patches.size() > 1 ? "es " : " ") +
+      JoinIds(patches) + ": " + std::to_string(missing.size()) + " vertices have no value (" +
+      JoinIds(missing) + ")" + (strips.empty() ? "" : "; no guide crosses " + strips) +
+      " (a lift needs " + std::to_string(layout.design_dimension()) +
+      " values on guides across every strip, got " + std::to_string(num_prescribed) + ")");
+}
+
+}  // namespace
+
 MarionetteMeshLift LiftMarionetteMesh(const MarionetteLines& lines,
                                       const MarionettePatchLayout& layout,
                                       const std::vector<MarionetteTarget>& prescribed,
@@ -506,17 +565,7 @@ MarionetteMeshLift LiftMarionetteMesh(const MarionetteLines& lines,
     const Eigen::Vector3d n = (pa - pb).cross(pc - pb);
     const double nd = n.dot(lines.direction[u]);
     if (!(std::abs(nd) > 1e-12 * (pa - pb).norm() * (pc - pb).norm()))
-      throw InputError(
-          "face " + std::to_string(f) + " (patch " + std::to_string(layout.patch_of_face[f]) +
-          (lines.projection == MarionetteProjection::kVertical
-               ? ") has a degenerate plan view: its vertices " + std::to_string(a) + ", " +
-                     std::to_string(b) + " and " + std::to_string(c) +
-                     " are collinear in x, y, so the height of vertex " + std::to_string(u) +
-                     " cannot be propagated"
-               : "): the line of vertex " + std::to_string(u) +
-                     " is parallel to the plane through vertices " + std::to_string(a) + ", " +
-                     std::to_string(b) + " and " + std::to_string(c) +
-                     " (or they are collinear), so its parameter cannot be propagated"));
+      throw InputError(DegenerateFaceMessage(lines, layout, f, u, a, b, c));
     const double t = n.dot(pb - lines.origin[u]) / nd;
     finish_face(f);
     make_known(u, t, f);
@@ -525,39 +574,7 @@ MarionetteMeshLift LiftMarionetteMesh(const MarionetteLines& lines,
   std::vector<int> missing;
   for (int v = 0; v < nv; ++v)
     if (!known[v]) missing.push_back(v);
-  if (!missing.empty()) {
-    std::vector<int> patches;
-    for (int f = 0; f < nf; ++f)
-      if (!done[f]) {
-        const int p = layout.patch_of_face[f];
-        if (std::find(patches.begin(), patches.end(), p) == patches.end()) patches.push_back(p);
-      }
-    std::sort(patches.begin(), patches.end());
-    // Strips of patches with a face strip that no prescribed edge crosses.
-    std::vector<char> crossed(layout.num_face_strips, 0);
-    for (auto e : mesh.edges()) {
-      const auto h = mesh.halfedge_handle(e, 0);
-      if (known[mesh.from_vertex_handle(h).idx()] && known[mesh.to_vertex_handle(h).idx()] &&
-          layout.face_strip_of_edge[e.idx()] >= 0)
-        crossed[layout.face_strip_of_edge[e.idx()]] = 1;
-    }
-    std::vector<int> uncrossed;
-    for (int s = 0; s < layout.num_face_strips; ++s) {
-      const int ps = layout.patch_strip_of_face_strip[s];
-      if (!crossed[s] && std::find(uncrossed.begin(), uncrossed.end(), ps) == uncrossed.end())
-        uncrossed.push_back(ps);
-    }
-    std::string strips;
-    for (size_t k = 0; k < uncrossed.size() && k < 4; ++k)
-      strips += std::string(k ? "; " : "") + "strip of patches " +
-                JoinIds(layout.patch_strips[uncrossed[k]].patches);
-    throw InputError(
-        "the guides do not determine patch" + std::string(patches.size() > 1 ? "es " : " ") +
-        JoinIds(patches) + ": " + std::to_string(missing.size()) + " vertices have no value (" +
-        JoinIds(missing) + ")" + (strips.empty() ? "" : "; no guide crosses " + strips) +
-        " (a lift needs " + std::to_string(layout.design_dimension()) +
-        " values on guides across every strip, got " + std::to_string(prescribed.size()) + ")");
-  }
+  if (!missing.empty()) ThrowUnderDetermined(mesh, layout, known, done, missing, prescribed.size());
   return lift;
 }
 
