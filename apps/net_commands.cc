@@ -147,6 +147,68 @@ nlohmann::json HNetJson(const PolyMesh& mesh, const std::vector<std::array<doubl
   return {{"vertices", vertices}, {"faces", faces}, {"weights", w}};
 }
 
+// Prints one H-net round (with the table's header before round 0) and returns it as JSON.
+nlohmann::json LogRound(const HNetRound& r) {
+  if (r.round == 0)
+    std::printf("H-net rounds:\n%5s %14s %12s %12s %12s %12s %8s\n", "round", "max_angle_deg",
+                "W_change", "W_min", "W_max", "max_star", "iters");
+  std::printf("%5d %14.3e %12.3e %12.4e %12.4e %12.3e %8d\n", r.round, r.max_tangent_angle_deg,
+              r.weight_change, r.min_w, r.max_w, r.star.max_star_planarity, r.solver_iterations);
+  std::fflush(stdout);
+  return {{"round", r.round},
+          {"max_tangent_angle_deg", r.max_tangent_angle_deg},
+          {"weight_change", r.weight_change},
+          {"w_min", r.min_w},
+          {"w_max", r.max_w},
+          {"max_inconsistency", r.max_inconsistency},
+          {"star", StarJson(r.star)},
+          {"solver_iterations", r.solver_iterations},
+          {"seconds", r.seconds}};
+}
+
+nlohmann::json HNetReport(const NetArgs& args, const HNetSummary& summary,
+                          const nlohmann::json& rounds, double seconds) {
+  const HNetRound& last = summary.rounds.back();
+  nlohmann::json violations = nlohmann::json::array();
+  for (const auto& [a, b] : summary.equitwist_violations) violations.push_back({a, b});
+  return {{"command", "hnet"},
+          {"input", args.input},
+          {"output", args.output},
+          {"converged", summary.converged},
+          {"termination", summary.message},
+          {"iterations", summary.anet_summary.num_steps()},
+          {"rounds", rounds},
+          {"seconds", seconds},
+          {"variables", summary.variables},
+          {"simply_connected", summary.simply_connected},
+          {"equitwist_violations", violations},
+          {"final",
+           {{"max_tangent_angle_deg", last.max_tangent_angle_deg},
+            {"w_min", last.min_w},
+            {"w_max", last.max_w},
+            {"star", StarJson(last.star)}}}};
+}
+
+// The patches (JSON), the sampled surface, the picture and the report.
+void WriteHNetOutputs(const NetArgs& args, const HNet& hnet, const HNetRound& last,
+                      const nlohmann::json& report) {
+  WriteTextFileAtomically(args.output, HNetJson(hnet.mesh(), hnet.weights()).dump(1) + "\n");
+  if (!args.surface_mesh.empty())
+    WriteMeshAtomically(SampleHNetSurface(hnet.mesh(), hnet.weights(), args.samples),
+                        args.surface_mesh);
+  if (!args.picture.empty()) {
+    SvgOptions svg;
+    char title[160];
+    std::snprintf(title, sizeof(title),
+                  "H-net: %zu patches, max tangent-plane angle %.2e deg, W in [%.4g, %.4g]",
+                  hnet.mesh().n_faces(), last.max_tangent_angle_deg, last.min_w, last.max_w);
+    svg.title = title;
+    WriteTextFileAtomically(args.picture,
+                            RenderMeshSvg(SampleHNetSurface(hnet.mesh(), hnet.weights(), 2), svg));
+  }
+  if (!args.report.empty()) WriteTextFileAtomically(args.report, report.dump(2) + "\n");
+}
+
 int RunHNet(NetArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   PolyMesh mesh;
@@ -173,24 +235,7 @@ int RunHNet(NetArgs& args) {
         }
         return StarLog().Print(r), true;
       },
-      [&](const HNetRound& r) {
-        if (r.round == 0)
-          std::printf("H-net rounds:\n%5s %14s %12s %12s %12s %12s %8s\n", "round", "max_angle_deg",
-                      "W_change", "W_min", "W_max", "max_star", "iters");
-        std::printf("%5d %14.3e %12.3e %12.4e %12.4e %12.3e %8d\n", r.round,
-                    r.max_tangent_angle_deg, r.weight_change, r.min_w, r.max_w,
-                    r.star.max_star_planarity, r.solver_iterations);
-        std::fflush(stdout);
-        rounds.push_back({{"round", r.round},
-                          {"max_tangent_angle_deg", r.max_tangent_angle_deg},
-                          {"weight_change", r.weight_change},
-                          {"w_min", r.min_w},
-                          {"w_max", r.max_w},
-                          {"max_inconsistency", r.max_inconsistency},
-                          {"star", StarJson(r.star)},
-                          {"solver_iterations", r.solver_iterations},
-                          {"seconds", r.seconds}});
-      });
+      [&](const HNetRound& r) { rounds.push_back(LogRound(r)); });
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (summary.rounds.empty()) {
@@ -198,40 +243,9 @@ int RunHNet(NetArgs& args) {
     return kExitSolverFailure;
   }
   const HNetRound& last = summary.rounds.back();
-  nlohmann::json violations = nlohmann::json::array();
-  for (const auto& [a, b] : summary.equitwist_violations) violations.push_back({a, b});
-  nlohmann::json report = {{"command", "hnet"},
-                           {"input", args.input},
-                           {"output", args.output},
-                           {"converged", summary.converged},
-                           {"termination", summary.message},
-                           {"iterations", summary.anet_summary.num_steps()},
-                           {"rounds", rounds},
-                           {"seconds", seconds},
-                           {"variables", summary.variables},
-                           {"simply_connected", summary.simply_connected},
-                           {"equitwist_violations", violations},
-                           {"final",
-                            {{"max_tangent_angle_deg", last.max_tangent_angle_deg},
-                             {"w_min", last.min_w},
-                             {"w_max", last.max_w},
-                             {"star", StarJson(last.star)}}}};
+  const nlohmann::json report = HNetReport(args, summary, rounds, seconds);
   try {
-    WriteTextFileAtomically(args.output, HNetJson(hnet->mesh(), hnet->weights()).dump(1) + "\n");
-    if (!args.surface_mesh.empty())
-      WriteMeshAtomically(SampleHNetSurface(hnet->mesh(), hnet->weights(), args.samples),
-                          args.surface_mesh);
-    if (!args.picture.empty()) {
-      SvgOptions svg;
-      char title[160];
-      std::snprintf(title, sizeof(title),
-                    "H-net: %zu patches, max tangent-plane angle %.2e deg, W in [%.4g, %.4g]",
-                    mesh.n_faces(), last.max_tangent_angle_deg, last.min_w, last.max_w);
-      svg.title = title;
-      WriteTextFileAtomically(
-          args.picture, RenderMeshSvg(SampleHNetSurface(hnet->mesh(), hnet->weights(), 2), svg));
-    }
-    if (!args.report.empty()) WriteTextFileAtomically(args.report, report.dump(2) + "\n");
+    WriteHNetOutputs(args, *hnet, last, report);
   } catch (const InputError& e) {
     std::cerr << "gproj hnet: " << e.what() << "\n";
     return kExitInputError;
