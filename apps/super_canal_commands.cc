@@ -277,28 +277,67 @@ std::vector<Eigen::Vector3d> ReadCurve(const std::string& path) {
   return points;
 }
 
+// The strip's input from the options (curve, first point, lengths); checks the output paths.
+CircularStripInput CanalInputFromArgs(const CanalArgs& args) {
+  CheckMeshOutputPath("--output", args.output);
+  CheckMeshOutputPath("--strip", args.strip);
+  CheckOutputPath("--report", args.report);
+  CheckOutputPath("--picture", args.picture);
+  CircularStripInput input;
+  input.curve = ReadCurve(args.curve);
+  input.first_point = Vector3(args.first_point, "--first-point");
+  const size_t n = input.curve.size();
+  if (!args.lengths.empty()) {
+    if (args.length > 0.0) throw InputError("give either --lengths or --length, not both");
+    input.lengths = args.lengths;
+  } else if (args.length > 0.0) {
+    input.lengths.assign(n, args.length);
+  } else {
+    throw InputError(
+        "give the lengths across the strip (--lengths, one per curve point, or "
+        "--length for all)");
+  }
+  if (input.lengths.size() != n)
+    throw InputError("--lengths needs one value per curve point (" + std::to_string(n) + "), got " +
+                     std::to_string(input.lengths.size()));
+  if (args.segments < 1 || args.segments > 100000)
+    throw InputError("--segments must be in [1, 100000]");
+  return input;
+}
+
+// Shape smoothing (000 eq. 5) by Ceres' line-search BFGS, logged; updates the lengths and
+// angles and returns the smoothing's report, with the history in *history.
+nlohmann::json SmoothStrip(const CanalArgs& args, const CircularStripInput& input,
+                           double initial_energy, CircularStripInput* final_input,
+                           FrameAngles* angles, bool* converged, int* iterations,
+                           nlohmann::json* history) {
+  CanalSmoothingOptions options = args.smoothing;
+  options.max_iterations = args.max_iterations;
+  std::printf(
+      "shape smoothing (000 eq. 5) with Ceres line-search BFGS; F = sum of 1/R^2 over "
+      "the strip's arcs, start %.6g\n%5s %14s\n",
+      initial_energy, "iter", "objective");
+  const CanalSmoothingSummary s =
+      SmoothCanalStrip(input, *angles, options, [&](int iteration, double cost) {
+        std::printf("%5d %14.6e\n", iteration, cost);
+        history->push_back({{"iteration", iteration}, {"objective", cost}});
+      });
+  std::printf("%s\nF: %.6g -> %.6g\n", s.message.c_str(), s.initial_energy, s.final_energy);
+  final_input->lengths = s.lengths;
+  *angles = s.angles;
+  *converged = s.converged;
+  *iterations = s.iterations;
+  return {{"message", s.message},
+          {"initial_energy", s.initial_energy},
+          {"final_energy", s.final_energy},
+          {"length_weight", options.length_weight}};
+}
+
 int RunCanal(const CanalArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   try {
-    CircularStripInput input;
-    input.curve = ReadCurve(args.curve);
-    input.first_point = Vector3(args.first_point, "--first-point");
+    const CircularStripInput input = CanalInputFromArgs(args);
     const size_t n = input.curve.size();
-    if (!args.lengths.empty()) {
-      if (args.length > 0.0) throw InputError("give either --lengths or --length, not both");
-      input.lengths = args.lengths;
-    } else if (args.length > 0.0) {
-      input.lengths.assign(n, args.length);
-    } else {
-      throw InputError(
-          "give the lengths across the strip (--lengths, one per curve point, or "
-          "--length for all)");
-    }
-    if (input.lengths.size() != n)
-      throw InputError("--lengths needs one value per curve point (" + std::to_string(n) +
-                       "), got " + std::to_string(input.lengths.size()));
-    if (args.segments < 1 || args.segments > 100000)
-      throw InputError("--segments must be in [1, 100000]");
     const CircularStrip initial = BuildCircularStrip(input);
     // Default normal: in the first quad's plane, across the curve (towards Q_0), so that the
     // crossing arcs leave the strip's plane.
@@ -317,28 +356,9 @@ int RunCanal(const CanalArgs& args) {
     bool converged = true;
     int iterations = 0;
     const double initial_energy = MakeCyclidicStrip(initial, angles).energy;
-    if (args.smooth) {
-      CanalSmoothingOptions options = args.smoothing;
-      options.max_iterations = args.max_iterations;
-      std::printf(
-          "shape smoothing (000 eq. 5) with Ceres line-search BFGS; F = sum of 1/R^2 over "
-          "the strip's arcs, start %.6g\n%5s %14s\n",
-          initial_energy, "iter", "objective");
-      const CanalSmoothingSummary s =
-          SmoothCanalStrip(input, angles, options, [&](int iteration, double cost) {
-            std::printf("%5d %14.6e\n", iteration, cost);
-            history.push_back({{"iteration", iteration}, {"objective", cost}});
-          });
-      std::printf("%s\nF: %.6g -> %.6g\n", s.message.c_str(), s.initial_energy, s.final_energy);
-      final_input.lengths = s.lengths;
-      angles = s.angles;
-      converged = s.converged;
-      iterations = s.iterations;
-      report["smoothing"] = {{"message", s.message},
-                             {"initial_energy", s.initial_energy},
-                             {"final_energy", s.final_energy},
-                             {"length_weight", options.length_weight}};
-    }
+    if (args.smooth)
+      report["smoothing"] = SmoothStrip(args, input, initial_energy, &final_input, &angles,
+                                        &converged, &iterations, &history);
     const CircularStrip strip = BuildCircularStrip(final_input);
     const CyclidicStrip net = MakeCyclidicStrip(strip, angles);
     const PolyMesh mesh = MeshCanalSurface(net, args.segments);
@@ -383,115 +403,120 @@ int RunCanal(const CanalArgs& args) {
   }
 }
 
+void RegisterCombescureCommand(CLI::App* app, int* exit_code) {
+  auto args = std::make_shared<CombescureArgs>();
+  CLI::App* cmd = app->add_subcommand(
+      "combescure",
+      "Combescure transformation (000 §2.4-2.5): a mesh with every edge parallel to a planar "
+      "quad grid's (in `gproj grid` vertex order), from the edge lengths along row 0 and "
+      "column 0. Circular meshes stay circular. Exit codes as for planarize.");
+  cmd->add_option("reference", args->input, "Reference grid with planar quads")->required();
+  cmd->add_option("-o,--output", args->output, "Parallel mesh to write")->required();
+  cmd->add_option("--row-lengths", args->row,
+                  "Signed lengths of edges (0, j) -> (0, j+1) (comma separated; default: the "
+                  "reference's times --row-scale)")
+      ->delimiter(',');
+  cmd->add_option("--column-lengths", args->column,
+                  "Signed lengths of edges (i, 0) -> (i+1, 0) (default: the reference's times "
+                  "--column-scale)")
+      ->delimiter(',');
+  cmd->add_option("--row-scale", args->row_scale, "Scale of the reference's row lengths")
+      ->capture_default_str();
+  cmd->add_option("--column-scale", args->column_scale, "Scale of the reference's column lengths")
+      ->capture_default_str();
+  cmd->add_option("--origin", args->origin, "Position of vertex (0, 0) (default: unchanged)")
+      ->delimiter(',');
+  cmd->add_option("--method", args->method,
+                  "propagation (linear time) or gp (guided projection, edge-parallelism rows)")
+      ->check(CLI::IsMember({"propagation", "gp"}))
+      ->capture_default_str();
+  cmd->add_option("--tolerance", args->tolerance,
+                  "Largest reference planarity accepted (diagonal distance / mean edge)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--report", args->report, "Write a JSON report");
+  cmd->add_option("--picture", args->picture, "Write a shaded SVG picture of the result");
+  cmd->callback([args, exit_code]() { *exit_code = RunCombescure(*args); });
+}
+
+void RegisterInvertCommand(CLI::App* app, int* exit_code) {
+  auto args = std::make_shared<InvertArgs>();
+  CLI::App* cmd = app->add_subcommand(
+      "invert",
+      "Inversion (Moebius transformation, 000 eq. 1) of a mesh: CM' = k / |CM|^2 CM. "
+      "Circular meshes stay circular. With --m-revolution the centre solves 000 §5.1: it maps "
+      "the concyclic quad P1 P2 P3 P4 to an isosceles trapezoid with P1'P2' = t P4'P3'.");
+  cmd->add_option("mesh", args->input, "Mesh to invert (.obj/.off/.ply)")->required();
+  cmd->add_option("-o,--output", args->output, "Inverted mesh to write")->required();
+  cmd->add_option("--centre", args->centre, "Centre of inversion x,y,z")->delimiter(',');
+  cmd->add_option("--ratio", args->ratio, "Ratio k of the inversion (non-zero)")
+      ->capture_default_str();
+  cmd->add_option("--m-revolution", args->m_revolution,
+                  "P1,P2,P3,P4 (12 comma-separated numbers): four concyclic points whose image "
+                  "must be an isosceles trapezoid")
+      ->delimiter(',');
+  cmd->add_option("--t", args->t, "Ratio of the trapezoid's parallel sides (> 0)")
+      ->capture_default_str();
+  cmd->add_option("--root", args->root, "Which of the (up to) two centres to use: 0 or 1")
+      ->check(CLI::Range(0, 1))
+      ->capture_default_str();
+  cmd->add_option("--report", args->report, "Write a JSON report");
+  cmd->add_option("--picture", args->picture, "Write a shaded SVG picture of the result");
+  cmd->callback([args, exit_code]() { *exit_code = RunInvert(*args); });
+}
+
+void RegisterCanalCommand(CLI::App* app, int* exit_code) {
+  auto args = std::make_shared<CanalArgs>();
+  CLI::App* cmd = app->add_subcommand(
+      "canal",
+      "Canal surface from a circular strip (000 §3.2-3.3, §4.1): points P_k on a curve, a first "
+      "point fixing the first circle and the lengths |P_k Q_k| give a strip of circular quads "
+      "by propagation; a frame at P_0 makes it a cyclidic net whose crossing arcs are the "
+      "canal surface's circles; the surface is meshed by circular quads between them. "
+      "--smooth minimises 000 eq. 5 (Ceres line-search BFGS). Exit codes as for planarize.");
+  cmd->add_option("curve", args->curve,
+                  "Curve points P_0..P_n: one 'x y z' per line ('#' comments)")
+      ->required();
+  cmd->add_option("-o,--output", args->output, "Canal mesh to write (circular quads)")->required();
+  cmd->add_option("--first-point", args->first_point,
+                  "x,y,z of the point that fixes the first circle (with P_0 and P_1)")
+      ->delimiter(',')
+      ->required();
+  cmd->add_option("--lengths", args->lengths, "|P_k Q_k| for every curve point (comma separated)")
+      ->delimiter(',');
+  cmd->add_option("--length", args->length, "The same |P_k Q_k| for every curve point");
+  cmd->add_option(
+         "--normal", args->normal,
+         "Normal of the cyclidic net at P_0 (default: in the first quad's plane, across the "
+         "curve)")
+      ->delimiter(',');
+  cmd->add_option("--psi", args->psi,
+                  "Rotation (radians) of the frame's first tangent about the normal")
+      ->capture_default_str();
+  cmd->add_option("--segments", args->segments, "Quads across the strip in the canal mesh")
+      ->capture_default_str();
+  cmd->add_flag("--smooth", args->smooth, "Minimise the smoothness energy of 000 eq. 5");
+  cmd->add_option("--length-weight", args->smoothing.length_weight,
+                  "Weight keeping the lengths near the input during --smooth")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_flag("!--fixed-lengths", args->smoothing.optimize_lengths,
+                "Keep the lengths; smooth over the frame only");
+  cmd->add_option("--max-iterations", args->max_iterations, "BFGS iterations at most")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  cmd->add_option("--strip", args->strip, "Also write the circular strip (2 x (n+1) vertices)");
+  cmd->add_option("--report", args->report, "Write a JSON report");
+  cmd->add_option("--picture", args->picture, "Write a shaded SVG picture of the canal mesh");
+  cmd->callback([args, exit_code]() { *exit_code = RunCanal(*args); });
+}
+
 }  // namespace
 
 void RegisterSuperCanalCommands(CLI::App* app, int* exit_code) {
-  {
-    auto args = std::make_shared<CombescureArgs>();
-    CLI::App* cmd = app->add_subcommand(
-        "combescure",
-        "Combescure transformation (000 §2.4-2.5): a mesh with every edge parallel to a planar "
-        "quad grid's (in `gproj grid` vertex order), from the edge lengths along row 0 and "
-        "column 0. Circular meshes stay circular. Exit codes as for planarize.");
-    cmd->add_option("reference", args->input, "Reference grid with planar quads")->required();
-    cmd->add_option("-o,--output", args->output, "Parallel mesh to write")->required();
-    cmd->add_option("--row-lengths", args->row,
-                    "Signed lengths of edges (0, j) -> (0, j+1) (comma separated; default: the "
-                    "reference's times --row-scale)")
-        ->delimiter(',');
-    cmd->add_option("--column-lengths", args->column,
-                    "Signed lengths of edges (i, 0) -> (i+1, 0) (default: the reference's times "
-                    "--column-scale)")
-        ->delimiter(',');
-    cmd->add_option("--row-scale", args->row_scale, "Scale of the reference's row lengths")
-        ->capture_default_str();
-    cmd->add_option("--column-scale", args->column_scale, "Scale of the reference's column lengths")
-        ->capture_default_str();
-    cmd->add_option("--origin", args->origin, "Position of vertex (0, 0) (default: unchanged)")
-        ->delimiter(',');
-    cmd->add_option("--method", args->method,
-                    "propagation (linear time) or gp (guided projection, edge-parallelism rows)")
-        ->check(CLI::IsMember({"propagation", "gp"}))
-        ->capture_default_str();
-    cmd->add_option("--tolerance", args->tolerance,
-                    "Largest reference planarity accepted (diagonal distance / mean edge)")
-        ->check(CLI::PositiveNumber)
-        ->capture_default_str();
-    cmd->add_option("--report", args->report, "Write a JSON report");
-    cmd->add_option("--picture", args->picture, "Write a shaded SVG picture of the result");
-    cmd->callback([args, exit_code]() { *exit_code = RunCombescure(*args); });
-  }
-  {
-    auto args = std::make_shared<InvertArgs>();
-    CLI::App* cmd = app->add_subcommand(
-        "invert",
-        "Inversion (Moebius transformation, 000 eq. 1) of a mesh: CM' = k / |CM|^2 CM. "
-        "Circular meshes stay circular. With --m-revolution the centre solves 000 §5.1: it maps "
-        "the concyclic quad P1 P2 P3 P4 to an isosceles trapezoid with P1'P2' = t P4'P3'.");
-    cmd->add_option("mesh", args->input, "Mesh to invert (.obj/.off/.ply)")->required();
-    cmd->add_option("-o,--output", args->output, "Inverted mesh to write")->required();
-    cmd->add_option("--centre", args->centre, "Centre of inversion x,y,z")->delimiter(',');
-    cmd->add_option("--ratio", args->ratio, "Ratio k of the inversion (non-zero)")
-        ->capture_default_str();
-    cmd->add_option("--m-revolution", args->m_revolution,
-                    "P1,P2,P3,P4 (12 comma-separated numbers): four concyclic points whose image "
-                    "must be an isosceles trapezoid")
-        ->delimiter(',');
-    cmd->add_option("--t", args->t, "Ratio of the trapezoid's parallel sides (> 0)")
-        ->capture_default_str();
-    cmd->add_option("--root", args->root, "Which of the (up to) two centres to use: 0 or 1")
-        ->check(CLI::Range(0, 1))
-        ->capture_default_str();
-    cmd->add_option("--report", args->report, "Write a JSON report");
-    cmd->add_option("--picture", args->picture, "Write a shaded SVG picture of the result");
-    cmd->callback([args, exit_code]() { *exit_code = RunInvert(*args); });
-  }
-  {
-    auto args = std::make_shared<CanalArgs>();
-    CLI::App* cmd = app->add_subcommand(
-        "canal",
-        "Canal surface from a circular strip (000 §3.2-3.3, §4.1): points P_k on a curve, a first "
-        "point fixing the first circle and the lengths |P_k Q_k| give a strip of circular quads "
-        "by propagation; a frame at P_0 makes it a cyclidic net whose crossing arcs are the "
-        "canal surface's circles; the surface is meshed by circular quads between them. "
-        "--smooth minimises 000 eq. 5 (Ceres line-search BFGS). Exit codes as for planarize.");
-    cmd->add_option("curve", args->curve,
-                    "Curve points P_0..P_n: one 'x y z' per line ('#' comments)")
-        ->required();
-    cmd->add_option("-o,--output", args->output, "Canal mesh to write (circular quads)")
-        ->required();
-    cmd->add_option("--first-point", args->first_point,
-                    "x,y,z of the point that fixes the first circle (with P_0 and P_1)")
-        ->delimiter(',')
-        ->required();
-    cmd->add_option("--lengths", args->lengths, "|P_k Q_k| for every curve point (comma separated)")
-        ->delimiter(',');
-    cmd->add_option("--length", args->length, "The same |P_k Q_k| for every curve point");
-    cmd->add_option(
-           "--normal", args->normal,
-           "Normal of the cyclidic net at P_0 (default: in the first quad's plane, across the "
-           "curve)")
-        ->delimiter(',');
-    cmd->add_option("--psi", args->psi,
-                    "Rotation (radians) of the frame's first tangent about the normal")
-        ->capture_default_str();
-    cmd->add_option("--segments", args->segments, "Quads across the strip in the canal mesh")
-        ->capture_default_str();
-    cmd->add_flag("--smooth", args->smooth, "Minimise the smoothness energy of 000 eq. 5");
-    cmd->add_option("--length-weight", args->smoothing.length_weight,
-                    "Weight keeping the lengths near the input during --smooth")
-        ->check(CLI::NonNegativeNumber)
-        ->capture_default_str();
-    cmd->add_flag("!--fixed-lengths", args->smoothing.optimize_lengths,
-                  "Keep the lengths; smooth over the frame only");
-    cmd->add_option("--max-iterations", args->max_iterations, "BFGS iterations at most")
-        ->check(CLI::Range(1, 100000))
-        ->capture_default_str();
-    cmd->add_option("--strip", args->strip, "Also write the circular strip (2 x (n+1) vertices)");
-    cmd->add_option("--report", args->report, "Write a JSON report");
-    cmd->add_option("--picture", args->picture, "Write a shaded SVG picture of the canal mesh");
-    cmd->callback([args, exit_code]() { *exit_code = RunCanal(*args); });
-  }
+  RegisterCombescureCommand(app, exit_code);
+  RegisterInvertCommand(app, exit_code);
+  RegisterCanalCommand(app, exit_code);
 }
 
 }  // namespace gproj
