@@ -114,6 +114,101 @@ bool WriteMeshAndReport(const PolyMesh& mesh, const MarionetteArgs& args,
   }
 }
 
+// Every output path, before any work.
+void CheckMarionetteOutputs(const MarionetteArgs& args) {
+  CheckMeshOutputPath("--output", args.output);
+  CheckOutputPath("--report", args.report);
+}
+
+// The projection of the plan's vertices (--projection, --axis, --centre).
+MarionetteProjectionOptions ProjectionFromArgs(const MarionetteArgs& args) {
+  MarionetteProjectionOptions projection;
+  if (!ParseMarionetteProjection(args.projection, &projection.type))
+    throw InputError("--projection must be vertical, cylindrical or central, not '" +
+                     args.projection + "'");
+  if (args.axis.size() != 6)
+    throw InputError("--axis needs six numbers px,py,pz,dx,dy,dz, got " +
+                     std::to_string(args.axis.size()));
+  if (args.centre.size() != 3)
+    throw InputError("--centre needs three numbers x,y,z, got " +
+                     std::to_string(args.centre.size()));
+  projection.axis_point = Eigen::Vector3d(args.axis[0], args.axis[1], args.axis[2]);
+  projection.axis_direction = Eigen::Vector3d(args.axis[3], args.axis[4], args.axis[5]);
+  projection.centre = Eigen::Vector3d(args.centre[0], args.centre[1], args.centre[2]);
+  return projection;
+}
+
+// The guide values: from --guides, or --row and --column on a grid plan.
+std::vector<MarionetteTarget> GuidesFromArgs(const MarionetteArgs& args, const PolyMesh& mesh,
+                                             const MarionetteLines& lines) {
+  std::vector<MarionetteGuide> guides;
+  std::vector<MarionetteTarget> single;
+  if (!args.guides.empty()) {
+    if (!args.row.empty() || !args.column.empty())
+      throw InputError("give either --guides or --row/--column, not both");
+    ReadGuides(args.guides, lines.num_vertices(), &guides, &single);
+  } else if (!args.row.empty() && !args.column.empty()) {
+    const GridShape shape = DetectGridShape(mesh, args.plan);
+    const int rows = shape.rows, cols = shape.cols;
+    if (static_cast<int>(args.row.size()) != cols + 1 ||
+        static_cast<int>(args.column.size()) != rows + 1)
+      throw InputError("guide curves need " + std::to_string(cols + 1) + " row values and " +
+                       std::to_string(rows + 1) + " column values, got " +
+                       std::to_string(args.row.size()) + " and " +
+                       std::to_string(args.column.size()));
+    for (int j = 0; j <= cols; ++j) single.push_back({j, args.row[j]});
+    for (int i = 0; i <= rows; ++i) single.push_back({i * (cols + 1), args.column[i]});
+  } else {
+    throw InputError("give the guides (--guides FILE, or --row and --column on a grid plan)");
+  }
+  return ResolveMarionetteGuides(mesh, guides, single);
+}
+
+// The report of a lift (the run's own keys — converged, termination, iterations, seconds,
+// history — are added by the caller).
+nlohmann::json LiftReport(const MarionetteArgs& args, const MarionetteLines& lines,
+                          const MarionettePatchLayout& layout, const MarionetteMeshLift& lift,
+                          size_t guide_values, const PlanarityMeasures& m, double max_det) {
+  nlohmann::json patches = nlohmann::json::array();
+  for (const MarionettePatch& p : layout.patches)
+    patches.push_back(
+        {{"faces", p.faces.size()}, {"rows", p.rows}, {"cols", p.cols}, {"corners", p.corners}});
+  return {{"command", "marionette"},
+          {"input", args.plan},
+          {"guides", args.guides},
+          {"output", args.output},
+          {"projection", args.projection},
+          {"solver", args.solver},
+          {"variables", lines.num_vertices()},
+          {"faces", lines.mesh.n_faces()},
+          {"singular_vertices", layout.singular_vertices},
+          {"patches", patches},
+          {"patch_order", lift.patch_order},
+          {"strips_of_patches", layout.patch_strips.size()},
+          {"face_strips", layout.num_face_strips},
+          {"design_dimension", layout.design_dimension()},
+          {"guide_values", guide_values},
+          {"redundant_faces", lift.redundant_faces},
+          {"over_determined_patches", lift.over_determined_patches},
+          {"final",
+           {{"max_planarity", m.max_planarity},
+            {"mean_planarity", m.mean_planarity},
+            {"max_relative_det", max_det}}}};
+}
+
+// Prints one guided-projection iteration of a lift and returns it as JSON.
+nlohmann::json LogLiftIteration(const IterationRecord& r) {
+  const double seconds = r.assembly_seconds + r.factorization_seconds + r.solve_seconds;
+  std::printf("%5d %13.6e %13.3e %11.3e %10.4f\n", r.iteration, r.energy, r.max_constraint,
+              r.step_norm, seconds);
+  std::fflush(stdout);
+  return {{"iteration", r.iteration},
+          {"energy", r.energy},
+          {"max_residual", r.max_constraint},
+          {"step", r.step_norm},
+          {"seconds", seconds}};
+}
+
 int RunMarionetteMesh(const MarionetteArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   MarionetteLines lines;
@@ -122,18 +217,8 @@ int RunMarionetteMesh(const MarionetteArgs& args) {
   MarionetteMeshLift lift;
   MarionetteProjectionOptions projection;
   try {
-    if (!ParseMarionetteProjection(args.projection, &projection.type))
-      throw InputError("--projection must be vertical, cylindrical or central, not '" +
-                       args.projection + "'");
-    if (args.axis.size() != 6)
-      throw InputError("--axis needs six numbers px,py,pz,dx,dy,dz, got " +
-                       std::to_string(args.axis.size()));
-    if (args.centre.size() != 3)
-      throw InputError("--centre needs three numbers x,y,z, got " +
-                       std::to_string(args.centre.size()));
-    projection.axis_point = Eigen::Vector3d(args.axis[0], args.axis[1], args.axis[2]);
-    projection.axis_direction = Eigen::Vector3d(args.axis[3], args.axis[4], args.axis[5]);
-    projection.centre = Eigen::Vector3d(args.centre[0], args.centre[1], args.centre[2]);
+    CheckMarionetteOutputs(args);
+    projection = ProjectionFromArgs(args);
     if (!args.fit.empty())
       throw InputError("--fit works with the vertical projection and --row/--column only");
     if (!(args.tolerance > 0.0) || args.max_iterations < 1)
@@ -141,27 +226,7 @@ int RunMarionetteMesh(const MarionetteArgs& args) {
     const PolyMesh mesh = ReadMesh(args.plan, MeshRequirements{true});
     lines = MakeMarionetteLines(mesh, projection, args.plan);
     layout = DecomposeIntoPatches(mesh);
-    std::vector<MarionetteGuide> guides;
-    std::vector<MarionetteTarget> single;
-    if (!args.guides.empty()) {
-      if (!args.row.empty() || !args.column.empty())
-        throw InputError("give either --guides or --row/--column, not both");
-      ReadGuides(args.guides, lines.num_vertices(), &guides, &single);
-    } else if (!args.row.empty() && !args.column.empty()) {
-      const GridShape shape = DetectGridShape(mesh, args.plan);
-      const int rows = shape.rows, cols = shape.cols;
-      if (static_cast<int>(args.row.size()) != cols + 1 ||
-          static_cast<int>(args.column.size()) != rows + 1)
-        throw InputError("guide curves need " + std::to_string(cols + 1) + " row values and " +
-                         std::to_string(rows + 1) + " column values, got " +
-                         std::to_string(args.row.size()) + " and " +
-                         std::to_string(args.column.size()));
-      for (int j = 0; j <= cols; ++j) single.push_back({j, args.row[j]});
-      for (int i = 0; i <= rows; ++i) single.push_back({i * (cols + 1), args.column[i]});
-    } else {
-      throw InputError("give the guides (--guides FILE, or --row and --column on a grid plan)");
-    }
-    prescribed = ResolveMarionetteGuides(mesh, guides, single);
+    prescribed = GuidesFromArgs(args, mesh, lines);
     std::printf(
         "gproj marionette: %s: %d vertices, %zu quads, %s projection\n"
         "patches: %zu singular vertices, %zu separatrices, %zu patches, %zu strips of patches "
@@ -187,76 +252,40 @@ int RunMarionetteMesh(const MarionetteArgs& args) {
   nlohmann::json history = nlohmann::json::array();
   const auto t0 = std::chrono::steady_clock::now();
   if (args.solver == "gp") {
-    Problem problem;
+    std::printf("%5s %13s %13s %11s %10s\n", "iter", "energy", "max_residual", "step", "time_s");
+    MarionetteMeshSolve solve;
     try {
-      problem = MakeMarionetteMeshProblem(lines, prescribed);
+      solve = SolveMarionetteMesh(lines, prescribed, args.max_iterations, args.tolerance,
+                                  [&](const IterationRecord& r, const Eigen::VectorXd&) {
+                                    history.push_back(LogLiftIteration(r));
+                                    return CallbackResult::kContinue;
+                                  });
     } catch (const InputError& e) {
       std::cerr << "gproj marionette: " << args.plan << ": " << e.what() << "\n";
       return kExitInputError;
     }
-    std::printf("%5s %13s %13s %11s %10s\n", "iter", "energy", "max_residual", "step", "time_s");
-    const SolverSummary s = Solve(
-        MarionetteMeshSolverOptions(lines.projection, args.max_iterations, 1e-12), &problem,
-        [&](const IterationRecord& r, const Eigen::VectorXd&) {
-          const double seconds = r.assembly_seconds + r.factorization_seconds + r.solve_seconds;
-          std::printf("%5d %13.6e %13.3e %11.3e %10.4f\n", r.iteration, r.energy, r.max_constraint,
-                      r.step_norm, seconds);
-          std::fflush(stdout);
-          history.push_back({{"iteration", r.iteration},
-                             {"energy", r.energy},
-                             {"max_residual", r.max_constraint},
-                             {"step", r.step_norm},
-                             {"seconds", seconds}});
-          return CallbackResult::kContinue;
-        });
-    if (s.termination == TerminationType::kFailure || !problem.x().allFinite()) {
-      std::cerr << "gproj marionette: solver failed: " << s.message << "; nothing written\n";
+    if (solve.failed) {
+      std::cerr << "gproj marionette: solver failed: " << solve.summary.message
+                << "; nothing written\n";
       return kExitSolverFailure;
     }
-    t = MarionetteMeshParameters(problem);
-    iterations = s.num_steps();
-    termination = std::string(TerminationTypeName(s.termination)) + ": " + s.message;
-    double guide_error = 0.0;
-    for (const MarionetteTarget& g : prescribed)
-      guide_error =
-          std::max(guide_error, std::abs(t[g.vertex] - g.height) / (1 + std::abs(g.height)));
-    converged = MaxLiftPlanarity(lines, t) <= args.tolerance && guide_error <= args.tolerance;
+    t = solve.t;
+    iterations = solve.summary.num_steps();
+    termination =
+        std::string(TerminationTypeName(solve.summary.termination)) + ": " + solve.summary.message;
+    converged = solve.converged;
   }
   const double solve_seconds = SecondsSince(t0);
   const PolyMesh out = MarionetteLiftedMesh(lines, t);
   const PlanarityMeasures m = MeasurePlanarity(out, out);
   const double max_det = MaxLiftPlanarity(lines, t);
-  nlohmann::json patches = nlohmann::json::array();
-  for (const MarionettePatch& p : layout.patches)
-    patches.push_back(
-        {{"faces", p.faces.size()}, {"rows", p.rows}, {"cols", p.cols}, {"corners", p.corners}});
-  nlohmann::json report = {{"command", "marionette"},
-                           {"input", args.plan},
-                           {"guides", args.guides},
-                           {"output", args.output},
-                           {"projection", args.projection},
-                           {"solver", args.solver},
-                           {"converged", converged},
-                           {"termination", termination},
-                           {"iterations", iterations},
-                           {"seconds", SecondsSince(start)},
-                           {"solve_seconds", solve_seconds},
-                           {"variables", lines.num_vertices()},
-                           {"faces", lines.mesh.n_faces()},
-                           {"singular_vertices", layout.singular_vertices},
-                           {"patches", patches},
-                           {"patch_order", lift.patch_order},
-                           {"strips_of_patches", layout.patch_strips.size()},
-                           {"face_strips", layout.num_face_strips},
-                           {"design_dimension", layout.design_dimension()},
-                           {"guide_values", prescribed.size()},
-                           {"redundant_faces", lift.redundant_faces},
-                           {"over_determined_patches", lift.over_determined_patches},
-                           {"history", history},
-                           {"final",
-                            {{"max_planarity", m.max_planarity},
-                             {"mean_planarity", m.mean_planarity},
-                             {"max_relative_det", max_det}}}};
+  nlohmann::json report = LiftReport(args, lines, layout, lift, prescribed.size(), m, max_det);
+  report["converged"] = converged;
+  report["termination"] = termination;
+  report["iterations"] = iterations;
+  report["seconds"] = SecondsSince(start);
+  report["solve_seconds"] = solve_seconds;
+  report["history"] = history;
   if (!WriteMeshAndReport(out, args, report)) return kExitInputError;
   std::printf(
       "solved in %.4f s (%s, %d iterations); max planarity %.3e (diagonal distance / mean edge), "
@@ -283,6 +312,7 @@ int RunClosedStrip(const MarionetteArgs& args) {
   std::vector<int> line_of;
   ClosedStripLift lift;
   try {
+    CheckMarionetteOutputs(args);
     if (!std::isfinite(args.outer_height)) throw InputError("--outer-height must be finite");
     for (const auto& [number, w] : ReadWords(path)) {
       const std::string where = path + ":" + std::to_string(number);
@@ -383,6 +413,7 @@ int RunMarionette(const MarionetteArgs& args) {
   MarionettePlan plan;
   Eigen::VectorXd z0;
   try {
+    CheckMarionetteOutputs(args);
     mesh = ReadMesh(args.plan, MeshRequirements{true});
     plan = MakeMarionettePlan(mesh, args.plan);
     if (!args.fit.empty()) {
