@@ -79,6 +79,20 @@ TEST_F(MarionetteMeshCommandTest, LiftsTheValenceSixPlanFromItsSpokesWithBothSol
   }
 }
 
+TEST_F(MarionetteMeshCommandTest, ChecksOutputPathsBeforeLifting) {
+  const std::string plan = kData + "marionette_plan_valence6.obj";
+  const std::string guides = kData + "marionette_valence6_guides.txt";
+  for (const std::string& args : {plan + " --guides " + guides + " -o " + Path("missing/out.obj"),
+                                  plan + " --guides " + guides + " -o " + Path("out.obj") +
+                                      " --report " + Path("missing/r.json"),
+                                  plan + " --guides " + guides + " -o " + Path("out.xyz")}) {
+    const CommandRun r = Gproj("marionette " + args);
+    EXPECT_EQ(r.exit_code, 1) << args << "\n" << r.err;
+    EXPECT_EQ(r.out.find("patches:"), std::string::npos) << "work started before the check";
+    EXPECT_FALSE(fs::exists(dir_ / "out.obj"));
+  }
+}
+
 TEST_F(MarionetteMeshCommandTest, RefusesGuidesThatLeaveTwoPatchesUndetermined) {
   // Five of the six spokes: spoke 5 (vertices 26..30) separates patches 4 and 5.
   std::string guides;
