@@ -1,5 +1,4 @@
 // `gproj marionette`: planar-quad meshes over a fixed plan view (002).
-#include <Eigen/Dense>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -441,30 +440,13 @@ int RunMarionette(const MarionetteArgs& args) {
     const Eigen::VectorXd column =
         Eigen::Map<const Eigen::VectorXd>(args.column.data(), args.column.size());
     if (args.solver == "direct") {
-      if (args.fit.empty()) {
-        z = LiftMarionette(plan, row, column);
-      } else {
-        const Eigen::MatrixXd a = MarionetteGuideMatrix(plan);  // 002 eq. 14
-        z = a * (a.transpose() * a).ldlt().solve(a.transpose() * z0);
-      }
+      z = args.fit.empty() ? LiftMarionette(plan, row, column) : FitMarionette(plan, z0);
     } else {
-      std::vector<MarionetteTarget> hard, soft;
-      if (args.fit.empty()) {
-        if (row.size() != plan.cols + 1 || column.size() != plan.rows + 1 ||
-            std::abs(row[0] - column[0]) > 1e-12 * (1 + std::abs(row[0])))
-          LiftMarionette(plan, row, column);  // throws the same message as the direct path
-        for (int j = 0; j <= plan.cols; ++j) hard.push_back({plan.Vertex(0, j), row[j]});
-        for (int i = 1; i <= plan.rows; ++i) hard.push_back({plan.Vertex(i, 0), column[i]});
-      } else {
-        for (int v = 0; v < plan.num_vertices(); ++v) soft.push_back({v, z0[v]});
-      }
-      Problem problem = MakeMarionetteProblem(plan, hard, soft, 1.0, 1e-8);
-      const SolverSummary s = Solve(MarionetteSolverOptions(), &problem);
-      if (s.termination == TerminationType::kFailure) {
-        std::cerr << "gproj marionette: solver failed: " << s.message << "; nothing written\n";
+      std::string why;
+      if (!SolveMarionette(plan, row, column, z0, &z, &why)) {
+        std::cerr << "gproj marionette: solver failed: " << why << "; nothing written\n";
         return kExitSolverFailure;
       }
-      z = problem.x();
     }
   } catch (const InputError& e) {
     std::cerr << "gproj marionette: " << e.what() << "\n";

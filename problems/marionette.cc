@@ -1,5 +1,6 @@
 #include "problems/marionette.h"
 
+#include <Eigen/Cholesky>
 #include <cmath>
 
 #include "constraints/marionette_planarity.h"
@@ -181,6 +182,34 @@ ClosedStripLift LiftClosedStrip(const ClosedStrip& strip, const Eigen::VectorXd&
   out.outer_heights.resize(n);
   PropagateStrip(alpha, beta, out.inner_heights, outer0, &out.outer_heights);
   return out;
+}
+
+Eigen::VectorXd FitMarionette(const MarionettePlan& plan, const Eigen::VectorXd& z0) {
+  const Eigen::MatrixXd a = MarionetteGuideMatrix(plan);  // 002 eq. 14
+  return a * (a.transpose() * a).ldlt().solve(a.transpose() * z0);
+}
+
+bool SolveMarionette(const MarionettePlan& plan, const Eigen::VectorXd& row,
+                     const Eigen::VectorXd& column, const Eigen::VectorXd& z0, Eigen::VectorXd* z,
+                     std::string* message) {
+  std::vector<MarionetteTarget> hard, soft;
+  if (z0.size() == 0) {
+    if (row.size() != plan.cols + 1 || column.size() != plan.rows + 1 ||
+        std::abs(row[0] - column[0]) > 1e-12 * (1 + std::abs(row[0])))
+      LiftMarionette(plan, row, column);  // throws the same message as the direct path
+    for (int j = 0; j <= plan.cols; ++j) hard.push_back({plan.Vertex(0, j), row[j]});
+    for (int i = 1; i <= plan.rows; ++i) hard.push_back({plan.Vertex(i, 0), column[i]});
+  } else {
+    for (int v = 0; v < plan.num_vertices(); ++v) soft.push_back({v, z0[v]});
+  }
+  Problem problem = MakeMarionetteProblem(plan, hard, soft, 1.0, 1e-8);
+  const SolverSummary s = Solve(MarionetteSolverOptions(), &problem);
+  if (s.termination == TerminationType::kFailure) {
+    *message = s.message;
+    return false;
+  }
+  *z = problem.x();
+  return true;
 }
 
 }  // namespace gproj

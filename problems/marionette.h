@@ -59,6 +59,17 @@ Problem MakeMarionetteProblem(const MarionettePlan& plan, const std::vector<Mari
 // Solver options for the linear problem: one iteration, tiny ε.
 SolverOptions MarionetteSolverOptions();
 
+// The least-squares fit of 002 eq. 14: the planar lift closest to the target heights z0 (one
+// per vertex), from the guide matrix.
+Eigen::VectorXd FitMarionette(const MarionettePlan& plan, const Eigen::VectorXd& z0);
+
+// The lift (from `row` and `column`) or, with a non-empty z0, the fit by one guided-projection
+// iteration of MakeMarionetteProblem. Returns false (with the solver's message) on a numerical
+// failure; throws InputError for incompatible guide curves, as LiftMarionette.
+bool SolveMarionette(const MarionettePlan& plan, const Eigen::VectorXd& row,
+                     const Eigen::VectorXd& column, const Eigen::VectorXd& z0, Eigen::VectorXd* z,
+                     std::string* message);
+
 // A closed strip (002 §2.5): an inner and an outer closed polyline in the plan, N vertices each,
 // quads (P_i, Q_i, Q_{i+1}, P_{i+1}) with indices mod N.
 struct ClosedStrip {
