@@ -208,6 +208,36 @@ nlohmann::json LogLiftIteration(const IterationRecord& r) {
           {"seconds", seconds}};
 }
 
+// The lift by guided projection (--solver gp), logged; returns an exit code (0 when it ran).
+int LiftByGuidedProjection(const MarionetteArgs& args, const MarionetteLines& lines,
+                           const std::vector<MarionetteTarget>& prescribed, Eigen::VectorXd* t,
+                           int* iterations, std::string* termination, bool* converged,
+                           nlohmann::json* history) {
+  std::printf("%5s %13s %13s %11s %10s\n", "iter", "energy", "max_residual", "step", "time_s");
+  MarionetteMeshSolve solve;
+  try {
+    solve = SolveMarionetteMesh(lines, prescribed, args.max_iterations, args.tolerance,
+                                [&](const IterationRecord& r, const Eigen::VectorXd&) {
+                                  history->push_back(LogLiftIteration(r));
+                                  return CallbackResult::kContinue;
+                                });
+  } catch (const InputError& e) {
+    std::cerr << "gproj marionette: " << args.plan << ": " << e.what() << "\n";
+    return kExitInputError;
+  }
+  if (solve.failed) {
+    std::cerr << "gproj marionette: solver failed: " << solve.summary.message
+              << "; nothing written\n";
+    return kExitSolverFailure;
+  }
+  *t = solve.t;
+  *iterations = solve.summary.num_steps();
+  *termination =
+      std::string(TerminationTypeName(solve.summary.termination)) + ": " + solve.summary.message;
+  *converged = solve.converged;
+  return kExitOk;
+}
+
 int RunMarionetteMesh(const MarionetteArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   MarionetteLines lines;
@@ -251,28 +281,9 @@ int RunMarionetteMesh(const MarionetteArgs& args) {
   nlohmann::json history = nlohmann::json::array();
   const auto t0 = std::chrono::steady_clock::now();
   if (args.solver == "gp") {
-    std::printf("%5s %13s %13s %11s %10s\n", "iter", "energy", "max_residual", "step", "time_s");
-    MarionetteMeshSolve solve;
-    try {
-      solve = SolveMarionetteMesh(lines, prescribed, args.max_iterations, args.tolerance,
-                                  [&](const IterationRecord& r, const Eigen::VectorXd&) {
-                                    history.push_back(LogLiftIteration(r));
-                                    return CallbackResult::kContinue;
-                                  });
-    } catch (const InputError& e) {
-      std::cerr << "gproj marionette: " << args.plan << ": " << e.what() << "\n";
-      return kExitInputError;
-    }
-    if (solve.failed) {
-      std::cerr << "gproj marionette: solver failed: " << solve.summary.message
-                << "; nothing written\n";
-      return kExitSolverFailure;
-    }
-    t = solve.t;
-    iterations = solve.summary.num_steps();
-    termination =
-        std::string(TerminationTypeName(solve.summary.termination)) + ": " + solve.summary.message;
-    converged = solve.converged;
+    const int code = LiftByGuidedProjection(args, lines, prescribed, &t, &iterations, &termination,
+                                            &converged, &history);
+    if (code != kExitOk) return code;
   }
   const double solve_seconds = SecondsSince(t0);
   const PolyMesh out = MarionetteLiftedMesh(lines, t);
@@ -302,45 +313,55 @@ int RunMarionetteMesh(const MarionetteArgs& args) {
   return kExitOk;
 }
 
+// Reads a --closed-strip file ("XI YI ZI XO YO" per line: inner vertex with its height, outer
+// vertex); errors name the file, line and quad.
+void ReadClosedStripFile(const std::string& path, ClosedStrip* strip_out,
+                         std::vector<double>* z_out) {
+  ClosedStrip& strip = *strip_out;
+  std::vector<double>& z = *z_out;
+  std::vector<int> line_of;
+  for (const auto& [number, w] : ReadWords(path)) {
+    const std::string where = path + ":" + std::to_string(number);
+    if (w.size() != 5)
+      throw InputError(where + ": expected 5 numbers (inner x y z, outer x y), got " +
+                       std::to_string(w.size()));
+    double v[5];
+    for (int k = 0; k < 5; ++k) v[k] = ParseNumber(w[k], where);
+    strip.inner.emplace_back(v[0], v[1]);
+    z.push_back(v[2]);
+    strip.outer.emplace_back(v[3], v[4]);
+    line_of.push_back(number);
+  }
+  const int n = static_cast<int>(z.size());
+  if (n < 3)
+    throw InputError(path + ": a closed strip needs at least 3 vertex pairs, got " +
+                     std::to_string(n));
+  for (int i = 0; i < n; ++i) {
+    const int k = (i + 1) % n;
+    double alpha, beta;
+    if (!MarionettePlanarity::PlanCoefficients(strip.inner[i], strip.outer[i], strip.outer[k],
+                                               strip.inner[k], &alpha, &beta))
+      throw InputError(path + ":" + std::to_string(line_of[i]) + ": quad " + std::to_string(i) +
+                       " (vertex pairs " + std::to_string(i) + " and " + std::to_string(k) +
+                       ", lines " + std::to_string(line_of[i]) + " and " +
+                       std::to_string(line_of[k]) + ") has a degenerate plan view: inner " +
+                       std::to_string(i) + ", outer " + std::to_string(i) + " and inner " +
+                       std::to_string(k) + " are collinear in x, y");
+  }
+}
+
 // --closed-strip: "XI YI ZI XO YO" per line (inner vertex with its height, outer vertex).
 int RunClosedStrip(const MarionetteArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   const std::string& path = args.closed_strip;
   ClosedStrip strip;
   std::vector<double> z;
-  std::vector<int> line_of;
   ClosedStripLift lift;
   try {
     CheckMarionetteOutputs(args);
     if (!std::isfinite(args.outer_height)) throw InputError("--outer-height must be finite");
-    for (const auto& [number, w] : ReadWords(path)) {
-      const std::string where = path + ":" + std::to_string(number);
-      if (w.size() != 5)
-        throw InputError(where + ": expected 5 numbers (inner x y z, outer x y), got " +
-                         std::to_string(w.size()));
-      double v[5];
-      for (int k = 0; k < 5; ++k) v[k] = ParseNumber(w[k], where);
-      strip.inner.emplace_back(v[0], v[1]);
-      z.push_back(v[2]);
-      strip.outer.emplace_back(v[3], v[4]);
-      line_of.push_back(number);
-    }
+    ReadClosedStripFile(path, &strip, &z);
     const int n = static_cast<int>(z.size());
-    if (n < 3)
-      throw InputError(path + ": a closed strip needs at least 3 vertex pairs, got " +
-                       std::to_string(n));
-    for (int i = 0; i < n; ++i) {
-      const int k = (i + 1) % n;
-      double alpha, beta;
-      if (!MarionettePlanarity::PlanCoefficients(strip.inner[i], strip.outer[i], strip.outer[k],
-                                                 strip.inner[k], &alpha, &beta))
-        throw InputError(path + ":" + std::to_string(line_of[i]) + ": quad " + std::to_string(i) +
-                         " (vertex pairs " + std::to_string(i) + " and " + std::to_string(k) +
-                         ", lines " + std::to_string(line_of[i]) + " and " +
-                         std::to_string(line_of[k]) + ") has a degenerate plan view: inner " +
-                         std::to_string(i) + ", outer " + std::to_string(i) + " and inner " +
-                         std::to_string(k) + " are collinear in x, y");
-    }
     lift =
         LiftClosedStrip(strip, Eigen::Map<const Eigen::VectorXd>(z.data(), n), args.outer_height);
   } catch (const InputError& e) {
@@ -348,18 +369,7 @@ int RunClosedStrip(const MarionetteArgs& args) {
     return kExitInputError;
   }
   const int n = static_cast<int>(z.size());
-  PolyMesh out;
-  std::vector<PolyMesh::VertexHandle> inner, outer;
-  for (int i = 0; i < n; ++i)
-    inner.push_back(
-        out.add_vertex({strip.inner[i].x(), strip.inner[i].y(), lift.inner_heights[i]}));
-  for (int i = 0; i < n; ++i)
-    outer.push_back(
-        out.add_vertex({strip.outer[i].x(), strip.outer[i].y(), lift.outer_heights[i]}));
-  for (int i = 0; i < n; ++i) {
-    const int k = (i + 1) % n;
-    out.add_face({inner[i], outer[i], outer[k], inner[k]});
-  }
+  const PolyMesh out = ClosedStripMesh(strip, lift);
   const PlanarityMeasures m = MeasurePlanarity(out, out);
   const Eigen::VectorXd z0 = Eigen::Map<const Eigen::VectorXd>(z.data(), n);
   const double inner_change = (lift.inner_heights - z0).cwiseAbs().maxCoeff();
@@ -394,6 +404,25 @@ int RunClosedStrip(const MarionetteArgs& args) {
   return kExitOk;
 }
 
+// The grid plan and, with --fit, the target heights; checks the outputs first.
+void LoadGridInputs(const MarionetteArgs& args, PolyMesh* mesh, MarionettePlan* plan,
+                    Eigen::VectorXd* z0) {
+  CheckMarionetteOutputs(args);
+  *mesh = ReadMesh(args.plan, MeshRequirements{true});
+  *plan = MakeMarionettePlan(*mesh, args.plan);
+  if (!args.fit.empty()) {
+    const PolyMesh target = ReadMesh(args.fit);
+    if (target.n_vertices() != mesh->n_vertices())
+      throw InputError(args.fit + ": the target has " + std::to_string(target.n_vertices()) +
+                       " vertices, the plan " + std::to_string(mesh->n_vertices()));
+    z0->resize(plan->num_vertices());
+    for (auto v : target.vertices()) (*z0)[v.idx()] = target.point(v)[2];
+  } else if (args.row.empty() || args.column.empty()) {
+    throw InputError(
+        "give the guide curves (--row and --column heights, or --guides) or a target (--fit)");
+  }
+}
+
 int RunMarionette(const MarionetteArgs& args) {
   if (!args.closed_strip.empty()) {
     if (!args.plan.empty()) {
@@ -412,20 +441,7 @@ int RunMarionette(const MarionetteArgs& args) {
   MarionettePlan plan;
   Eigen::VectorXd z0;
   try {
-    CheckMarionetteOutputs(args);
-    mesh = ReadMesh(args.plan, MeshRequirements{true});
-    plan = MakeMarionettePlan(mesh, args.plan);
-    if (!args.fit.empty()) {
-      const PolyMesh target = ReadMesh(args.fit);
-      if (target.n_vertices() != mesh.n_vertices())
-        throw InputError(args.fit + ": the target has " + std::to_string(target.n_vertices()) +
-                         " vertices, the plan " + std::to_string(mesh.n_vertices()));
-      z0.resize(plan.num_vertices());
-      for (auto v : target.vertices()) z0[v.idx()] = target.point(v)[2];
-    } else if (args.row.empty() || args.column.empty()) {
-      throw InputError(
-          "give the guide curves (--row and --column heights, or --guides) or a target (--fit)");
-    }
+    LoadGridInputs(args, &mesh, &plan, &z0);
   } catch (const InputError& e) {
     std::cerr << "gproj marionette: " << e.what() << "\n";
     return kExitInputError;

@@ -184,6 +184,23 @@ ClosedStripLift LiftClosedStrip(const ClosedStrip& strip, const Eigen::VectorXd&
   return out;
 }
 
+PolyMesh ClosedStripMesh(const ClosedStrip& strip, const ClosedStripLift& lift) {
+  const int n = static_cast<int>(strip.inner.size());
+  PolyMesh out;
+  std::vector<PolyMesh::VertexHandle> inner, outer;
+  for (int i = 0; i < n; ++i)
+    inner.push_back(
+        out.add_vertex({strip.inner[i].x(), strip.inner[i].y(), lift.inner_heights[i]}));
+  for (int i = 0; i < n; ++i)
+    outer.push_back(
+        out.add_vertex({strip.outer[i].x(), strip.outer[i].y(), lift.outer_heights[i]}));
+  for (int i = 0; i < n; ++i) {
+    const int k = (i + 1) % n;
+    out.add_face({inner[i], outer[i], outer[k], inner[k]});
+  }
+  return out;
+}
+
 Eigen::VectorXd FitMarionette(const MarionettePlan& plan, const Eigen::VectorXd& z0) {
   const Eigen::MatrixXd a = MarionetteGuideMatrix(plan);  // 002 eq. 14
   return a * (a.transpose() * a).ldlt().solve(a.transpose() * z0);

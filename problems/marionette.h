@@ -92,4 +92,8 @@ struct ClosedStripLift {
 ClosedStripLift LiftClosedStrip(const ClosedStrip& strip, const Eigen::VectorXd& inner_heights,
                                 double outer0_when_free = 0.0, double tolerance = 1e-9);
 
+// The lifted closed strip as a quad mesh: inner vertices 0..N−1, outer N..2N−1, quad i =
+// (inner i, outer i, outer i+1, inner i+1).
+PolyMesh ClosedStripMesh(const ClosedStrip& strip, const ClosedStripLift& lift);
+
 }  // namespace gproj
