@@ -423,6 +423,17 @@ void LoadGridInputs(const MarionetteArgs& args, PolyMesh* mesh, MarionettePlan* 
   }
 }
 
+// The plan with its vertices at heights z.
+PolyMesh WithHeights(const PolyMesh& plan, const Eigen::VectorXd& z) {
+  PolyMesh out = plan;
+  for (auto v : out.vertices()) {
+    auto p = out.point(v);
+    p[2] = z[v.idx()];
+    out.set_point(v, p);
+  }
+  return out;
+}
+
 int RunMarionette(const MarionetteArgs& args) {
   if (!args.closed_strip.empty()) {
     if (!args.plan.empty()) {
@@ -474,12 +485,7 @@ int RunMarionette(const MarionetteArgs& args) {
     std::cerr << "gproj marionette: non-finite heights; nothing written\n";
     return kExitSolverFailure;
   }
-  PolyMesh out = mesh;
-  for (auto v : out.vertices()) {
-    auto p = out.point(v);
-    p[2] = z[v.idx()];
-    out.set_point(v, p);
-  }
+  const PolyMesh out = WithHeights(mesh, z);
   const PlanarityMeasures m = MeasurePlanarity(out, out);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
