@@ -46,6 +46,7 @@ void RegisterGridCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--seed", args->grid.seed, "Random seed")->capture_default_str();
   cmd->callback([args, exit_code]() {
     try {
+      CheckMeshOutputPath("--output", args->output);
       if (args->surface == "paraboloid") {
         WriteMeshAtomically(MakeQuadGrid(args->grid), args->output);
       } else {

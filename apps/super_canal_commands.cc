@@ -77,9 +77,18 @@ struct CombescureArgs {
   double row_scale = 1.0, column_scale = 1.0, tolerance = 1e-6;
 };
 
+// Every output path of a mesh-producing command, before any work.
+void CheckMeshCommandOutputs(const std::string& output, const std::string& report,
+                             const std::string& picture) {
+  CheckMeshOutputPath("--output", output);
+  CheckOutputPath("--report", report);
+  CheckOutputPath("--picture", picture);
+}
+
 int RunCombescure(const CombescureArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   try {
+    CheckMeshCommandOutputs(args.output, args.report, args.picture);
     const PolyMesh reference = ReadMesh(args.input, MeshRequirements{true});
     const GridShape shape = DetectGridShape(reference, args.input);
     CombescureLengths lengths = ReferenceLengths(reference, shape);
@@ -164,6 +173,7 @@ struct InvertArgs {
 int RunInvert(const InvertArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   try {
+    CheckMeshCommandOutputs(args.output, args.report, args.picture);
     const PolyMesh mesh = ReadMesh(args.input);
     nlohmann::json report = {{"command", "invert"}, {"input", args.input}, {"output", args.output}};
     Eigen::Vector3d centre;
@@ -279,10 +289,8 @@ std::vector<Eigen::Vector3d> ReadCurve(const std::string& path) {
 
 // The strip's input from the options (curve, first point, lengths); checks the output paths.
 CircularStripInput CanalInputFromArgs(const CanalArgs& args) {
-  CheckMeshOutputPath("--output", args.output);
+  CheckMeshCommandOutputs(args.output, args.report, args.picture);
   CheckMeshOutputPath("--strip", args.strip);
-  CheckOutputPath("--report", args.report);
-  CheckOutputPath("--picture", args.picture);
   CircularStripInput input;
   input.curve = ReadCurve(args.curve);
   input.first_point = Vector3(args.first_point, "--first-point");

@@ -1,6 +1,7 @@
 // `gproj combescure`, `gproj invert` and `gproj canal` as a user runs them, on the shipped data.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 
 #include "apps/command_test_util.h"
@@ -25,6 +26,25 @@ TEST_F(SuperCanalCommandTest, CombescureByBothMethodsKeepsEdgesParallelAndQuadsC
     EXPECT_LT(report["final"]["max_planarity"].get<double>(), 1e-10) << method;
     EXPECT_LT(report["final"]["max_concyclicity"].get<double>(), 1e-10) << method;
     EXPECT_NE(r.out.find("edge-parallelism angle"), std::string::npos) << r.out;
+  }
+}
+
+TEST_F(SuperCanalCommandTest, EveryCommandChecksItsOutputsBeforeWorking) {
+  const std::string in = Data("revolution_13x17.obj");
+  const std::string missing = Path("missing/x.obj");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"combescure " + in + " -o " + missing, "--output"},
+      {"invert " + in + " --centre 0,0,5 -o " + missing, "--output"},
+      {"invert " + in + " --centre 0,0,5 -o " + Path("out.obj") + " --report " + missing,
+       "--report"},
+      {"canal " + Data("canal_curve.txt") + " --first-point -0.5,0.5,2 --length 2 -o " +
+           Path("out.obj") + " --strip " + missing,
+       "--strip"},
+      {"grid -o " + missing, "--output"},
+      {"grid -o " + Path("out.stl"), ".stl"}};
+  for (const auto& [command, option] : cases) {
+    ExpectOneLineError(Gproj(command), option);
+    EXPECT_FALSE(std::filesystem::exists(dir_ / "out.obj")) << command;
   }
 }
 
