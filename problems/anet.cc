@@ -35,8 +35,7 @@ bool ANetOptions::IsValid(std::string* why) const {
     *why = text;
     return false;
   };
-  for (double w : {planarity_weight, tangent_weight, point_weight, anchor_weight,
-                   ceres_soft_scale})
+  for (double w : {planarity_weight, tangent_weight, point_weight, anchor_weight, ceres_soft_scale})
     if (!(w >= 0.0) || !std::isfinite(w)) return fail("weights must be finite and ≥ 0");
   if (!(planarity_weight > 0.0)) return fail("planarity weight must be > 0");
   if (fairness_order != 2 && fairness_order != 3) return fail("fairness order must be 2 or 3");

@@ -32,9 +32,9 @@ struct ANetOptions {
   SolverOptions solver = ANetSolverDefaults();
   StarPlanarityForm star_form = StarPlanarityForm::kNormals;
   double planarity_weight = 1.0;
-  double tangent_weight = 1.0;   // distance to the reference's tangent plane at the closest point
-  double point_weight = 0.1;     // distance to the closest point itself (weaker)
-  double anchor_weight = 0.0;    // distance to the input positions (fixed points; 0: off)
+  double tangent_weight = 1.0;  // distance to the reference's tangent plane at the closest point
+  double point_weight = 0.1;    // distance to the closest point itself (weaker)
+  double anchor_weight = 0.0;   // distance to the input positions (fixed points; 0: off)
   int fairness_order = 2;
   // Stop when the max star planarity (neighbour distance from the star plane / mean edge) is
   // ≤ this.
