@@ -16,6 +16,9 @@
 namespace gproj {
 namespace {
 
+// Rows are multiplied by the weights of Table 1 (003 §3.3): a family's weight on φ² is ω².
+double Squared(double w) { return w * w; }
+
 // Derivatives (s_u, s_v, s_uu, s_uv, s_vv) of every sample for control points `c` (nC × 3).
 std::vector<std::array<Eigen::Vector3d, 5>> SampleDerivatives(const SampleMaps& maps,
                                                               const Eigen::MatrixX3d& c) {
@@ -288,11 +291,9 @@ std::vector<WeingartenProblem::SampleTerms> WeingartenProblem::AddCurvatureDefin
   for (int b = 1; b + 1 < sv; ++b) inv_dv_[b] = 1.0 / ((maps_.v[b + 1] - maps_.v[b - 1]) * speed_v);
 
   // Auxiliary definitions, one element per sample.
-  // Rows are multiplied by the weights of Table 1 (003 §3.3), so a family's weight on φ² is ω².
-  auto squared = [](double w) { return w * w; };
   auto* definitions =
       options.curvature_auxiliaries
-          ? problem_.AddFamily<CurvatureAuxiliaries>(squared(options.definition_weight))
+          ? problem_.AddFamily<CurvatureAuxiliaries>(Squared(options.definition_weight))
           : nullptr;
   std::vector<std::pair<std::vector<int>, SampleStencil>> stencils;  // per sample
   for (int s = 0; s < ns; ++s) {
@@ -330,10 +331,7 @@ void WeingartenProblem::AddAlignment() {
   VariableLayout& layout = problem_.layout();
   Eigen::VectorXd& x = problem_.x();
   const int su = maps_.su, sv = maps_.sv;
-  auto squared = [](double w) { return w * w; };
-  auto inv_du = [&](int a) { return inv_du_[a]; };
-  auto inv_dv = [&](int b) { return inv_dv_[b]; };
-  auto aux = [&](int a, int b) { return layout.Item(curvature_block_, maps_.Index(a, b)); };
+  auto aux = [this](int a, int b) { return CurvatureItem(a, b); };
   const bool definitions = options_.curvature_auxiliaries;
   // The alignment rows H_u K_v − H_v K_u are normalised by the RMS of |∇H| |∇K| over the inner
   // samples of the input (scaled units), so that ω_al weighs a dimensionless misalignment
@@ -345,21 +343,21 @@ void WeingartenProblem::AddAlignment() {
       auto value = [&](int aa, int bb, int off) { return x[layout.ItemOffset(aux(aa, bb)) + off]; };
       auto gradient = [&](int off) {
         return CentralGradient(value(a + 1, b, off), value(a - 1, b, off), value(a, b + 1, off),
-                               value(a, b - 1, off), inv_du(a), inv_dv(b));
+                               value(a, b - 1, off), inv_du_[a], inv_dv_[b]);
       };
-      gradient_product += squared(GradientNormProduct(gradient(kH), gradient(kK)));
+      gradient_product += Squared(GradientNormProduct(gradient(kH), gradient(kK)));
       ++inner;
     }
   alignment_scale_ =
       inner > 0 && gradient_product > 0.0 ? 1.0 / std::sqrt(gradient_product / inner) : 1.0;
   if (options.alignment_weight > 0.0) {
     auto* alignment = problem_.AddFamily<IsolineAlignment>(
-        squared(options.alignment_weight * (options.normalize_alignment ? 1.0 : alignment_scale_)),
+        Squared(options.alignment_weight * (options.normalize_alignment ? 1.0 : alignment_scale_)),
         options.normalize_alignment);
     for (int a = 1; a + 1 < su; ++a)
       for (int b = 1; b + 1 < sv; ++b)
-        alignment->AddSample(aux(a + 1, b), aux(a - 1, b), aux(a, b + 1), aux(a, b - 1), inv_du(a),
-                             inv_dv(b));
+        alignment->AddSample(aux(a + 1, b), aux(a - 1, b), aux(a, b + 1), aux(a, b - 1), inv_du_[a],
+                             inv_dv_[b]);
   }
 }
 
@@ -369,16 +367,13 @@ void WeingartenProblem::AddGeodesicParallel() {
   VariableLayout& layout = problem_.layout();
   Eigen::VectorXd& x = problem_.x();
   const int su = maps_.su, sv = maps_.sv;
-  auto squared = [](double w) { return w * w; };
-  auto inv_du = [&](int a) { return inv_du_[a]; };
-  auto inv_dv = [&](int b) { return inv_dv_[b]; };
-  auto aux = [&](int a, int b) { return layout.Item(curvature_block_, maps_.Index(a, b)); };
-  auto* definitions2 = problem_.AddFamily<GeodesicAuxiliaries>(squared(options.definition_weight));
-  auto grad = [&](int a, int b) { return layout.Item(gradient_block_, maps_.Index(a, b)); };
+  auto aux = [this](int a, int b) { return CurvatureItem(a, b); };
+  auto* definitions2 = problem_.AddFamily<GeodesicAuxiliaries>(Squared(options.definition_weight));
+  auto grad = [this](int a, int b) { return GradientItem(a, b); };
   for (int a = 1; a + 1 < su; ++a)
     for (int b = 1; b + 1 < sv; ++b) {
-      const double cu = inv_du(a);
-      const double cv = inv_dv(b);
+      const double cu = inv_du_[a];
+      const double cv = inv_dv_[b];
       definitions2->AddSample(grad(a, b), aux(a, b), aux(a + 1, b), aux(a - 1, b), aux(a, b + 1),
                               aux(a, b - 1), cu, cv);
     }
@@ -405,27 +400,26 @@ void WeingartenProblem::AddGeodesicParallel() {
         const int off = p == 0 ? kK : kH, goff = p == 0 ? kGradK : kGradH;
         auto gradient = [&](auto item, int o) {
           auto at = [&](int aa, int bb) { return x[layout.ItemOffset(item(aa, bb)) + o]; };
-          return CentralGradient(at(a + 1, b), at(a - 1, b), at(a, b + 1), at(a, b - 1), inv_du(a),
-                                 inv_dv(b));
+          return CentralGradient(at(a + 1, b), at(a - 1, b), at(a, b + 1), at(a, b - 1), inv_du_[a],
+                                 inv_dv_[b]);
         };
-        product += squared(GradientNormProduct(gradient(grad, goff), gradient(aux, off)));
+        product += Squared(GradientNormProduct(gradient(grad, goff), gradient(aux, off)));
         ++count;
       }
   const double gp_scale = count > 0 && product > 0.0 ? 1.0 / std::sqrt(product / count) : 1.0;
   auto* parallel = problem_.AddFamily<GeodesicParallelIsolines>(
-      squared(options.geodesic_parallel_weight * gp_scale));
+      Squared(options.geodesic_parallel_weight * gp_scale));
   for (int a = 2; a + 2 < su; ++a)
     for (int b = 2; b + 2 < sv; ++b)
       parallel->AddSample({grad(a + 1, b), grad(a - 1, b), grad(a, b + 1), grad(a, b - 1)},
-                          {aux(a + 1, b), aux(a - 1, b), aux(a, b + 1), aux(a, b - 1)}, inv_du(a),
-                          inv_dv(b));
+                          {aux(a + 1, b), aux(a - 1, b), aux(a, b + 1), aux(a, b - 1)}, inv_du_[a],
+                          inv_dv_[b]);
 }
 
 void WeingartenProblem::AddRelations(const std::vector<SampleTerms>& stencils) {
   const WeingartenOptions& options = options_;
   VariableLayout& layout = problem_.layout();
   const int ns = maps_.num_samples();
-  auto squared = [](double w) { return w * w; };
   if (options.linear_relation_weight > 0.0) {
     // Input units → scaled: κ_scaled = κ / scale, so a H + b K + c = 0 becomes
     // (a scale) H' + (b scale²) K' + c = 0.
@@ -434,10 +428,10 @@ void WeingartenProblem::AddRelations(const std::vector<SampleTerms>& stencils) {
     abc /= abc.head<2>().norm();
     if (options.fixed_linear_relation && options.relation_on_surface) {
       surface_linear_ = problem_.AddFamily<SurfaceLinearWeingarten>(
-          squared(options.linear_relation_weight), abc, options.target_mean_curvature);
+          Squared(options.linear_relation_weight), abc, options.target_mean_curvature);
       for (const auto& [items, stencil] : stencils) surface_linear_->AddSample(items, stencil);
     } else {
-      linear_ = problem_.AddFamily<LinearWeingarten>(squared(options.linear_relation_weight),
+      linear_ = problem_.AddFamily<LinearWeingarten>(Squared(options.linear_relation_weight),
                                                      options.fixed_linear_relation, abc,
                                                      options.target_mean_curvature);
       for (int s = 0; s < ns; ++s) linear_->AddSample(layout.Item(curvature_block_, s));
@@ -445,7 +439,7 @@ void WeingartenProblem::AddRelations(const std::vector<SampleTerms>& stencils) {
   }
   if (options.bspline_relation_weight > 0.0) {
     auto* curve = problem_.AddFamily<CurvatureCurveRelation>(
-        squared(options.bspline_relation_weight), options.bspline_relation_control_points);
+        Squared(options.bspline_relation_weight), options.bspline_relation_control_points);
     for (int s = 0; s < ns; ++s) curve->AddSample(layout.Item(curvature_block_, s));
   }
 }
@@ -456,7 +450,6 @@ void WeingartenProblem::AddControlNetTerms() {
   const WeingartenOptions& options = options_;
   VariableLayout& layout = problem_.layout();
   const int nc = input.num_control_points();
-  auto squared = [](double w) { return w * w; };
   auto control = [&](int i, int j) { return layout.Item(control_block_, scaled_.Index(i, j)); };
   // Closeness and gliding are measured in units of the control net's mean edge length, so their
   // weights do not depend on the surface's size or on the net's resolution.
@@ -472,7 +465,7 @@ void WeingartenProblem::AddControlNetTerms() {
   const double mean_edge = edges > 0 && edge_sum > 0.0 ? edge_sum / edges : 1.0;
   if (options.closeness_weight > 0.0) {
     auto* closeness = problem_.AddFamily<Closeness>(
-        3, squared(options.soft_start * options.closeness_weight / mean_edge));
+        3, Squared(options.soft_start * options.closeness_weight / mean_edge));
     for (int i = 0; i < nc; ++i) {
       const Eigen::Vector3d p = scaled_.control.row(i).transpose();
       closeness->AddTarget(layout.Item(control_block_, i), p.data());
@@ -480,7 +473,7 @@ void WeingartenProblem::AddControlNetTerms() {
   }
   if (options.shape_weight > 0.0) {
     auto* shape = problem_.AddFamily<EdgeLengthPreservation>(
-        squared(options.soft_start * options.shape_weight));
+        Squared(options.soft_start * options.shape_weight));
     auto add = [&](int i0, int j0, int i1, int j1) {
       const double l =
           (scaled_.control.row(scaled_.Index(i0, j0)) - scaled_.control.row(scaled_.Index(i1, j1)))
@@ -515,11 +508,10 @@ void WeingartenProblem::AddBoundaryGliding(double mean_edge) {
   const BSplineSurface& input = reference_;
   const WeingartenOptions& options = options_;
   VariableLayout& layout = problem_.layout();
-  auto squared = [](double w) { return w * w; };
   auto control = [&](int i, int j) { return layout.Item(control_block_, scaled_.Index(i, j)); };
-  auto* glide = problem_.AddFamily<PolylineGliding>(squared(options.boundary_weight / mean_edge));
+  auto* glide = problem_.AddFamily<PolylineGliding>(Squared(options.boundary_weight / mean_edge));
   // Held like the gliding rows, whatever the soft schedule does to closeness.
-  auto* corners = problem_.AddFamily<Closeness>(3, squared(options.boundary_weight / mean_edge),
+  auto* corners = problem_.AddFamily<Closeness>(3, Squared(options.boundary_weight / mean_edge),
                                                 "boundary corners", FamilyRole::kConstraint);
   auto row = [&](int i0, int j0, int di, int dj, int count) {
     std::vector<Eigen::Vector3d> line;

@@ -145,6 +145,14 @@ class WeingartenProblem {
   void AddControlNetTerms();
   void AddBoundaryGliding(double mean_edge);
 
+  // Items of sample (a, b): its curvature auxiliaries, its gradient auxiliaries.
+  int CurvatureItem(int a, int b) const {
+    return problem_.layout().Item(curvature_block_, maps_.Index(a, b));
+  }
+  int GradientItem(int a, int b) const {
+    return problem_.layout().Item(gradient_block_, maps_.Index(a, b));
+  }
+
   BSplineSurface ScaledToInput(const Eigen::VectorXd& x) const;
   // Exact auxiliaries from the control points in x (curvature) or from the curvature
   // auxiliaries in x (geodesic parallel; nothing without them).
