@@ -4,7 +4,6 @@
 // the fairness polylines of a quad mesh.
 
 #include <Eigen/Core>
-#include <functional>
 
 #include "geometry/mesh_io.h"
 #include "solver/guided_projection.h"
@@ -27,20 +26,6 @@ double MeanEdgeLength(const PolyMesh& mesh);
 
 // Max vertex displacement between two meshes of one connectivity / bbox diagonal of `reference`.
 double MaxDisplacement(const PolyMesh& mesh, const PolyMesh& reference);
-
-// Guided projection that evaluates a problem's own measures after every iteration, hands them
-// to `callback` (may be empty) and stops with kConverged as soon as `reached(measures)`.
-template <typename Measures, typename Measure, typename Reached>
-SolverSummary SolveWithMeasures(
-    const SolverOptions& options, Problem* problem, Measure measure, Reached reached,
-    const std::function<CallbackResult(const IterationRecord&, const Measures&)>& callback) {
-  return Solve(options, problem, [&](const IterationRecord& record, const Eigen::VectorXd& x) {
-    const Measures m = measure(x);
-    CallbackResult result = callback ? callback(record, m) : CallbackResult::kContinue;
-    if (result == CallbackResult::kContinue && reached(m)) result = CallbackResult::kConverged;
-    return result;
-  });
-}
 
 // x[vertex block] = normalised mesh vertices.
 void LoadVertices(const PolyMesh& mesh, const MeshNormalization& norm, int vertex_block,
