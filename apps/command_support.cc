@@ -83,7 +83,8 @@ void IterationLog::PrintHeader() const {
 
 void IterationLog::Print(const RunRecord& r) const {
   std::printf("%5d %13.6e", r.iteration, r.energy);
-  for (const std::string& m : measures_) std::printf(" %15.3e", ValueOf(r.measures, m));
+  for (const std::string& m : measures_)
+    std::printf(" %15.3e", m == "max_constraint" ? r.max_constraint : ValueOf(r.measures, m));
   std::printf(" %11.3e %10.4f\n", r.step, r.seconds);
   std::fflush(stdout);
 }

@@ -33,7 +33,8 @@ void AddSolverOptions(CLI::App* command, SolverOptions* solver, std::string* lin
 void ApplyLinearSolver(const std::string& name, SolverOptions* solver);
 
 // The live log: a header line, then one line per record with the iteration, the energy, the
-// given measures, the step and the time; flushed after every line.
+// given measures ("max_constraint": the record's max |φ| over constraint rows), the step and
+// the time; flushed after every line.
 class IterationLog {
  public:
   explicit IterationLog(std::vector<std::string> measures) : measures_(std::move(measures)) {}

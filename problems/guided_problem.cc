@@ -13,10 +13,12 @@ double SecondsSince(Clock::time_point start) {
 }
 
 // Fills the fields every run shares once the solver has stopped.
-void Conclude(const GuidedProblem& problem, Clock::time_point start, RunReport* report) {
+void Conclude(const GuidedProblem& problem, Clock::time_point start, bool aborted,
+              RunReport* report) {
   report->failed = report->failed || !problem.problem().x().allFinite();
   if (!report->failed) report->final = problem.Measure();
-  report->converged = !report->failed && problem.MeetsTolerance(report->final);
+  report->converged = !report->failed &&
+                      (problem.HasTolerance() ? problem.MeetsTolerance(report->final) : !aborted);
   report->seconds = SecondsSince(start);
 }
 
@@ -66,14 +68,14 @@ RunReport GuidedProblem::Run(const RunCallback& callback) {
         record.measures = MeasureAt(x);
         report.history.push_back(record);
         if (callback && !callback(record)) return CallbackResult::kAbort;
-        return MeetsTolerance(record.measures) ? CallbackResult::kConverged
-                                               : CallbackResult::kContinue;
+        return HasTolerance() && MeetsTolerance(record.measures) ? CallbackResult::kConverged
+                                                                 : CallbackResult::kContinue;
       });
   report.termination =
       std::string(TerminationTypeName(report.summary.termination)) + ": " + report.summary.message;
   report.iterations = report.summary.num_steps();
   report.failed = report.summary.termination == TerminationType::kFailure;
-  Conclude(*this, start, &report);
+  Conclude(*this, start, report.summary.termination == TerminationType::kUserAbort, &report);
   return report;
 }
 
@@ -83,19 +85,20 @@ RunReport GuidedProblem::RunCeres(int max_iterations, const RunCallback& callbac
   report.solver = "ceres";
   report.variables = problem().layout().num_variables();
   report.initial = Measure();
+  bool aborted = false;
   const CeresSummary summary =
       SolveWithCeres(ceres_options(max_iterations), &problem(),
                      [&](const CeresIterationRecord& s, const Eigen::VectorXd& x) {
                        RunRecord record = ToRunRecord(s);
                        record.measures = MeasureAt(x);
                        report.history.push_back(record);
-                       if (callback && !callback(record)) return false;
-                       return !MeetsTolerance(record.measures);
+                       if (callback && !callback(record)) return !(aborted = true);
+                       return !HasTolerance() || !MeetsTolerance(record.measures);
                      });
   report.termination = "ceres " + summary.ceres_termination + ": " + summary.message;
   report.iterations = summary.num_steps();
   report.failed = summary.termination == TerminationType::kFailure;
-  Conclude(*this, start, &report);
+  Conclude(*this, start, aborted, &report);
   return report;
 }
 

@@ -74,6 +74,10 @@ class GuidedProblem {
   virtual NamedValues MeasureAt(const Eigen::VectorXd& x) const = 0;
   // Whether measures meet the problem's tolerance.
   virtual bool MeetsTolerance(const NamedValues& measures) const = 0;
+  // false for a run asked for a number of steps and no tolerance (e.g. the Weingarten presets
+  // of 003, which minimise for a fixed number of iterations): the run then never stops early
+  // and counts as converged when it ends without failure or abort.
+  virtual bool HasTolerance() const { return true; }
 
   NamedValues Measure() const { return MeasureAt(problem().x()); }
 
