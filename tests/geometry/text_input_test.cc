@@ -1,0 +1,68 @@
+#include "geometry/text_input.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace gproj {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string WriteTemp(const std::string& name, const std::string& text) {
+  const fs::path path = fs::temp_directory_path() / ("gproj_text_input_" + name);
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+std::string MessageOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(TextInputTest, LinesKeepTheirNumbersAndDropComments) {
+  const std::string path = WriteTemp("lines.txt", "# head\n\na b  # tail\n  c,d\n");
+  const std::vector<TextLine> lines = ReadTextLines(path);
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_EQ(lines[0].number, 3);
+  EXPECT_EQ(lines[0].words, (std::vector<std::string>{"a", "b"}));
+  EXPECT_EQ(lines[1].words, (std::vector<std::string>{"c,d"}));
+  EXPECT_EQ(ReadTextLines(path, true)[1].words, (std::vector<std::string>{"c", "d"}));
+}
+
+TEST(TextInputTest, NumbersAndIndicesAreCheckedWhole) {
+  EXPECT_EQ(ParseNumber("-2.5e1", "f:1"), -25.0);
+  EXPECT_EQ(MessageOf([] { ParseNumber("1.5x", "f:1"); }), "f:1: '1.5x' is not a number");
+  EXPECT_EQ(MessageOf([] { ParseNumber("inf", "f:2"); }), "f:2: 'inf' is not finite");
+  EXPECT_EQ(ParseIndex("3", "f:1", 4, "vertex"), 3);
+  EXPECT_NE(MessageOf([] { ParseIndex("4", "f:1", 4, "vertex"); }).find("'4' is not a vertex id"),
+            std::string::npos);
+  EXPECT_NE(MessageOf([] { ParseIndex("1.5", "f:1", 4, "vertex"); }).find("not a vertex id"),
+            std::string::npos);
+}
+
+TEST(TextInputTest, PointsNeedThreeFiniteDistinctCoordinates) {
+  EXPECT_EQ(ReadPoints(WriteTemp("p.txt", "0 0 0\n1,2,3\n")).size(), 2u);
+  EXPECT_NE(MessageOf([] {
+              ReadPoints(WriteTemp("q.txt", "0 0 0\n1 2\n"));
+            }).find("q.txt:2: a point needs 3 coordinates, got 2"),
+            std::string::npos);
+  EXPECT_NE(MessageOf([] {
+              ReadPoints(WriteTemp("r.txt", "0 0 0\n0 0 0\n"));
+            }).find("r.txt:2: repeats the previous point"),
+            std::string::npos);
+  EXPECT_NE(MessageOf([] {
+              ReadPoints(WriteTemp("s.txt", "0 0 0\n"));
+            }).find("needs at least 2 points, got 1"),
+            std::string::npos);
+  EXPECT_NE(MessageOf([] { ReadTextLines(WriteTemp("e.txt", "# only\n")); }).find("is empty"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace gproj
