@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -76,7 +77,8 @@ void ApplyLinearSolver(const std::string& name, SolverOptions* solver) {
 
 void IterationLog::PrintHeader() const {
   std::printf("%5s %13s", "iter", "energy");
-  for (const std::string& m : measures_) std::printf(" %15s", m.c_str());
+  for (const std::string& m : measures_)
+    std::printf(" %*s", std::max(15, static_cast<int>(m.size())), m.c_str());
   std::printf(" %11s %10s\n", "step", "time_s");
   std::fflush(stdout);
 }
@@ -84,59 +86,10 @@ void IterationLog::PrintHeader() const {
 void IterationLog::Print(const RunRecord& r) const {
   std::printf("%5d %13.6e", r.iteration, r.energy);
   for (const std::string& m : measures_)
-    std::printf(" %15.3e", m == "max_constraint" ? r.max_constraint : ValueOf(r.measures, m));
+    std::printf(" %*.3e", std::max(15, static_cast<int>(m.size())),
+                m == "max_constraint" ? r.max_constraint : ValueOf(r.measures, m));
   std::printf(" %11.3e %10.4f\n", r.step, r.seconds);
   std::fflush(stdout);
-}
-
-namespace {
-
-// Non-finite numbers become null (JSON has no NaN).
-nlohmann::json Number(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
-}
-
-nlohmann::json MeasuresJson(const NamedValues& values) {
-  nlohmann::json j = nlohmann::json::object();
-  for (const NamedValue& v : values) j[v.name] = Number(v.value);
-  return j;
-}
-
-nlohmann::json RecordJson(const RunRecord& r) {
-  nlohmann::json j = {{"iteration", r.iteration},   {"energy", Number(r.energy)},
-                      {"step", Number(r.step)},     {"epsilon", r.epsilon},
-                      {"soft_scale", r.soft_scale}, {"max_constraint", Number(r.max_constraint)},
-                      {"seconds", r.seconds}};
-  for (const NamedValue& v : r.measures) j[v.name] = Number(v.value);
-  nlohmann::json families = nlohmann::json::object();
-  for (const FamilyResidual& f : r.families)
-    families[f.name] = {{"max", Number(f.max_abs)}, {"rms", Number(f.rms)}};
-  j["families"] = families;
-  j["assembly_seconds"] = r.assembly_seconds;
-  j["factorization_seconds"] = r.factorization_seconds;
-  j["solve_seconds"] = r.solve_seconds;
-  return j;
-}
-
-}  // namespace
-
-nlohmann::json ReportJson(const std::string& command, const RunReport& report,
-                          const nlohmann::json& extra) {
-  nlohmann::json history = nlohmann::json::array();
-  for (const RunRecord& r : report.history) history.push_back(RecordJson(r));
-  nlohmann::json j = {{"command", command},
-                      {"solver", report.solver},
-                      {"converged", report.converged},
-                      {"failed", report.failed},
-                      {"termination", report.termination},
-                      {"iterations", report.iterations},
-                      {"seconds", report.seconds},
-                      {"variables", report.variables},
-                      {"initial", MeasuresJson(report.initial)},
-                      {"final", MeasuresJson(report.final)},
-                      {"history", history}};
-  for (auto it = extra.begin(); it != extra.end(); ++it) j[it.key()] = it.value();
-  return j;
 }
 
 int ExitCodeOf(const RunReport& report) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "problems/guided_problem.h"
+#include "problems/report_json.h"
 
 namespace gproj {
 
@@ -44,13 +45,6 @@ class IterationLog {
  private:
   std::vector<std::string> measures_;
 };
-
-// The report: command, solver, converged, failed, termination, iterations, seconds,
-// variables, initial and final measures, and the history (per record: iteration, energy, step,
-// epsilon, soft_scale, seconds, the measures, per-term residuals and the time split); `extra`
-// adds the command's own keys (input, output, options, …).
-nlohmann::json ReportJson(const std::string& command, const RunReport& report,
-                          const nlohmann::json& extra);
 
 // 0 converged, 3 tolerance not met (result written), 4 numerical failure (nothing written).
 int ExitCodeOf(const RunReport& report);

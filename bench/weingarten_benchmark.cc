@@ -54,11 +54,11 @@ void BM_WeingartenIteration(benchmark::State& state) {
   WeingartenOptions o = WeingartenPreset(row.geodesic ? "fig4c" : "fig1");
   o.samples_u = row.su;
   o.samples_v = row.sv;
-  o.max_iterations = 3;
+  o.solver.max_iterations = 3;
   SolverSummary summary;
   for (auto _ : state) {
     WeingartenProblem problem(MakeWavyBSpline(row.nu, row.nv, row.degree), o);
-    summary = problem.Solve();
+    summary = problem.Run().summary;
   }
   const PhaseMeans m = SetSolverCounters(summary, &state);
   state.counters["iteration_s"] = m.assembly + m.factorization + m.solve;
@@ -76,11 +76,11 @@ void BM_WeingartenFig3Iteration(benchmark::State& state) {
   o.fixed_linear_relation = true;
   o.linear_coefficients = Eigen::Vector3d(1.0, 0.0, 0.1);
   o.curvature_auxiliaries = state.range(0) != 0;
-  o.max_iterations = 5;
+  o.solver.max_iterations = 5;
   SolverSummary summary;
   for (auto _ : state) {
     WeingartenProblem problem(bump, o);
-    summary = problem.Solve();
+    summary = problem.Run().summary;
   }
   state.SetLabel(o.curvature_auxiliaries ? "Fig. 3, auxiliaries" : "Fig. 3, control points only");
   const PhaseMeans m = SetSolverCounters(summary, &state);

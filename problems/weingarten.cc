@@ -45,6 +45,23 @@ double BoundingBoxDiagonal(const Eigen::MatrixX3d& points) {
 
 }  // namespace
 
+SolverOptions WeingartenSolverDefaults() {
+  SolverOptions s;
+  s.max_iterations = 10;
+  s.fairness_weight = 0.2;
+  s.epsilon = 1e-3;
+  s.residual_tolerance = 0.0;  // the alignment is minimised, not driven to zero
+  s.step_tolerance = 1e-12;
+  s.soft_weight_decay = 0.5;
+  s.eliminate_auxiliaries = false;
+  return s;
+}
+
+std::string WeingartenOptions::target_measure() const {
+  return fixed_linear_relation && linear_relation_weight > 0.0 ? "max_relation_residual"
+                                                               : "misalignment";
+}
+
 CurvatureRelation WeingartenOptions::relation() const {
   if (linear_relation_weight > 0.0) return CurvatureRelation::kLinear;
   if (bspline_relation_weight > 0.0) return CurvatureRelation::kBSpline;
@@ -55,7 +72,7 @@ bool WeingartenOptions::IsValid(std::string* why) const {
   const double weights[] = {
       alignment_weight,         bspline_relation_weight, linear_relation_weight,
       geodesic_parallel_weight, closeness_weight,        shape_weight,
-      fairness_weight,          definition_weight,       boundary_weight};
+      solver.fairness_weight,   definition_weight,       boundary_weight};
   for (double w : weights)
     if (!(w >= 0.0) || !std::isfinite(w)) {
       *why = "weights must be finite and ≥ 0";
@@ -65,7 +82,7 @@ bool WeingartenOptions::IsValid(std::string* why) const {
     *why = "choose one curvature relation: linear or B-spline, not both";
     return false;
   }
-  if (!(epsilon > 0.0)) {
+  if (!(solver.epsilon > 0.0)) {
     *why = "epsilon must be > 0";
     return false;
   }
@@ -81,11 +98,16 @@ bool WeingartenOptions::IsValid(std::string* why) const {
     *why = "at least 5 samples per direction are needed (central differences of gradients)";
     return false;
   }
-  if (!(soft_start >= 1.0) || !(soft_decay > 0.0 && soft_decay <= 1.0)) {
-    *why = "soft_start must be ≥ 1 and soft_decay in (0, 1]";
+  if (!(soft_start >= 1.0) ||
+      !(solver.soft_weight_decay > 0.0 && solver.soft_weight_decay <= 1.0)) {
+    *why = "soft_start must be ≥ 1 and solver.soft_weight_decay in (0, 1]";
     return false;
   }
-  if (max_iterations < 1 || refine_levels < 0) {
+  if (!(tolerance >= 0.0)) {
+    *why = "tolerance must be ≥ 0 (0: none)";
+    return false;
+  }
+  if (solver.max_iterations < 1 || refine_levels < 0) {
     *why = "max_iterations must be ≥ 1 and refine_levels ≥ 0";
     return false;
   }
@@ -134,14 +156,14 @@ WeingartenOptions WeingartenPreset(const std::string& name) {
     o.shape_weight = 0.001;
     o.boundary_weight = 10.0;
     o.soft_start = 30.0;  // the relation moves the surface far: short first steps
-    o.max_iterations = 30;
+    o.solver.max_iterations = 30;
     // Far targets: keep only steps that lower the energy and reset the auxiliaries after each
     // step, so every step is a damped Gauss–Newton step on the surface's own H and K.
-    o.monotone = true;
+    o.solver.monotone = true;
     o.project_auxiliaries = true;
     // ε is only the floor of the adaptive damping here; at 1e-3 the nearly free tangential
     // motion of the control points makes the last digits converge very slowly.
-    o.epsilon = 1e-4;
+    o.solver.epsilon = 1e-4;
     return o;
   }
   if (name == "fig4b" || name == "fig4c") {
@@ -208,6 +230,15 @@ WeingartenMeasures MeasureWeingarten(const BSplineSurface& surface, const BSplin
   m.max_deviation = deviation.maxCoeff(&m.worst_sample);
   m.mean_deviation = deviation.mean();
   return m;
+}
+
+NamedValues ToNamedValues(const WeingartenMeasures& m, bool with_relation) {
+  NamedValues values = {{"misalignment", m.misalignment},
+                        {"max_deviation", m.max_deviation},
+                        {"mean_deviation", m.mean_deviation},
+                        {"mean_abs_principal_curvature", m.mean_abs_principal_curvature}};
+  if (with_relation) values.push_back({"max_relation_residual", m.max_relation_residual});
+  return values;
 }
 
 WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const WeingartenOptions& options)
@@ -490,7 +521,7 @@ void WeingartenProblem::AddControlNetTerms() {
         }
       }
   }
-  if (options.fairness_weight > 0.0) {
+  if (options.solver.fairness_weight > 0.0) {
     // 003 §3.3: ‖c_ij − (c_i,j−1 + c_i,j+1)/2‖² = ¼ ‖second difference‖², both directions.
     auto* fairness = problem_.AddFamily<PolylineFairness>(2, 3, 0.25);
     for (int i = 0; i < input.nu; ++i)
@@ -586,20 +617,15 @@ void WeingartenProblem::SetGradientAuxiliaries(Eigen::VectorXd* x) const {
     }
 }
 
-SolverOptions WeingartenProblem::ToSolverOptions() const {
-  SolverOptions s;
-  s.max_iterations = options_.max_iterations;
-  s.epsilon = options_.epsilon;
-  s.fairness_weight = options_.soft_start * options_.fairness_weight;
+SolverOptions WeingartenProblem::solver_options() const {
+  SolverOptions s = options_.solver;
+  s.fairness_weight *= options_.soft_start;
   if (options_.soft_start > 1.0) {
-    s.soft_weight_decay = options_.soft_decay;
     s.soft_weight_floor = 1.0 / (options_.soft_start * options_.soft_start);
+  } else {
+    s.soft_weight_decay = 1.0;  // fixed weights
+    s.soft_weight_floor = 0.0;
   }
-  s.residual_tolerance = 0.0;  // the alignment is minimised, not driven to zero
-  s.step_tolerance = 1e-12;
-  s.linear_solver = options_.linear_solver;
-  s.eliminate_auxiliaries = false;
-  s.monotone = options_.monotone;
   if (options_.project_auxiliaries)
     s.project_trial = [this](Eigen::VectorXd* x) {
       SetCurvatureAuxiliaries(x);
@@ -608,23 +634,21 @@ SolverOptions WeingartenProblem::ToSolverOptions() const {
   return s;
 }
 
-SolverSummary WeingartenProblem::Solve(const Callback& callback) {
-  return gproj::Solve(ToSolverOptions(), &problem_,
-                      [&](const IterationRecord& r, const Eigen::VectorXd&) {
-                        return callback ? callback(r) : CallbackResult::kContinue;
-                      });
-}
-
-CeresSummary WeingartenProblem::SolveWithCeres(int max_iterations, const CeresCallback& callback) {
-  const SolverOptions s = ToSolverOptions();
+CeresOptions WeingartenProblem::ceres_options(int max_iterations) const {
+  const SolverOptions s = solver_options();
   CeresOptions c;
   c.max_iterations = max_iterations;
   c.fairness_weight = s.fairness_weight;
   c.soft_scale = options_.soft_start > 1.0 ? s.soft_weight_floor : 1.0;
-  return gproj::SolveWithCeres(c, &problem_,
-                               [&](const CeresIterationRecord& summary, const Eigen::VectorXd&) {
-                                 return callback ? callback(summary) : true;
-                               });
+  return c;
+}
+
+NamedValues WeingartenProblem::MeasureAt(const Eigen::VectorXd& x) const {
+  return ToNamedValues(MeasuresAt(x), linear_ || surface_linear_);
+}
+
+bool WeingartenProblem::MeetsTolerance(const NamedValues& measures) const {
+  return ValueOf(measures, options_.target_measure()) <= options_.tolerance;
 }
 
 BSplineSurface WeingartenProblem::ScaledToInput(const Eigen::VectorXd& x) const {
@@ -646,8 +670,8 @@ Eigen::Vector3d WeingartenProblem::LinearRelation() const {
   return input / input.head<2>().norm();
 }
 
-WeingartenMeasures WeingartenProblem::Measures() const {
-  WeingartenMeasures m = MeasureWeingarten(Result(), reference_, maps_.su, maps_.sv);
+WeingartenMeasures WeingartenProblem::MeasuresAt(const Eigen::VectorXd& x) const {
+  WeingartenMeasures m = MeasureWeingarten(ScaledToInput(x), reference_, maps_.su, maps_.sv);
   if (linear_ || surface_linear_) {
     const Eigen::Vector3d abc = LinearRelation();
     for (size_t s = 0; s < m.h.size(); ++s)

@@ -12,12 +12,15 @@
 
 #include <array>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "constraints/curvature_auxiliaries.h"
 #include "geometry/bspline_surface.h"
+#include "geometry/curvature_diagram.h"
 #include "problems/guided_problem.h"
+#include "problems/report_json.h"
 #include "solver/ceres_adapter.h"
 #include "solver/guided_projection.h"
 #include "solver/problem.h"
@@ -26,7 +29,16 @@ namespace gproj {
 
 enum class CurvatureRelation { kNone, kLinear, kBSpline };
 
+// Guided projection's defaults for Weingarten surfaces (003 eq. 11): 10 iterations, ω_f = 0.2,
+// ε = 1e-3, no residual tolerance (the alignment is minimised, not driven to zero), auxiliaries
+// kept in the factorisation; soft_weight_decay 0.5 is the relaxation of the soft start.
+SolverOptions WeingartenSolverDefaults();
+
 struct WeingartenOptions {
+  // Guided projection: ω_f of eq. 11 is solver.fairness_weight (control-net second
+  // differences), ε is solver.epsilon; solver.monotone keeps only steps that lower the energy,
+  // growing ε otherwise.
+  SolverOptions solver = WeingartenSolverDefaults();
   // Weights of 003 Table 1.
   double alignment_weight = 0.1;          // ω_al, isoline alignment (eq. 5)
   double bspline_relation_weight = 0.0;   // ω_bs, B-spline curvature relation (§3.2.3)
@@ -34,8 +46,6 @@ struct WeingartenOptions {
   double geodesic_parallel_weight = 0.0;  // ω_gp, geodesic parallel isolines (eq. 8)
   double closeness_weight = 0.1;          // ω_cl, closeness to the reference control points
   double shape_weight = 0.0;              // ω_sh, control-net edge and diagonal lengths
-  double fairness_weight = 0.2;           // ω_f of eq. 11 (control-net second differences)
-  double epsilon = 1e-3;                  // ε of eq. 11
   double definition_weight = 1.0;         // rows defining the auxiliaries
   // Alignment rows divided by |∇H| |∇K| at x^k (sine of the gradients' angle; see
   // IsolineAlignment). false: the paper's raw residual, divided once by its RMS at the start.
@@ -57,25 +67,27 @@ struct WeingartenOptions {
   // Samples per direction; 0: samples_per_control × control points (Table 2: 2).
   int samples_u = 0, samples_v = 0;
   int samples_per_control = 2;
-  int max_iterations = 10;
   // Continuation: the soft terms (closeness, shape, fairness) start soft_start times stronger
-  // and relax by soft_decay per iteration (on the squared weights) to the values above, so
-  // early steps are short while the auxiliaries adapt. 1: off (fixed weights).
+  // and relax by solver.soft_weight_decay per iteration (on the squared weights) to the values
+  // above, so early steps are short while the auxiliaries adapt. 1: off (fixed weights).
   double soft_start = 1.0;
-  double soft_decay = 0.5;
+  // The run's target (0: none; the run takes solver.max_iterations steps per level, as the
+  // paper's experiments do): max_relation_residual (input units, a² + b² = 1) with a fixed
+  // linear relation, misalignment otherwise. A run with a target stops when it is met and
+  // converges only if it is.
+  double tolerance = 0.0;
   // Multiresolution (003 §4.1.1): after the first solve, each level inserts one knot in every
   // span (Boehm) and solves again. 0: off.
   int refine_levels = 0;
   double target_mean_curvature = 5.0;
-  // Keep only steps that lower the energy, growing ε otherwise (SolverOptions::monotone).
-  bool monotone = false;
   // After every step the auxiliaries are set to their exact values from the control points
   // (the definitions then hold at every x^k and each step is a Gauss–Newton step on the
   // surface itself).
   bool project_auxiliaries = false;
-  LinearSolverType linear_solver = LinearSolverType::kCholmod;
 
   CurvatureRelation relation() const;
+  // The measure `tolerance` bounds: "max_relation_residual" or "misalignment".
+  std::string target_measure() const;
   bool IsValid(std::string* why) const;
 };
 
@@ -83,6 +95,29 @@ struct WeingartenOptions {
 // fig4c, fig9b, fig9c, fig10. Throws InputError for other names (listing the known ones).
 WeingartenOptions WeingartenPreset(const std::string& name);
 std::vector<std::string> WeingartenPresetNames();
+
+// A preset with what a user overrides (unset: the preset's value); the command line and the
+// Python module fill one of these.
+struct WeingartenSettings {
+  std::string preset = "fig1";
+  // "none", "linear" (fitted every iteration) or "bspline"; empty: the preset's.
+  std::string relation;
+  // A fixed linear relation a H + b K + c = 0 (input units): {a, b, c}, or empty. It replaces
+  // the relation.
+  std::vector<double> linear;
+  std::string relation_on;  // "surface" or "auxiliaries"; empty: the preset's
+  std::string steps;        // "plain", "monotone" or "projected"; empty: the preset's
+  bool no_auxiliaries = false;
+  std::vector<int> samples;  // {NU, NV}, or empty: the preset's density
+  std::optional<int> max_iterations;
+  std::optional<double> alignment, closeness, shape, geodesic_parallel, boundary, epsilon, fairness,
+      definitions, soft_start, tolerance;
+  int refine_levels = 0;
+  int molds = 0;  // cluster the result's samples into at most this many molds (0: none)
+
+  // The preset with the overrides applied; throws InputError naming the rule broken.
+  WeingartenOptions ToOptions() const;
+};
 
 // Number of unknowns as counted in 003 Table 2.
 int WeingartenVariableCount(int nu, int nv, int su, int sv, bool geodesic_parallel);
@@ -106,31 +141,37 @@ void SampleCurvatures(const BSplineSurface& surface, const SampleMaps& maps, std
 // Misalignment and deviation of `surface` against `reference` (same control-net size).
 WeingartenMeasures MeasureWeingarten(const BSplineSurface& surface, const BSplineSurface& reference,
                                      int su, int sv);
+// The measures as named values (the report's keys): misalignment, max_deviation,
+// mean_deviation, max_relation_residual (with a relation) and mean_abs_principal_curvature.
+NamedValues ToNamedValues(const WeingartenMeasures& m, bool with_relation);
 
-class WeingartenProblem {
+// Run() is guided projection for solver.max_iterations steps or to the tolerance; RunCeres()
+// is the cross-check: Ceres' Levenberg–Marquardt on the same rows, with the soft terms at
+// their final weights (after the soft start).
+class WeingartenProblem : public GuidedProblem {
  public:
   // Throws InputError if the options are invalid or the surface is degenerate at a sample.
   WeingartenProblem(const BSplineSurface& input, const WeingartenOptions& options);
 
-  using Callback = std::function<CallbackResult(const IterationRecord&)>;
-  SolverSummary Solve(const Callback& callback = nullptr);
-  // The cross-check path: Ceres' Levenberg–Marquardt on the same rows, with the soft terms at
-  // their final weights (after the soft start). The callback may stop it by returning false.
-  using CeresCallback = std::function<bool(const CeresIterationRecord&)>;
-  CeresSummary SolveWithCeres(int max_iterations, const CeresCallback& callback = nullptr);
+  Problem& problem() override { return problem_; }
+  using GuidedProblem::problem;
+  // The options' solver with the soft start applied. With project_auxiliaries their
+  // project_trial refers to this problem: use them with this problem only, while it lives.
+  SolverOptions solver_options() const override;
+  CeresOptions ceres_options(int max_iterations) const override;
+  NamedValues MeasureAt(const Eigen::VectorXd& x) const override;
+  bool MeetsTolerance(const NamedValues& measures) const override;
+  bool HasTolerance() const override { return options_.tolerance > 0.0; }
 
   // Current surface in input units.
   BSplineSurface Result() const;
-  WeingartenMeasures Measures() const;
-  Problem& problem() { return problem_; }
+  WeingartenMeasures Measures() const { return MeasuresAt(problem_.x()); }
   const SampleMaps& maps() const { return maps_; }
   int num_variables() const { return problem_.layout().num_variables(); }
   double scale() const { return scale_; }  // scaled = (input − centre) · scale
-  const WeingartenOptions& options() const { return options_; }
-  // With project_auxiliaries the options' project_trial refers to this problem: use them
-  // with this problem only, while it lives.
-  SolverOptions ToSolverOptions() const;
-  // The linear relation's coefficients in input units (a² + b² = 1), when one is in use.
+  const WeingartenOptions& options() const {
+    return options_;
+  }  // The linear relation's coefficients in input units (a² + b² = 1), when one is in use.
   Eigen::Vector3d LinearRelation() const;
 
  private:
@@ -154,6 +195,7 @@ class WeingartenProblem {
   }
 
   BSplineSurface ScaledToInput(const Eigen::VectorXd& x) const;
+  WeingartenMeasures MeasuresAt(const Eigen::VectorXd& x) const;
   // Exact auxiliaries from the control points in x (curvature) or from the curvature
   // auxiliaries in x (geodesic parallel; nothing without them).
   void SetCurvatureAuxiliaries(Eigen::VectorXd* x) const;
@@ -190,24 +232,56 @@ struct WeingartenLevel {
 
 // A whole Weingarten run: the levels, every iterate, the result and its measures.
 struct WeingartenRun {
+  // The run as one report: report.history holds every level's records in order, initial the
+  // input's measures, final the result's against the input (at the last level's samples);
+  // converged: the last level converged (its tolerance met, or with none its steps taken).
+  RunReport report;
+  std::vector<int> history_level;  // the level of each record
+  std::vector<WeingartenLevel> levels;
   BSplineSurface result;             // input units
   WeingartenMeasures before, after;  // the input and the result, at the last level's samples
-  std::vector<WeingartenLevel> levels;
-  std::vector<RunRecord> history;  // all levels, in order
-  std::vector<int> history_level;  // the level of each record
-  bool converged = true;           // every level's solver converged
-  bool failed = false;             // numerical failure: no result
-  std::string termination;
-  int iterations = 0, variables = 0, su = 0, sv = 0;
+  int su = 0, sv = 0;                // the last level's samples
   Eigen::Vector3d relation = Eigen::Vector3d::Zero();  // the linear relation, input units
+  bool with_relation = false;
+  // The clustering of the result's (and the input's) samples into molds, when asked.
+  std::optional<MoldClustering> molds, molds_before;
 };
 
 // Optimises `input` with `options` (guided projection, or Ceres' LM with `use_ceres`), then
 // for every refinement level inserts a knot in every span and optimises again. on_level(level,
-// problem) is called before each level's solve, on_iteration with every record.
+// problem) is called before each level's solve, on_iteration with every record; returning
+// false from it stops the run. molds > 0: the result's samples are clustered into at most that
+// many molds (003 §4.2).
 WeingartenRun RunWeingarten(
-    const BSplineSurface& input, const WeingartenOptions& options, bool use_ceres,
+    const BSplineSurface& input, const WeingartenOptions& options, bool use_ceres, int molds = 0,
     const RunCallback& on_iteration = nullptr,
     const std::function<void(int, const WeingartenProblem&)>& on_level = nullptr);
+
+// The run's report (see README, Weingarten surfaces): the shared schema, every history record
+// with its level, and the keys steps, target, tolerance, samples, levels, worst_sample,
+// linear_relation and, with molds, the clustering.
+nlohmann::json WeingartenReportJson(const WeingartenOptions& options, const WeingartenRun& run);
+// What a level solves and where it starts (one line each), for logs.
+std::string DescribeWeingartenLevel(int level, const WeingartenProblem& problem);
+// The result in a few lines: misalignment before and after, deviation, relation, molds.
+std::string SummarizeWeingartenRun(const WeingartenRun& run);
+
+// The (H, K) diagram of the samples before and after (SVG).
+std::string WeingartenDiagramSvg(const WeingartenRun& run);
+
+// Where a run's results go (empty: not written).
+struct WeingartenFiles {
+  std::string output;        // the B-spline (JSON)
+  std::string diagram;       // WeingartenDiagramSvg
+  std::string curvature;     // WeingartenCurvatureCsv
+  std::string surface_mesh;  // the result sampled at 4 points per control point and direction
+  std::string picture;       // a shaded picture of the result (SVG)
+};
+// Writes each file atomically; throws InputError naming the file that cannot be written.
+void WriteWeingartenFiles(const WeingartenRun& run, const WeingartenFiles& files);
+// H and K per sample before and after (and the mold of each sample when given) as CSV:
+// "sample,u,v,H_before,K_before,H_after,K_after[,mold]".
+std::string WeingartenCurvatureCsv(const WeingartenRun& run,
+                                   const std::vector<int>* mold_of_sample = nullptr);
 
 }  // namespace gproj

@@ -1,60 +1,194 @@
 // The multiresolution Weingarten run (003 §4.1.1): optimise, insert a knot in every span,
 // optimise again, for every level.
 #include <cmath>
+#include <cstdio>
+#include <sstream>
 
+#include "geometry/mesh_io.h"
+#include "geometry/svg_render.h"
 #include "problems/weingarten.h"
 
 namespace gproj {
+namespace {
+
+// Appends a level's report to the run's.
+void AppendLevel(int level, const RunReport& level_report, WeingartenRun* run) {
+  RunReport& report = run->report;
+  if (level == 0) {
+    report.solver = level_report.solver;
+    report.initial = level_report.initial;
+  }
+  for (const RunRecord& r : level_report.history) {
+    report.history.push_back(r);
+    run->history_level.push_back(level);
+  }
+  report.iterations += level_report.iterations;
+  report.seconds += level_report.seconds;
+  report.variables = level_report.variables;
+  report.termination = level_report.termination;
+  report.failed = level_report.failed;
+  report.converged = level_report.converged;
+  report.summary = level_report.summary;
+}
+
+}  // namespace
 
 WeingartenRun RunWeingarten(const BSplineSurface& input, const WeingartenOptions& options,
-                            bool use_ceres, const RunCallback& on_iteration,
+                            bool use_ceres, int molds, const RunCallback& on_iteration,
                             const std::function<void(int, const WeingartenProblem&)>& on_level) {
   WeingartenRun run;
   BSplineSurface current = input;
-  for (int level = 0; level <= options.refine_levels; ++level) {
+  bool stopped = false;
+  const RunCallback record = [&](const RunRecord& r) {
+    stopped = on_iteration && !on_iteration(r);
+    return !stopped;
+  };
+  for (int level = 0; level <= options.refine_levels && !stopped; ++level) {
     if (level > 0) current = InsertKnotsUniform(current, 1);
     WeingartenProblem problem(current, options);
     run.su = problem.maps().su;
     run.sv = problem.maps().sv;
-    run.variables = problem.num_variables();
-    if (level == 0) run.before = MeasureWeingarten(input, input, run.su, run.sv);
     if (on_level) on_level(level, problem);
-    auto record = [&](RunRecord r) {
-      run.history.push_back(r);
-      run.history_level.push_back(level);
-      return on_iteration ? on_iteration(r) : true;
-    };
-    int iterations = 0;
-    if (!use_ceres) {
-      const SolverSummary summary = problem.Solve([&](const IterationRecord& r) {
-        return record(ToRunRecord(r)) ? CallbackResult::kContinue : CallbackResult::kAbort;
-      });
-      iterations = summary.num_steps();
-      run.termination = summary.message;
-      run.failed = summary.termination == TerminationType::kFailure;
-      run.converged = run.converged && summary.termination == TerminationType::kConvergence;
-    } else {
-      const CeresSummary summary = problem.SolveWithCeres(
-          options.max_iterations,
-          [&](const CeresIterationRecord& s) { return record(ToRunRecord(s)); });
-      iterations = summary.num_steps();
-      run.termination = "ceres " + summary.ceres_termination + ": " + summary.message;
-      run.failed = summary.termination == TerminationType::kFailure;
-      run.converged = run.converged && summary.ceres_termination == "CONVERGENCE";
-    }
-    run.iterations += iterations;
-    if (run.failed || !problem.problem().x().allFinite()) {
-      run.failed = true;
-      return run;
-    }
+    const RunReport level_report =
+        use_ceres ? problem.RunCeres(options.solver.max_iterations, record) : problem.Run(record);
+    AppendLevel(level, level_report, &run);
+    if (run.report.failed) return run;
     current = problem.Result();
     run.relation = problem.LinearRelation();
-    run.levels.push_back({level, current.nu, current.nv, run.su, run.sv, run.variables, iterations,
-                          problem.Measures().misalignment});
+    run.levels.push_back({level, current.nu, current.nv, run.su, run.sv, level_report.variables,
+                          level_report.iterations, ValueOf(level_report.final, "misalignment")});
   }
   run.result = current;
+  run.before = MeasureWeingarten(input, input, run.su, run.sv);
   run.after = MeasureWeingarten(current, input, run.su, run.sv);
+  const bool with_relation = run.with_relation = options.linear_relation_weight > 0.0;
+  if (with_relation)
+    for (size_t s = 0; s < run.after.h.size(); ++s)
+      run.after.max_relation_residual =
+          std::max(run.after.max_relation_residual,
+                   std::abs(run.relation[0] * run.after.h[s] + run.relation[1] * run.after.k[s] +
+                            run.relation[2]));
+  run.report.final = ToNamedValues(run.after, with_relation);
+  if (molds > 0) {
+    run.molds = ClusterMolds(run.after.h, run.after.k, molds);
+    run.molds_before = ClusterMolds(run.before.h, run.before.k, molds);
+  }
   return run;
+}
+
+nlohmann::json WeingartenReportJson(const WeingartenOptions& options, const WeingartenRun& run) {
+  nlohmann::json levels = nlohmann::json::array();
+  for (const WeingartenLevel& l : run.levels)
+    levels.push_back({{"level", l.level},
+                      {"control_points", {l.nu, l.nv}},
+                      {"samples", {l.su, l.sv}},
+                      {"variables", l.variables},
+                      {"iterations", l.iterations},
+                      {"misalignment", l.misalignment}});
+  nlohmann::json extra = {
+      {"steps", options.project_auxiliaries ? "projected"
+                : options.solver.monotone   ? "monotone"
+                                            : "plain"},
+      {"target", options.tolerance > 0.0 ? nlohmann::json(options.target_measure()) : nullptr},
+      {"tolerance", options.tolerance},
+      {"samples", {run.su, run.sv}},
+      {"levels", levels}};
+  if (run.after.worst_sample >= 0)
+    extra["worst_sample"] = {run.after.worst_sample / run.sv, run.after.worst_sample % run.sv};
+  if (run.with_relation)
+    extra["linear_relation"] = {run.relation[0], run.relation[1], run.relation[2]};
+  if (run.molds)
+    extra["molds"] = {{"clusters", run.molds->num_clusters},
+                      {"cells_per_axis", run.molds->cells_per_axis},
+                      {"cluster_sizes", run.molds->cluster_size},
+                      {"before_cells_per_axis", run.molds_before->cells_per_axis}};
+  nlohmann::json report = ReportJson("weingarten", run.report, extra);
+  for (size_t i = 0; i < run.history_level.size(); ++i)
+    report["history"][i]["level"] = run.history_level[i];
+  return report;
+}
+
+std::string DescribeWeingartenLevel(int level, const WeingartenProblem& problem) {
+  const WeingartenMeasures m = problem.Measures();
+  const BSplineSurface surface = problem.Result();  // the level's start
+  char text[512];
+  std::snprintf(text, sizeof(text),
+                "%s%d x %d control points, bi-degree (%d, %d), %d x %d samples, %d unknowns\n"
+                "start: misalignment %.4e, mean |principal curvature| %.4g (scaled by %.4g)\n",
+                level > 0 ? ("level " + std::to_string(level) + ": ").c_str() : "", surface.nu,
+                surface.nv, surface.degree_u, surface.degree_v, problem.maps().su,
+                problem.maps().sv, problem.num_variables(), m.misalignment,
+                m.mean_abs_principal_curvature, problem.scale());
+  return text;
+}
+
+std::string SummarizeWeingartenRun(const WeingartenRun& run) {
+  const double before = ValueOf(run.report.initial, "misalignment");
+  const WeingartenMeasures& after = run.after;
+  char text[1024];
+  int n = std::snprintf(
+      text, sizeof(text),
+      "misalignment %.4e -> %.4e (%.1fx lower), deviation max %.3e (sample %d, %d) / mean "
+      "%.3e of the bbox diagonal\n",
+      before, after.misalignment, before / std::max(after.misalignment, 1e-300),
+      after.max_deviation, after.worst_sample / run.sv, after.worst_sample % run.sv,
+      after.mean_deviation);
+  if (run.with_relation)
+    n += std::snprintf(text + n, sizeof(text) - n,
+                       "linear relation %.6g H + %.6g K + %.6g = 0 (input units): max residual "
+                       "%.3e\n",
+                       run.relation[0], run.relation[1], run.relation[2],
+                       after.max_relation_residual);
+  if (run.molds)
+    std::snprintf(text + n, sizeof(text) - n,
+                  "molds: %d clusters in the (H, sqrt K) plane (grid %d x %d)\n",
+                  run.molds->num_clusters, run.molds->cells_per_axis, run.molds->cells_per_axis);
+  return text;
+}
+
+std::string WeingartenDiagramSvg(const WeingartenRun& run) {
+  DiagramOptions d;
+  char title[160];
+  std::snprintf(title, sizeof(title), "Curvature diagram: misalignment %.3g -> %.3g",
+                run.before.misalignment, run.after.misalignment);
+  d.title = title;
+  return RenderCurvatureDiagramSvg({{"before", "#c0392b", run.before.h, run.before.k},
+                                    {"after", "#2c6fbb", run.after.h, run.after.k}},
+                                   d);
+}
+
+void WriteWeingartenFiles(const WeingartenRun& run, const WeingartenFiles& files) {
+  const BSplineSurface& result = run.result;
+  if (!files.output.empty()) WriteBSplineJson(result, files.output);
+  if (!files.curvature.empty())
+    WriteTextFileAtomically(files.curvature,
+                            WeingartenCurvatureCsv(run, run.molds ? &run.molds->cluster : nullptr));
+  if (!files.diagram.empty()) WriteTextFileAtomically(files.diagram, WeingartenDiagramSvg(run));
+  if (!files.surface_mesh.empty())
+    WriteMeshAtomically(SampleSurfaceMesh(result, 4 * result.nu, 4 * result.nv),
+                        files.surface_mesh);
+  if (!files.picture.empty()) {
+    SvgOptions svg;
+    svg.title = "Weingarten surface (" + std::to_string(result.nu) + " x " +
+                std::to_string(result.nv) + " control points)";
+    WriteTextFileAtomically(files.picture, RenderMeshSvg(SampleSurfaceMesh(result, 60, 60), svg));
+  }
+}
+
+std::string WeingartenCurvatureCsv(const WeingartenRun& run, const std::vector<int>* mold) {
+  const SampleMaps maps = MakeSampleMaps(run.result, run.su, run.sv);
+  std::ostringstream out;
+  out.precision(10);
+  out << "sample,u,v,H_before,K_before,H_after,K_after" << (mold ? ",mold" : "") << "\n";
+  for (int a = 0; a < maps.su; ++a)
+    for (int b = 0; b < maps.sv; ++b) {
+      const int s = maps.Index(a, b);
+      out << s << "," << maps.u[a] << "," << maps.v[b] << "," << run.before.h[s] << ","
+          << run.before.k[s] << "," << run.after.h[s] << "," << run.after.k[s];
+      if (mold) out << "," << (*mold)[s];
+      out << "\n";
+    }
+  return out.str();
 }
 
 }  // namespace gproj

@@ -1,8 +1,11 @@
 // `gproj weingarten` as a user runs it, on the shipped B-spline.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "apps/command_test_util.h"
 
@@ -32,6 +35,60 @@ TEST_F(WeingartenCommandTest, OptimisesTheShippedSurfaceAndWritesEveryOutput) {
   const CommandRun again =
       Gproj("weingarten " + Path("out.json") + " -o " + Path("out2.json") + " --max-iterations 1");
   EXPECT_EQ(again.exit_code, 0) << again.err;
+}
+
+// Without --tolerance the preset's iterations are the ask (exit 0); with one, the run stops as
+// soon as it is met, and one it cannot meet gives exit 3 with the result and report written.
+TEST_F(WeingartenCommandTest, ToleranceStopsTheRunAndDecidesTheExitCode) {
+  const std::string base = "weingarten " + Data("freeform_10x10.json") + " --max-iterations 6";
+  const CommandRun met = Gproj(base + " -o " + Path("met.json") + " --tolerance 0.3 --report " +
+                               Path("met_report.json"));
+  ASSERT_EQ(met.exit_code, 0) << met.err << met.out;
+  const nlohmann::json report = Json("met_report.json");
+  EXPECT_TRUE(report["converged"].get<bool>());
+  EXPECT_EQ(report["target"].get<std::string>(), "misalignment");
+  EXPECT_LE(report["final"]["misalignment"].get<double>(), 0.3);
+  EXPECT_LT(report["iterations"].get<int>(), 6) << "the run did not stop at the tolerance";
+
+  const CommandRun missed = Gproj(base + " -o " + Path("missed.json") +
+                                  " --tolerance 1e-6 --report " + Path("missed_report.json"));
+  EXPECT_EQ(missed.exit_code, 3) << missed.err;
+  EXPECT_NE(missed.err.find("tolerance 1.0e-06 not reached (misalignment"), std::string::npos)
+      << missed.err;
+  EXPECT_TRUE(Exists("missed.json"));
+  EXPECT_FALSE(Json("missed_report.json")["converged"].get<bool>());
+  EXPECT_EQ(Json("missed_report.json")["iterations"].get<int>(), 6);
+}
+
+// With refinement the curvature table holds the input's and the result's H and K at the same
+// (last level's) samples.
+TEST_F(WeingartenCommandTest, RefinedRunWritesBeforeAndAfterAtTheSameSamples) {
+  const CommandRun r = Gproj("weingarten " + Data("freeform_10x10.json") + " -o " +
+                             Path("out.json") + " --refine 1 --max-iterations 2 --curvature " +
+                             Path("c.csv") + " --report " + Path("r.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const nlohmann::json report = Json("r.json");
+  ASSERT_EQ(report["levels"].size(), 2u);
+  EXPECT_EQ(report["history"].back()["level"].get<int>(), 1);
+  const int samples = report["samples"][0].get<int>() * report["samples"][1].get<int>();
+  std::istringstream csv(Slurp(dir_ / "c.csv"));
+  std::string line;
+  std::getline(csv, line);  // header
+  int rows = 0;
+  double max_before = 0.0, max_after = 0.0;
+  while (std::getline(csv, line)) {
+    std::vector<double> v;
+    std::istringstream fields(line);
+    for (std::string f; std::getline(fields, f, ',');) v.push_back(std::stod(f));
+    ASSERT_EQ(v.size(), 7u) << line;
+    max_before = std::max(max_before, std::abs(v[3]));
+    max_after = std::max(max_after, std::abs(v[5]));
+    ++rows;
+  }
+  EXPECT_EQ(rows, samples);
+  // Same surface scale before and after (a small optimisation): H of the same order.
+  EXPECT_GT(max_before, 0.2 * max_after);
+  EXPECT_LT(max_before, 5.0 * max_after);
 }
 
 // 003 Fig. 3 from the command line: the shipped bump made CMC (H = −0.1) with the boundary held,

@@ -40,14 +40,14 @@ TEST(WeingartenTest, VariableCountsOfTable2) {
 
 TEST(WeingartenTest, AuxiliariesStartConsistentAndScaleGivesMeanCurvatureFive) {
   WeingartenOptions o = WeingartenPreset("fig1");
-  o.max_iterations = 1;
+  o.solver.max_iterations = 1;
   WeingartenProblem problem(Freeform(8, 9), o);
   double start_definitions = -1.0;
-  problem.Solve([&](const IterationRecord& r) {
+  problem.Run([&](const RunRecord& r) {
     if (r.iteration == 0)
       for (const auto& f : r.families)
         if (f.name == "curvature definitions") start_definitions = f.max_abs;
-    return CallbackResult::kContinue;
+    return true;
   });
   EXPECT_GE(start_definitions, 0.0);
   EXPECT_LT(start_definitions, 1e-10);
@@ -76,7 +76,7 @@ TEST(WeingartenTest, DefaultPresetAlignsIsolinesOfAFreeformSurface) {
   const BSplineSurface input = Freeform(14, 14);
   WeingartenProblem problem(input, WeingartenPreset("fig1"));
   const WeingartenMeasures before = problem.Measures();
-  const SolverSummary s = problem.Solve();
+  const SolverSummary s = problem.Run().summary;
   ASSERT_NE(s.termination, TerminationType::kFailure) << s.FullReport();
   const WeingartenMeasures after = problem.Measures();
   EXPECT_LE(after.misalignment, before.misalignment / 4.0)
@@ -111,7 +111,7 @@ TEST_P(Fig3Test, FixedLinearRelationIsMetAtEverySample) {
   const BSplineSurface bump = Bump(n);
   WeingartenProblem problem(bump, Fig3Options(GetParam().a, GetParam().b, GetParam().c));
   const double start = problem.Measures().max_relation_residual;
-  const SolverSummary s = problem.Solve();
+  const SolverSummary s = problem.Run().summary;
   ASSERT_NE(s.termination, TerminationType::kFailure) << s.FullReport();
   const WeingartenMeasures m = problem.Measures();
   EXPECT_GT(start, 0.05);
@@ -136,14 +136,14 @@ INSTANTIATE_TEST_SUITE_P(Fig3, Fig3Test,
 // the way to H = 0 (the factorisation fails), while projected steps reach it.
 TEST(WeingartenTest, ProjectedStepsReachTheMinimalSurfaceWherePlainStepsDiverge) {
   WeingartenOptions o = Fig3Options(1.0, 0.0, 0.0);
-  o.epsilon = 1e-3;
+  o.solver.epsilon = 1e-3;
   WeingartenProblem projected(Bump(10), o);
-  const SolverSummary s = projected.Solve();
+  const SolverSummary s = projected.Run().summary;
   ASSERT_NE(s.termination, TerminationType::kFailure) << s.FullReport();
   EXPECT_LE(projected.Measures().max_relation_residual, 1e-4);
-  o.monotone = o.project_auxiliaries = false;
+  o.solver.monotone = o.project_auxiliaries = false;
   WeingartenProblem plain(Bump(10), o);
-  const SolverSummary p = plain.Solve();
+  const SolverSummary p = plain.Run().summary;
   EXPECT_TRUE(p.termination == TerminationType::kFailure ||
               plain.Measures().max_relation_residual > 1e-2)
       << p.BriefReport();
@@ -154,13 +154,13 @@ TEST(WeingartenTest, ProjectedStepsReachTheMinimalSurfaceWherePlainStepsDiverge)
 // same steps with the relation on the surface's own H get within 1e-3.
 TEST(WeingartenTest, CmcRelationOnTheAuxiliariesStalls) {
   WeingartenOptions o = Fig3Options(1.0, 0.0, 0.1);
-  o.max_iterations = 15;
+  o.solver.max_iterations = 15;
   WeingartenProblem surface(Bump(10), o);
-  surface.Solve();
+  surface.Run();
   EXPECT_LT(surface.Measures().max_relation_residual, 1e-3);
   o.relation_on_surface = false;
   WeingartenProblem auxiliaries(Bump(10), o);
-  auxiliaries.Solve();
+  auxiliaries.Run();
   EXPECT_GT(auxiliaries.Measures().max_relation_residual, 2e-3);
 }
 
@@ -171,7 +171,7 @@ TEST(WeingartenTest, GeodesicParallelPresetIsStable) {
   WeingartenProblem problem(input, WeingartenPreset("fig9c"));
   EXPECT_EQ(problem.num_variables(), WeingartenVariableCount(10, 10, 20, 20, true));
   const double before = problem.Measures().misalignment;
-  const SolverSummary s = problem.Solve();
+  const SolverSummary s = problem.Run().summary;
   ASSERT_NE(s.termination, TerminationType::kFailure) << s.FullReport();
   const WeingartenMeasures after = problem.Measures();
   EXPECT_LT(after.misalignment, 0.5 * before);
@@ -187,31 +187,32 @@ TEST(WeingartenTest, GeodesicParallelPresetIsStable) {
 // started there, Ceres' Levenberg–Marquardt lowers it by less than 1e-6 relative.
 TEST(WeingartenTest, CeresFindsNothingBetterAtTheGuidedProjectionSolution) {
   WeingartenOptions o = WeingartenPreset("fig1");
-  o.max_iterations = 200;
+  o.solver.max_iterations = 200;
   o.samples_u = o.samples_v = 10;
   WeingartenProblem problem(Freeform(6, 6, 3), o);
-  const SolverSummary s = problem.Solve();
+  const SolverSummary s = problem.Run().summary;
   ASSERT_NE(s.termination, TerminationType::kFailure) << s.FullReport();
-  const double gp = EvaluateObjective(&problem.problem(), o.fairness_weight, problem.problem().x());
+  const double gp =
+      EvaluateObjective(&problem.problem(), o.solver.fairness_weight, problem.problem().x());
   CeresOptions c;
   c.max_iterations = 200;
-  c.fairness_weight = o.fairness_weight;
+  c.fairness_weight = o.solver.fairness_weight;
   const CeresSummary cs = SolveWithCeres(c, &problem.problem());
   ASSERT_TRUE(cs.IsSolutionUsable()) << cs.FullReport();
   const double ceres =
-      EvaluateObjective(&problem.problem(), o.fairness_weight, problem.problem().x());
+      EvaluateObjective(&problem.problem(), o.solver.fairness_weight, problem.problem().x());
   EXPECT_GT(gp, 0.0);
   EXPECT_NEAR(ceres, gp, 1e-6 * gp) << cs.BriefReport();
 
   // The check has teeth: stopped after two iterations, guided projection leaves room that
   // Ceres does find.
-  o.max_iterations = 2;
+  o.solver.max_iterations = 2;
   WeingartenProblem early(Freeform(6, 6, 3), o);
-  early.Solve();
+  early.Run();
   const double early_gp =
-      EvaluateObjective(&early.problem(), o.fairness_weight, early.problem().x());
+      EvaluateObjective(&early.problem(), o.solver.fairness_weight, early.problem().x());
   SolveWithCeres(c, &early.problem());
-  EXPECT_LT(EvaluateObjective(&early.problem(), o.fairness_weight, early.problem().x()),
+  EXPECT_LT(EvaluateObjective(&early.problem(), o.solver.fairness_weight, early.problem().x()),
             (1.0 - 1e-3) * early_gp);
 }
 
@@ -223,26 +224,51 @@ TEST(WeingartenTest, CeresAndGuidedProjectionReachTheSameObjectiveFromTheSameSta
   o.curvature_auxiliaries = false;
   o.closeness_weight = 0.1;
   o.soft_start = 1.0;
-  o.max_iterations = 300;
+  o.solver.max_iterations = 300;
   o.samples_u = o.samples_v = 10;
   BSplineSurface bump = Bump(6);
   WeingartenProblem gp(bump, o), ceres(bump, o);
   EXPECT_EQ(gp.num_variables(), 3 * 36);
-  const double start = EvaluateObjective(&gp.problem(), o.fairness_weight, gp.problem().x());
-  const SolverSummary s = gp.Solve();
+  const double start = EvaluateObjective(&gp.problem(), o.solver.fairness_weight, gp.problem().x());
+  const SolverSummary s = gp.Run().summary;
   ASSERT_EQ(s.termination, TerminationType::kConvergence) << s.FullReport();
-  CeresOptions c;
-  c.max_iterations = 500;
-  c.fairness_weight = o.fairness_weight;
-  const CeresSummary cs = SolveWithCeres(c, &ceres.problem());
-  ASSERT_TRUE(cs.IsSolutionUsable()) << cs.FullReport();
-  const double gp_value = EvaluateObjective(&gp.problem(), o.fairness_weight, gp.problem().x());
+  // The protocol's cross-check: the same rows and weights, no tolerance asked.
+  const RunReport cs = ceres.RunCeres(500);
+  ASSERT_FALSE(cs.failed) << cs.termination;
+  EXPECT_TRUE(cs.converged) << cs.termination;
+  EXPECT_EQ(cs.solver, "ceres");
+  const double gp_value =
+      EvaluateObjective(&gp.problem(), o.solver.fairness_weight, gp.problem().x());
   const double ceres_value =
-      EvaluateObjective(&ceres.problem(), o.fairness_weight, ceres.problem().x());
+      EvaluateObjective(&ceres.problem(), o.solver.fairness_weight, ceres.problem().x());
   EXPECT_LT(gp_value, 0.01 * start);
-  EXPECT_NEAR(ceres_value, gp_value, 1e-6 * gp_value) << cs.BriefReport();
+  EXPECT_NEAR(ceres_value, gp_value, 1e-6 * gp_value) << cs.termination;
   EXPECT_NEAR(ceres.Measures().max_relation_residual, gp.Measures().max_relation_residual,
               1e-4 * gp.Measures().max_relation_residual);
+}
+
+// A target on the fixed relation: the run stops once every sample meets it, and is converged
+// only then; an unreachable target leaves the run unconverged after its iterations.
+TEST(WeingartenTest, ToleranceOnTheRelationStopsTheRunWhenMet) {
+  WeingartenOptions o = Fig3Options(1.0, 0.0, 0.1);
+  o.tolerance = 1e-3;
+  WeingartenProblem problem(Bump(8), o);
+  ASSERT_TRUE(problem.HasTolerance());
+  const RunReport met = problem.Run();
+  ASSERT_FALSE(met.failed) << met.termination;
+  EXPECT_TRUE(met.converged) << met.termination;
+  EXPECT_LE(ValueOf(met.final, "max_relation_residual"), 1e-3);
+  EXPECT_LT(met.iterations, o.solver.max_iterations);
+  EXPECT_GT(ValueOf(met.history[met.history.size() - 2].measures, "max_relation_residual"), 1e-3)
+      << "the run went on after the tolerance was met";
+
+  o.tolerance = 1e-14;
+  o.solver.max_iterations = 3;
+  WeingartenProblem short_run(Bump(8), o);
+  const RunReport missed = short_run.Run();
+  EXPECT_FALSE(missed.converged);
+  EXPECT_FALSE(missed.failed);
+  EXPECT_EQ(missed.iterations, 3);
 }
 
 TEST(WeingartenTest, WithoutAuxiliariesOnlyTheSurfaceRelationIsAllowed) {
