@@ -1,5 +1,4 @@
 // `gproj anet` and `gproj hnet`: A-nets and H-nets (smooth skins from rational bilinear patches).
-#include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -22,13 +21,6 @@ struct NetArgs {
   bool allow_not_simply_connected = false;
   HNetOptions options;
 };
-
-nlohmann::json StarJson(const StarPlanarityMeasures& m) {
-  return {{"max_star_planarity", m.max_star_planarity},
-          {"mean_star_planarity", m.mean_star_planarity},
-          {"worst_vertex", m.worst_vertex},
-          {"max_displacement", m.max_displacement}};
-}
 
 void AddSharedOptions(CLI::App* cmd, NetArgs* args) {
   ANetOptions& o = args->options.anet;
@@ -130,63 +122,14 @@ int RunANet(NetArgs& args) {
                      {args.output, args.report});
 }
 
-nlohmann::json HNetJson(const PolyMesh& mesh, const std::vector<std::array<double, 4>>& weights) {
-  nlohmann::json vertices = nlohmann::json::array(), faces = nlohmann::json::array(),
-                 w = nlohmann::json::array();
-  for (auto v : mesh.vertices()) {
-    const auto& p = mesh.point(v);
-    vertices.push_back({p[0], p[1], p[2]});
-  }
-  for (auto f : mesh.faces()) {
-    nlohmann::json face = nlohmann::json::array();
-    for (auto fv : mesh.fv_range(f)) face.push_back(fv.idx());
-    faces.push_back(face);
-    const auto& c = weights[f.idx()];
-    w.push_back({c[0], c[1], c[2], c[3]});
-  }
-  return {{"vertices", vertices}, {"faces", faces}, {"weights", w}};
-}
-
-// Prints one H-net round (with the table's header before round 0) and returns it as JSON.
-nlohmann::json LogRound(const HNetRound& r) {
+// Prints one H-net round, with the table's header before round 0.
+void LogRound(const HNetRound& r) {
   if (r.round == 0)
     std::printf("H-net rounds:\n%5s %14s %12s %12s %12s %12s %8s\n", "round", "max_angle_deg",
                 "W_change", "W_min", "W_max", "max_star", "iters");
   std::printf("%5d %14.3e %12.3e %12.4e %12.4e %12.3e %8d\n", r.round, r.max_tangent_angle_deg,
               r.weight_change, r.min_w, r.max_w, r.star.max_star_planarity, r.solver_iterations);
   std::fflush(stdout);
-  return {{"round", r.round},
-          {"max_tangent_angle_deg", r.max_tangent_angle_deg},
-          {"weight_change", r.weight_change},
-          {"w_min", r.min_w},
-          {"w_max", r.max_w},
-          {"max_inconsistency", r.max_inconsistency},
-          {"star", StarJson(r.star)},
-          {"solver_iterations", r.solver_iterations},
-          {"seconds", r.seconds}};
-}
-
-nlohmann::json HNetReport(const NetArgs& args, const HNetSummary& summary,
-                          const nlohmann::json& rounds, double seconds) {
-  const HNetRound& last = summary.rounds.back();
-  nlohmann::json violations = nlohmann::json::array();
-  for (const auto& [a, b] : summary.equitwist_violations) violations.push_back({a, b});
-  return {{"command", "hnet"},
-          {"input", args.input},
-          {"output", args.output},
-          {"converged", summary.converged},
-          {"termination", summary.message},
-          {"iterations", summary.anet_summary.num_steps()},
-          {"rounds", rounds},
-          {"seconds", seconds},
-          {"variables", summary.variables},
-          {"simply_connected", summary.simply_connected},
-          {"equitwist_violations", violations},
-          {"final",
-           {{"max_tangent_angle_deg", last.max_tangent_angle_deg},
-            {"w_min", last.min_w},
-            {"w_max", last.max_w},
-            {"star", StarJson(last.star)}}}};
 }
 
 // The patches (JSON), the sampled surface, the picture and the report.
@@ -210,7 +153,6 @@ void WriteHNetOutputs(const NetArgs& args, const HNet& hnet, const HNetRound& la
 }
 
 int RunHNet(NetArgs& args) {
-  const auto start = std::chrono::steady_clock::now();
   PolyMesh mesh;
   std::unique_ptr<PolyMesh> reference;
   if (!Prepare("hnet", &args, &mesh, &reference)) return kExitInputError;
@@ -222,48 +164,34 @@ int RunHNet(NetArgs& args) {
     std::cerr << "gproj hnet: " << args.input << ": " << e.what() << "\n";
     return kExitInputError;
   }
-  std::printf("gproj hnet: %s: %zu vertices, %zu quads\n", args.input.c_str(), mesh.n_vertices(),
-              mesh.n_faces());
-  bool header = false;
-  nlohmann::json rounds = nlohmann::json::array();
-  const HNetSummary summary = hnet->Run(
-      [&](const RunRecord& r) {
-        if (!header) {
-          std::printf("A-net step:\n");
-          StarLog().PrintHeader();
-          header = true;
-        }
-        return StarLog().Print(r), true;
-      },
-      [&](const HNetRound& r) { rounds.push_back(LogRound(r)); });
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (summary.rounds.empty()) {
-    std::cerr << "gproj hnet: " << summary.message << "; nothing written\n";
-    return kExitSolverFailure;
-  }
-  const HNetRound& last = summary.rounds.back();
-  const nlohmann::json report = HNetReport(args, summary, rounds, seconds);
+  std::printf("gproj hnet: %s: %zu vertices, %zu quads\nA-net step:\n", args.input.c_str(),
+              mesh.n_vertices(), mesh.n_faces());
+  StarLog().PrintHeader();
+  const HNetSummary summary =
+      hnet->Run([](const RunRecord& r) { return StarLog().Print(r), true; }, LogRound);
+  const RunReport& report = summary.report;
+  if (report.failed || summary.rounds.empty()) return ConcludeRun("hnet", report, "", 0.0, {});
+  nlohmann::json json = HNet::ReportJson(summary);
+  json.update({{"input", args.input}, {"output", args.output}});
   try {
-    WriteHNetOutputs(args, *hnet, last, report);
+    WriteHNetOutputs(args, *hnet, summary.rounds.back(), json);
   } catch (const InputError& e) {
     std::cerr << "gproj hnet: " << e.what() << "\n";
     return kExitInputError;
   }
+  const HNetRound& last = summary.rounds.back();
   std::printf(
-      "%s after %zu rounds, %.3f s\nfinal: max tangent-plane angle %.3e deg, W in [%.4g, %.4g], "
-      "max star planarity %.3e, max displacement %.3e of the bbox diagonal\n",
-      summary.message.c_str(), summary.rounds.size(), seconds, last.max_tangent_angle_deg,
-      last.min_w, last.max_w, last.star.max_star_planarity, last.star.max_displacement);
+      "final: max tangent-plane angle %.3e deg, W in [%.4g, %.4g], max star planarity %.3e, max "
+      "displacement %.3e of the bbox diagonal\n",
+      last.max_tangent_angle_deg, last.min_w, last.max_w, last.star.max_star_planarity,
+      last.star.max_displacement);
   if (!summary.equitwist_violations.empty())
     std::printf("warning: %zu inner edges violate the equitwist condition (listed in the report)\n",
                 summary.equitwist_violations.size());
   if (!summary.simply_connected)
     std::printf("warning: the mesh is not simply connected; the result is an optimisation only\n");
-  std::printf("wrote %s%s%s%s%s%s%s\n", args.output.c_str(), args.surface_mesh.empty() ? "" : ", ",
-              args.surface_mesh.c_str(), args.picture.empty() ? "" : ", ", args.picture.c_str(),
-              args.report.empty() ? "" : ", ", args.report.c_str());
-  return summary.converged ? kExitOk : kExitNotConverged;
+  return ConcludeRun("hnet", report, "weight_change", args.options.weight_tolerance,
+                     {args.output, args.surface_mesh, args.picture, args.report});
 }
 
 }  // namespace

@@ -50,15 +50,15 @@ void BM_HNet(benchmark::State& state) {
     round_iterations += r.solver_iterations;
     round_seconds += r.seconds;
   }
-  state.counters["variables"] = summary.variables;
-  state.counters["anet_iterations"] = summary.anet_summary.num_steps();
+  state.counters["variables"] = summary.report.variables;
+  state.counters["anet_iterations"] = summary.report.summary.num_steps();
   state.counters["rounds"] = static_cast<double>(summary.rounds.size());
   state.counters["vertex_update_iterations"] = round_iterations;
   state.counters["ms_per_vertex_update_iteration"] =
       round_iterations > 0 ? 1e3 * round_seconds / round_iterations : 0.0;
   state.counters["max_angle_deg"] =
       summary.rounds.empty() ? -1 : summary.rounds.back().max_tangent_angle_deg;
-  if (!summary.converged) state.SkipWithError(summary.message.c_str());
+  if (!summary.report.converged) state.SkipWithError(summary.report.termination.c_str());
 }
 BENCHMARK(BM_HNet)->Arg(41)->Arg(161)->Iterations(1)->Unit(benchmark::kSecond);
 

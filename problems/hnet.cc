@@ -416,12 +416,19 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
 
 bool HNet::RunANetStep(const PolyMesh& reference, const IterationCallback& on_iteration,
                        HNetSummary* summary) {
+  RunReport& report = summary->report;
+  report.initial = ToNamedValues(MeasureStarPlanarity(mesh_, reference));
+  report.solver = "gp";
   if (MeasureStarPlanarity(mesh_, mesh_).max_star_planarity <= options_.anet.tolerance) return true;
   ANet anet(mesh_, &reference, options_.anet);
-  summary->anet_summary = anet.Run(on_iteration).summary;
+  const RunReport step = anet.Run(on_iteration);
+  report.history = step.history;
+  report.iterations = step.iterations;
+  report.summary = step.summary;
   summary->anet_step_run = true;
-  if (summary->anet_summary.termination == TerminationType::kFailure) {
-    summary->message = "A-net step failed: " + summary->anet_summary.message;
+  if (step.failed) {
+    report.failed = true;
+    report.termination = "A-net step failed: " + step.termination;
     return false;
   }
   mesh_ = anet.Result();
@@ -446,51 +453,109 @@ HNetRound HNet::UpdateWeights(int round, const PolyMesh& reference) {
   return r;
 }
 
-HNetSummary HNet::Run(const IterationCallback& on_iteration, const RoundCallback& on_round) {
-  const auto start = std::chrono::steady_clock::now();
-  HNetSummary summary;
-  summary.simply_connected = topology_note_.empty();
-  const PolyMesh& reference = reference_ != nullptr ? *reference_ : input_;
-  // 1. The A-net step, unless the stars are already planar to tolerance.
-  if (!RunANetStep(reference, on_iteration, &summary)) return summary;
-  // 2. The vertex-update problem.
+void HNet::RunRounds(const PolyMesh& reference, const RoundCallback& on_round,
+                     HNetSummary* summary) {
+  RunReport& report = summary->report;
   const ClosestPointQuery query(reference);
   const std::unique_ptr<VertexUpdate> update = BuildVertexUpdate(mesh_, colour_, options_, query);
-  summary.variables = update->problem.layout().num_variables();
-  summary.equitwist_violations = EquitwistViolations(mesh_, colour_);
+  report.variables = update->problem.layout().num_variables();
+  summary->equitwist_violations = EquitwistViolations(mesh_, colour_);
   SolverOptions solver_options = options_.anet.solver;
   solver_options.max_iterations = options_.iterations_per_round;
   solver_options.residual_tolerance = options_.residual_tolerance;
   solver_options.initial_soft_scale = options_.round_soft_scale;
-  // 3. Rounds: weights from the vertices, then vertices with the weights frozen.
+  // Weights from the vertices, then vertices with the weights frozen.
   for (int round = 0; round < options_.max_rounds; ++round) {
     const auto round_start = std::chrono::steady_clock::now();
     StoreVertices(update->problem, update->vertex_block, update->norm, &mesh_);
     HNetRound r = UpdateWeights(round, reference);
     const bool settled = round > 0 && r.weight_change <= options_.weight_tolerance;
-    if (settled || round + 1 == options_.max_rounds) {
-      r.seconds = SecondsSince(round_start);
-      summary.rounds.push_back(r);
-      if (on_round) on_round(r);
-      summary.converged = settled;
-      summary.message =
-          settled ? "weights and vertices settled" : "maximum number of rounds reached";
-      break;
+    const bool last = settled || round + 1 == options_.max_rounds;
+    if (!last) {
+      FreezeWeights(w_, update.get());
+      const SolverSummary s = gproj::Solve(solver_options, &update->problem);
+      if (s.termination == TerminationType::kFailure) {
+        report.failed = true;
+        report.termination = "vertex update failed: " + s.message;
+        return;
+      }
+      r.vertex_update_converged = s.converged();
+      r.solver_iterations = s.num_steps();
+      report.iterations += s.num_steps();
     }
-    FreezeWeights(w_, update.get());
-    const SolverSummary s = gproj::Solve(solver_options, &update->problem);
-    if (s.termination == TerminationType::kFailure) {
-      summary.message = "vertex update failed: " + s.message;
-      break;
-    }
-    r.vertex_update_converged = s.converged();
-    r.solver_iterations = s.num_steps();
     r.seconds = SecondsSince(round_start);
-    summary.rounds.push_back(r);
+    summary->rounds.push_back(r);
     if (on_round) on_round(r);
+    if (last) {
+      report.converged = settled;
+      report.termination =
+          settled ? "weights and vertices settled" : "maximum number of rounds reached";
+      return;
+    }
   }
-  summary.seconds = SecondsSince(start);
+}
+
+HNetSummary HNet::Run(const IterationCallback& on_iteration, const RoundCallback& on_round) {
+  const auto start = std::chrono::steady_clock::now();
+  HNetSummary summary;
+  summary.simply_connected = topology_note_.empty();
+  const PolyMesh& reference = reference_ != nullptr ? *reference_ : input_;
+  // 1. The A-net step, unless the stars are already planar to tolerance; 2. the rounds.
+  if (RunANetStep(reference, on_iteration, &summary)) RunRounds(reference, on_round, &summary);
+  RunReport& report = summary.report;
+  if (!summary.rounds.empty()) {
+    const HNetRound& last = summary.rounds.back();
+    report.final = ToNamedValues(last.star);
+    for (const char* key :
+         {"max_tangent_angle_deg", "weight_change", "w_min", "w_max", "max_inconsistency"})
+      report.final.push_back({key, ValueOf(ToNamedValues(last), key)});
+  }
+  report.seconds = SecondsSince(start);
   return summary;
+}
+
+NamedValues ToNamedValues(const HNetRound& r) {
+  NamedValues values = {{"round", static_cast<double>(r.round)},
+                        {"max_tangent_angle_deg", r.max_tangent_angle_deg},
+                        {"weight_change", r.weight_change},
+                        {"w_min", r.min_w},
+                        {"w_max", r.max_w},
+                        {"max_inconsistency", r.max_inconsistency}};
+  for (const NamedValue& v : ToNamedValues(r.star)) values.push_back(v);
+  values.push_back({"solver_iterations", static_cast<double>(r.solver_iterations)});
+  values.push_back({"seconds", r.seconds});
+  return values;
+}
+
+nlohmann::json HNetJson(const PolyMesh& mesh, const std::vector<std::array<double, 4>>& weights) {
+  nlohmann::json vertices = nlohmann::json::array(), faces = nlohmann::json::array(),
+                 w = nlohmann::json::array();
+  for (auto v : mesh.vertices()) {
+    const auto& p = mesh.point(v);
+    vertices.push_back({p[0], p[1], p[2]});
+  }
+  for (auto f : mesh.faces()) {
+    nlohmann::json face = nlohmann::json::array();
+    for (auto fv : mesh.fv_range(f)) face.push_back(fv.idx());
+    faces.push_back(face);
+    const auto& c = weights[f.idx()];
+    w.push_back({c[0], c[1], c[2], c[3]});
+  }
+  return {{"vertices", vertices}, {"faces", faces}, {"weights", w}};
+}
+
+nlohmann::json HNet::ReportJson(const HNetSummary& summary) {
+  nlohmann::json rounds = nlohmann::json::array(), violations = nlohmann::json::array();
+  for (const HNetRound& r : summary.rounds) {
+    nlohmann::json round = nlohmann::json::object();
+    for (const NamedValue& v : ToNamedValues(r)) round[v.name] = JsonNumber(v.value);
+    rounds.push_back(round);
+  }
+  for (const auto& [a, b] : summary.equitwist_violations) violations.push_back({a, b});
+  return gproj::ReportJson("hnet", summary.report,
+                           {{"rounds", rounds},
+                            {"simply_connected", summary.simply_connected},
+                            {"equitwist_violations", violations}});
 }
 
 }  // namespace gproj

@@ -14,6 +14,7 @@
 
 #include "geometry/mesh_io.h"
 #include "problems/anet.h"
+#include "problems/report_json.h"
 
 namespace gproj {
 
@@ -107,16 +108,23 @@ struct HNetRound {
 };
 
 struct HNetSummary {
-  bool converged = false;
-  std::string message;
+  // The run as one report: history holds the A-net step's records; initial the input's star
+  // measures, final the result's with max_tangent_angle_deg, weight_change (of the
+  // last round), w_min, w_max and max_inconsistency; converged: the weights and vertices settled;
+  // iterations: the A-net step's and every vertex update's; variables: the vertex update's.
+  RunReport report;
   bool anet_step_run = false;
-  SolverSummary anet_summary;
   std::vector<HNetRound> rounds;
   std::vector<std::pair<int, int>> equitwist_violations;
   bool simply_connected = true;
-  double seconds = 0.0;
-  int variables = 0;
 };
+
+// A round as named values (the report's keys): round, max_tangent_angle_deg, weight_change,
+// w_min, w_max, max_inconsistency, the star measures, solver_iterations, seconds.
+NamedValues ToNamedValues(const HNetRound& r);
+
+// The H-net as JSON: "vertices", "faces" and four corner "weights" per face.
+nlohmann::json HNetJson(const PolyMesh& mesh, const std::vector<std::array<double, 4>>& weights);
 
 class HNet {
  public:
@@ -132,11 +140,17 @@ class HNet {
   const std::vector<std::array<double, 4>>& weights() const { return weights_; }
   const std::vector<double>& shape_parameters() const { return w_; }
 
+  // The run's report (shared schema), with the rounds, equitwist violations and
+  // simple connectivity as its own keys.
+  static nlohmann::json ReportJson(const HNetSummary& summary);
+
  private:
   // Runs the A-net step when the stars are not planar to tolerance; false (with the message in
   // *summary) when it fails.
   bool RunANetStep(const PolyMesh& reference, const IterationCallback& on_iteration,
                    HNetSummary* summary);
+  // The alternation of weight and vertex updates (004 §3.2).
+  void RunRounds(const PolyMesh& reference, const RoundCallback& on_round, HNetSummary* summary);
   // Shape parameters and corner weights from the current vertices, with the round's measures.
   HNetRound UpdateWeights(int round, const PolyMesh& reference);
 

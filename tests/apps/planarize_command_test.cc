@@ -203,8 +203,27 @@ TEST_F(PlanarizeCommandTest, HNetWritesPatchesSurfaceAndReport) {
   int vertices = 0;
   for (std::string line; std::getline(lines, line);) vertices += line.rfind("v ", 0) == 0 ? 1 : 0;
   EXPECT_EQ(vertices, 100) << surface.substr(0, 200);
-  EXPECT_NE(Slurp(dir_ / "r.json").find("max_tangent_angle_deg"), std::string::npos);
+  const nlohmann::json report = nlohmann::json::parse(Slurp(dir_ / "r.json"));
+  EXPECT_EQ(report["command"], "hnet");
+  EXPECT_TRUE(report["converged"].get<bool>());
+  EXPECT_LT(report["final"]["max_tangent_angle_deg"].get<double>(), 1e-3);
+  EXPECT_LE(report["final"]["weight_change"].get<double>(), 1e-6);
+  EXPECT_GE(report["rounds"].size(), 2u);
+  EXPECT_TRUE(report["simply_connected"].get<bool>());
   EXPECT_EQ(Slurp(dir_ / "p.svg").rfind("<svg", 0), 0u);
+}
+
+// One round cannot show the weights settled: exit 3, the patches and the report written.
+TEST_F(PlanarizeCommandTest, HNetWithoutSettledWeightsExitsThree) {
+  const std::string in = Write("hypar.obj", kHypar3x3);
+  const CommandRun r = Gproj("hnet " + in + " -o " + (dir_ / "h.json").string() +
+                             " --rounds 1 --report " + (dir_ / "r.json").string());
+  EXPECT_EQ(r.exit_code, 3) << r.err << r.out;
+  EXPECT_NE(r.err.find("not reached (weight_change"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "h.json"));
+  const nlohmann::json report = nlohmann::json::parse(Slurp(dir_ / "r.json"));
+  EXPECT_FALSE(report["converged"].get<bool>());
+  EXPECT_EQ(report["termination"], "maximum number of rounds reached");
 }
 
 TEST_F(PlanarizeCommandTest, ANetRefusesOddValenceAndNonQuads) {

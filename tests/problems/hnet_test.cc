@@ -128,9 +128,9 @@ TEST(HNetTest, JitteredHyperboloidBecomesASmoothHNet) {
   HNetOptions options;
   HNet hnet(mesh, &exact, options);
   const HNetSummary summary = hnet.Run();
-  ASSERT_FALSE(summary.rounds.empty()) << summary.message;
+  ASSERT_FALSE(summary.rounds.empty()) << summary.report.termination;
   EXPECT_TRUE(summary.anet_step_run);
-  EXPECT_TRUE(summary.converged) << summary.message;
+  EXPECT_TRUE(summary.report.converged) << summary.report.termination;
   EXPECT_LE(summary.rounds.back().max_tangent_angle_deg, 0.01);
   EXPECT_GT(summary.rounds.back().min_w, 0.0);
   EXPECT_LE(MaxTangentPlaneAngle(hnet.mesh(), hnet.weights()), 0.01);
