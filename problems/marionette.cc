@@ -144,7 +144,26 @@ double PropagateStrip(const std::vector<double>& alpha, const std::vector<double
   return q;
 }
 
+// α_i, β_i of every quad (P_i, Q_i, Q_{i+1}, P_{i+1}); returns the first degenerate quad or −1.
+int StripCoefficients(const ClosedStrip& strip, std::vector<double>* alpha,
+                      std::vector<double>* beta) {
+  const int n = static_cast<int>(strip.inner.size());
+  alpha->assign(n, 0.0);
+  beta->assign(n, 0.0);
+  for (int i = 0; i < n; ++i)
+    if (!MarionettePlanarity::PlanCoefficients(strip.inner[i], strip.outer[i],
+                                               strip.outer[(i + 1) % n], strip.inner[(i + 1) % n],
+                                               &(*alpha)[i], &(*beta)[i]))
+      return i;
+  return -1;
+}
+
 }  // namespace
+
+int DegenerateClosedStripQuad(const ClosedStrip& strip) {
+  std::vector<double> alpha, beta;
+  return StripCoefficients(strip, &alpha, &beta);
+}
 
 ClosedStripLift LiftClosedStrip(const ClosedStrip& strip, const Eigen::VectorXd& inner_heights,
                                 double outer0_when_free, double tolerance) {
@@ -153,16 +172,13 @@ ClosedStripLift LiftClosedStrip(const ClosedStrip& strip, const Eigen::VectorXd&
     throw InputError(
         "a closed strip needs inner and outer curves of the same length (≥ 3) and one "
         "height per inner vertex");
-  std::vector<double> alpha(n), beta(n);
-  for (int i = 0; i < n; ++i) {
-    if (!MarionettePlanarity::PlanCoefficients(strip.inner[i], strip.outer[i],
-                                               strip.outer[(i + 1) % n], strip.inner[(i + 1) % n],
-                                               &alpha[i], &beta[i]))
-      throw InputError("quad " + std::to_string(i) +
-                       " of the closed strip has a degenerate plan view (inner " +
-                       std::to_string(i) + ", outer " + std::to_string(i) + " and inner " +
-                       std::to_string((i + 1) % n) + " are collinear)");
-  }
+  std::vector<double> alpha, beta;
+  const int i = StripCoefficients(strip, &alpha, &beta);
+  if (i >= 0)
+    throw InputError("quad " + std::to_string(i) +
+                     " of the closed strip has a degenerate plan view (inner " + std::to_string(i) +
+                     ", outer " + std::to_string(i) + " and inner " + std::to_string((i + 1) % n) +
+                     " are collinear)");
   ClosedStripLift out;
   // z_N* is linear in (Z, z_0*): a from (0, 1), V_k from (e_k, 0).
   out.a = PropagateStrip(alpha, beta, Eigen::VectorXd::Zero(n), 1.0, nullptr);
@@ -204,29 +220,6 @@ PolyMesh ClosedStripMesh(const ClosedStrip& strip, const ClosedStripLift& lift) 
 Eigen::VectorXd FitMarionette(const MarionettePlan& plan, const Eigen::VectorXd& z0) {
   const Eigen::MatrixXd a = MarionetteGuideMatrix(plan);  // 002 eq. 14
   return a * (a.transpose() * a).ldlt().solve(a.transpose() * z0);
-}
-
-bool SolveMarionette(const MarionettePlan& plan, const Eigen::VectorXd& row,
-                     const Eigen::VectorXd& column, const Eigen::VectorXd& z0, Eigen::VectorXd* z,
-                     std::string* message) {
-  std::vector<MarionetteTarget> hard, soft;
-  if (z0.size() == 0) {
-    if (row.size() != plan.cols + 1 || column.size() != plan.rows + 1 ||
-        std::abs(row[0] - column[0]) > 1e-12 * (1 + std::abs(row[0])))
-      LiftMarionette(plan, row, column);  // throws the same message as the direct path
-    for (int j = 0; j <= plan.cols; ++j) hard.push_back({plan.Vertex(0, j), row[j]});
-    for (int i = 1; i <= plan.rows; ++i) hard.push_back({plan.Vertex(i, 0), column[i]});
-  } else {
-    for (int v = 0; v < plan.num_vertices(); ++v) soft.push_back({v, z0[v]});
-  }
-  Problem problem = MakeMarionetteProblem(plan, hard, soft, 1.0, 1e-8);
-  const SolverSummary s = Solve(MarionetteSolverOptions(), &problem);
-  if (s.termination == TerminationType::kFailure) {
-    *message = s.message;
-    return false;
-  }
-  *z = problem.x();
-  return true;
 }
 
 }  // namespace gproj

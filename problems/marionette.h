@@ -63,13 +63,6 @@ SolverOptions MarionetteSolverOptions();
 // per vertex), from the guide matrix.
 Eigen::VectorXd FitMarionette(const MarionettePlan& plan, const Eigen::VectorXd& z0);
 
-// The lift (from `row` and `column`) or, with a non-empty z0, the fit by one guided-projection
-// iteration of MakeMarionetteProblem. Returns false (with the solver's message) on a numerical
-// failure; throws InputError for incompatible guide curves, as LiftMarionette.
-bool SolveMarionette(const MarionettePlan& plan, const Eigen::VectorXd& row,
-                     const Eigen::VectorXd& column, const Eigen::VectorXd& z0, Eigen::VectorXd* z,
-                     std::string* message);
-
 // A closed strip (002 §2.5): an inner and an outer closed polyline in the plan, N vertices each,
 // quads (P_i, Q_i, Q_{i+1}, P_{i+1}) with indices mod N.
 struct ClosedStrip {
@@ -88,6 +81,10 @@ struct ClosedStripLift {
   Eigen::VectorXd inner_heights;  // N: Z, projected when a = 1
   Eigen::VectorXd outer_heights;  // N
 };
+// The first quad of a closed strip whose plan view is degenerate (inner i, outer i and inner
+// i + 1 collinear: no unique planar lift), or −1.
+int DegenerateClosedStripQuad(const ClosedStrip& strip);
+
 // Throws InputError naming the quad when a plan quad is degenerate.
 ClosedStripLift LiftClosedStrip(const ClosedStrip& strip, const Eigen::VectorXd& inner_heights,
                                 double outer0_when_free = 0.0, double tolerance = 1e-9);

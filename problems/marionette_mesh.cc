@@ -656,23 +656,4 @@ Eigen::VectorXd MarionetteMeshParameters(const Problem& problem) {
   return problem.x().segment(b.offset, b.num_items);
 }
 
-MarionetteMeshSolve SolveMarionetteMesh(const MarionetteLines& lines,
-                                        const std::vector<MarionetteTarget>& prescribed,
-                                        int max_iterations, double tolerance,
-                                        const IterationCallback& callback) {
-  Problem problem = MakeMarionetteMeshProblem(lines, prescribed);
-  MarionetteMeshSolve out;
-  out.summary = Solve(MarionetteMeshSolverOptions(lines.projection, max_iterations, 1e-12),
-                      &problem, callback);
-  out.failed = out.summary.termination == TerminationType::kFailure || !problem.x().allFinite();
-  if (out.failed) return out;
-  out.t = MarionetteMeshParameters(problem);
-  for (const MarionetteTarget& g : prescribed)
-    out.max_guide_error = std::max(out.max_guide_error,
-                                   std::abs(out.t[g.vertex] - g.height) / (1 + std::abs(g.height)));
-  out.max_relative_det = MaxLiftPlanarity(lines, out.t);
-  out.converged = out.max_relative_det <= tolerance && out.max_guide_error <= tolerance;
-  return out;
-}
-
 }  // namespace gproj

@@ -162,19 +162,4 @@ SolverOptions MarionetteMeshSolverOptions(MarionetteProjection projection, int m
 // The parameters t (#V) of a solved MakeMarionetteMeshProblem.
 Eigen::VectorXd MarionetteMeshParameters(const Problem& problem);
 
-// A lift by guided projection on the lines (MakeMarionetteMeshProblem, at most max_iterations).
-struct MarionetteMeshSolve {
-  Eigen::VectorXd t;              // #V parameters (empty when failed)
-  SolverSummary summary;          // the solver's own
-  double max_relative_det = 0.0;  // MaxLiftPlanarity of t
-  double max_guide_error = 0.0;   // max |t_v − value| / (1 + |value|) over the guides
-  bool converged = false;         // both within `tolerance`
-  bool failed = false;            // numerical failure: t must not be used
-};
-// Throws InputError (naming the face) for a degenerate vertical plan quad.
-MarionetteMeshSolve SolveMarionetteMesh(const MarionetteLines& lines,
-                                        const std::vector<MarionetteTarget>& prescribed,
-                                        int max_iterations, double tolerance,
-                                        const IterationCallback& callback = nullptr);
-
 }  // namespace gproj

@@ -139,6 +139,32 @@ TEST_F(MarionetteMeshCommandTest, CylindricalTowerWithConstantRadiiIsACylinder) 
   }
 }
 
+TEST_F(MarionetteMeshCommandTest, MissedToleranceExitsThreeWithTheResultWritten) {
+  const std::string tower = kData + "marionette_tower_12x18.obj --projection cylindrical --row " +
+                            Repeat("7.5", 19) + " --column " + Repeat("7.5", 13);
+  const Run r = Marionette(tower + " --solver gp --max-iterations 1");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("tolerance 1.0e-09 not reached (max_relative_det"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(Vertices("out.obj").size(), 247u);
+  nlohmann::json report = Report();
+  EXPECT_FALSE(report["converged"].get<bool>());
+  EXPECT_FALSE(report["failed"].get<bool>());
+  EXPECT_EQ(report["iterations"].get<int>(), 1);
+  EXPECT_GT(report["final"]["max_relative_det"].get<double>(), 1e-9);
+  EXPECT_EQ(report["history"].size(), 2u);
+
+  // The same schema for a direct mode; a tolerance below round-off is missed too.
+  const Run d =
+      Marionette("--closed-strip " + kData + "marionette_closed_strip.txt --tolerance 1e-300");
+  EXPECT_EQ(d.exit_code, 3) << d.err;
+  report = Report();
+  EXPECT_EQ(report["solver"], "direct");
+  EXPECT_FALSE(report["converged"].get<bool>());
+  EXPECT_GT(report["initial"]["max_planarity"].get<double>(), 0.0);
+  EXPECT_EQ(Vertices("out.obj").size(), 2 * report["quads"].get<size_t>());
+}
+
 TEST_F(MarionetteMeshCommandTest, RefusesBadProjectionOptions) {
   const std::string tower = kData + "marionette_tower_12x18.obj --row " + Repeat("7", 19) +
                             " --column " + Repeat("7", 13);

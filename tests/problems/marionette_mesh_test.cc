@@ -8,6 +8,7 @@
 
 #include "constraints/marionette_planarity.h"
 #include "geometry/quad_grid.h"
+#include "input_error_test_util.h"
 
 namespace gproj {
 namespace {
@@ -68,15 +69,6 @@ Eigen::VectorXd SolveGP(const MarionetteLines& lines, const std::vector<Marionet
   EXPECT_NE(s.termination, TerminationType::kFailure) << s.FullReport();
   if (steps != nullptr) *steps = s.num_steps();
   return MarionetteMeshParameters(problem);
-}
-
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
 }
 
 TEST(MarionettePatchTest, ValenceSixStarSplitsIntoSixGridPatchesAndSixStrips) {
@@ -174,7 +166,7 @@ TEST(MarionetteSingularTest, MissingSpokeLeavesItsTwoPatchesUnderDetermined) {
   const MarionetteLines lines = Vertical(Star(6, 3));
   const auto layout = DecomposeIntoPatches(lines.mesh);
   const auto guides = ResolveMarionetteGuides(lines.mesh, SpokeGuides(6, 3, /*skip=*/5), {});
-  const std::string error = ErrorOf([&] { LiftMarionetteMesh(lines, layout, guides); });
+  const std::string error = InputErrorOf([&] { LiftMarionetteMesh(lines, layout, guides); });
   // Spoke 5 separates sectors 4 and 5; its vertices 16, 17, 18 are left.
   EXPECT_NE(error.find("the guides do not determine patches 4, 5: "), std::string::npos) << error;
   EXPECT_NE(error.find("(16, 17, 18, "), std::string::npos) << error;
@@ -206,7 +198,7 @@ TEST(MarionetteSingularTest, ExtraGuideOnTheBoundaryIsRefusedUnlessCompatible) {
   EXPECT_LE((again.t - exact.t).norm(), 1e-12 * exact.t.norm());
   // Other values: incompatible, refused naming a face of patch 0.
   guides.back().values[2] += 0.1;
-  const std::string error = ErrorOf(
+  const std::string error = InputErrorOf(
       [&] { LiftMarionetteMesh(lines, layout, ResolveMarionetteGuides(lines.mesh, guides, {})); });
   EXPECT_EQ(error.rfind("incompatible guides: face ", 0), 0u) << error;
   EXPECT_NE(error.find("(patch 0, vertices "), std::string::npos) << error;
@@ -219,18 +211,18 @@ TEST(MarionetteSingularTest, GuideErrorsNameTheGuide) {
   g.next = 1;
   g.where = "g.txt:4";
   g.values = {1, 2, 3, 4, 5};  // the spoke has 4 vertices
-  EXPECT_NE(ErrorOf([&] {
+  EXPECT_NE(InputErrorOf([&] {
               ResolveMarionetteGuides(mesh, {g}, {});
             }).find("g.txt:4: the polyline from vertex 0 through 1 has only 4 vertices"),
             std::string::npos);
   g.next = 2;  // not a neighbour of 0
   g.values = {1, 2};
-  EXPECT_NE(ErrorOf([&] {
+  EXPECT_NE(InputErrorOf([&] {
               ResolveMarionetteGuides(mesh, {g}, {});
             }).find("g.txt:4: vertices 0 and 2 are not joined by an edge"),
             std::string::npos);
   g.next = 1;
-  EXPECT_NE(ErrorOf([&] {
+  EXPECT_NE(InputErrorOf([&] {
               ResolveMarionetteGuides(mesh, {g}, {{1, 7.0}});
             }).find("incompatible guides: vertex 1 gets 2.000000 from g.txt:4 and 7.000000"),
             std::string::npos);
@@ -245,7 +237,7 @@ TEST(MarionetteSingularTest, RefusesDegeneratePlanViewNamingTheFace) {
   const MarionetteLines lines = Vertical(mesh);
   const auto guides = ResolveMarionetteGuides(mesh, SpokeGuides(6, 3), {});
   const std::string error =
-      ErrorOf([&] { LiftMarionetteMesh(lines, DecomposeIntoPatches(mesh), guides); });
+      InputErrorOf([&] { LiftMarionetteMesh(lines, DecomposeIntoPatches(mesh), guides); });
   EXPECT_EQ(error.rfind("face 0 (patch 0) has a degenerate plan view: its vertices ", 0), 0u)
       << error;
   EXPECT_NE(error.find("are collinear in x, y"), std::string::npos) << error;
@@ -379,7 +371,7 @@ TEST(MarionetteProjectionTest, RefusesLinesParallelToTheFacePlaneAndVerticesOnTh
       2, 2, [&](int j) { return lines.plan_parameters[j]; },
       [&](int i) { return lines.plan_parameters[3 * i]; });
   const std::string error =
-      ErrorOf([&] { LiftMarionetteMesh(lines, DecomposeIntoPatches(plan), guides); });
+      InputErrorOf([&] { LiftMarionetteMesh(lines, DecomposeIntoPatches(plan), guides); });
   EXPECT_EQ(error.rfind("face 0 (patch 0): the line of vertex 4 is parallel to the plane", 0), 0u)
       << error;
 
@@ -388,7 +380,7 @@ TEST(MarionetteProjectionTest, RefusesLinesParallelToTheFacePlaneAndVerticesOnTh
   cylindrical.axis_point = Eigen::Vector3d(plan.point(PolyMesh::VertexHandle(4))[0],
                                            plan.point(PolyMesh::VertexHandle(4))[1], 0);
   cylindrical.axis_direction = Eigen::Vector3d(0, 0, 1);
-  EXPECT_EQ(ErrorOf([&] { MakeMarionetteLines(plan, cylindrical, "p.obj"); }),
+  EXPECT_EQ(InputErrorOf([&] { MakeMarionetteLines(plan, cylindrical, "p.obj"); }),
             "p.obj: vertex 4 lies on the axis, so it has no line perpendicular to it");
 }
 

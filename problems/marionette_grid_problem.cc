@@ -1,0 +1,95 @@
+#include "problems/marionette_grid_problem.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "problems/pq_planarization.h"
+
+namespace gproj {
+namespace {
+
+// The plan with its vertices at heights z.
+PolyMesh WithHeights(const PolyMesh& plan, const Eigen::VectorXd& z) {
+  PolyMesh out = plan;
+  for (auto v : out.vertices()) {
+    auto p = out.point(v);
+    p[2] = z[v.idx()];
+    out.set_point(v, p);
+  }
+  return out;
+}
+
+}  // namespace
+
+bool MarionetteOptions::IsValid(std::string* why) const {
+  if (!(tolerance > 0.0) || !std::isfinite(tolerance)) {
+    *why = "the tolerance must be finite and > 0";
+    return false;
+  }
+  return solver.IsValid(why);
+}
+
+MarionetteGridProblem::MarionetteGridProblem(const PolyMesh& mesh, const std::string& path,
+                                             const Eigen::VectorXd& row,
+                                             const Eigen::VectorXd& column,
+                                             const Eigen::VectorXd& target,
+                                             const MarionetteOptions& options)
+    : mesh_(mesh),
+      plan_(MakeMarionettePlan(mesh, path)),
+      row_(row),
+      column_(column),
+      target_(target),
+      options_(options) {
+  std::vector<MarionetteTarget> hard, soft;
+  if (fit()) {
+    if (target.size() != plan_.num_vertices())
+      throw InputError("the target needs " + std::to_string(plan_.num_vertices()) +
+                       " heights, got " + std::to_string(target.size()));
+    for (int v = 0; v < plan_.num_vertices(); ++v) soft.push_back({v, target[v]});
+  } else {
+    LiftMarionette(plan_, row, column);  // throws for curves that do not fit
+    for (int j = 0; j <= plan_.cols; ++j) hard.push_back({plan_.Vertex(0, j), row[j]});
+    for (int i = 1; i <= plan_.rows; ++i) hard.push_back({plan_.Vertex(i, 0), column[i]});
+  }
+  problem_ = MakeMarionetteProblem(plan_, hard, soft, 1.0, 1e-8);
+}
+
+CeresOptions MarionetteGridProblem::ceres_options(int max_iterations) const {
+  CeresOptions ceres;
+  ceres.max_iterations = max_iterations;
+  ceres.fairness_weight = options_.solver.fairness_weight;
+  ceres.num_threads = std::max(1, options_.solver.num_threads);
+  return ceres;
+}
+
+NamedValues MarionetteGridProblem::MeasureAt(const Eigen::VectorXd& z) const {
+  const PolyMesh lifted = WithHeights(mesh_, z);
+  const PlanarityMeasures m = MeasurePlanarity(lifted, lifted);
+  NamedValues values = {{"max_planarity", m.max_planarity}, {"mean_planarity", m.mean_planarity}};
+  if (fit()) {
+    values.push_back({"rms_distance_to_target", std::sqrt((z - target_).squaredNorm() / z.size())});
+    return values;
+  }
+  double error = 0.0;
+  for (int j = 0; j <= plan_.cols; ++j)
+    error = std::max(error, std::abs(z[plan_.Vertex(0, j)] - row_[j]) / (1 + std::abs(row_[j])));
+  for (int i = 0; i <= plan_.rows; ++i)
+    error =
+        std::max(error, std::abs(z[plan_.Vertex(i, 0)] - column_[i]) / (1 + std::abs(column_[i])));
+  values.push_back({"max_guide_error", error});
+  return values;
+}
+
+bool MarionetteGridProblem::MeetsTolerance(const NamedValues& m) const {
+  return ValueOf(m, "max_planarity") <= options_.tolerance &&
+         (fit() || ValueOf(m, "max_guide_error") <= options_.tolerance);
+}
+
+Eigen::VectorXd MarionetteGridProblem::DirectHeights() const {
+  return fit() ? FitMarionette(plan_, target_) : LiftMarionette(plan_, row_, column_);
+}
+
+PolyMesh MarionetteGridProblem::Result() const { return WithHeights(mesh_, problem_.x()); }
+
+}  // namespace gproj

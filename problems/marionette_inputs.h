@@ -1,0 +1,50 @@
+#pragma once
+// The text inputs of Marionette meshes (002): guide files for plans of any connectivity, closed
+// strip files, guide curves of grid plans and the projection given as numbers. Bad input is an
+// InputError of one line that names "<file>:<line>" (or the option) and the rule broken.
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "geometry/quad_grid.h"
+#include "problems/marionette.h"
+#include "problems/marionette_mesh.h"
+
+namespace gproj {
+
+// A guide file, one entry a line ('#' starts a comment):
+//   guide START NEXT V0 V1 ...  values on the straight mesh polyline from vertex START through
+//                               its neighbour NEXT, one per polyline vertex (two at least);
+//   vertex ID VALUE             the value of one vertex.
+// Vertex ids are 0-based and below `num_vertices`. Each guide's `where` is "<path>:<line>".
+struct MarionetteGuideFile {
+  std::vector<MarionetteGuide> guides;
+  std::vector<MarionetteTarget> vertices;
+};
+MarionetteGuideFile ReadMarionetteGuides(const std::string& path, int num_vertices);
+
+// A closed strip file (002 §2.5): one line "XI YI ZI XO YO" per vertex pair (inner vertex with
+// its height, outer vertex), at least three pairs; quad i is (inner i, outer i, outer i+1,
+// inner i+1), closing back to the first pair. A quad with a degenerate plan view is refused
+// naming its lines.
+struct ClosedStripFile {
+  ClosedStrip strip;
+  Eigen::VectorXd inner_heights;  // N
+};
+ClosedStripFile ReadClosedStrip(const std::string& path);
+
+// The guide values of a grid plan (`gproj grid` order): `row` for vertices (0, j), j = 0..cols,
+// `column` for (i, 0), i = 0..rows (its first value is vertex 0's again, checked by the lift).
+std::vector<MarionetteTarget> GridGuideValues(const GridShape& shape,
+                                              const std::vector<double>& row,
+                                              const std::vector<double>& column);
+
+// The projection from its name ("vertical", "cylindrical" or "central"), the axis as six numbers
+// (point, direction) and the centre as three, as `gproj marionette` takes them; the messages
+// name its options (--projection, --axis, --centre).
+MarionetteProjectionOptions MarionetteProjectionFromValues(const std::string& name,
+                                                           const std::vector<double>& axis,
+                                                           const std::vector<double>& centre);
+
+}  // namespace gproj

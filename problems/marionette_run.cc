@@ -1,0 +1,266 @@
+#include "problems/marionette_run.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "geometry/quad_grid.h"
+#include "problems/marionette_grid_problem.h"
+#include "problems/marionette_inputs.h"
+#include "problems/pq_planarization.h"
+
+namespace gproj {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// printf into a string.
+template <typename... Args>
+std::string Format(const char* format, Args... args) {
+  char text[512];
+  std::snprintf(text, sizeof(text), format, args...);
+  return text;
+}
+
+// A grid plan lifted from guide curves or fitted to a target's heights.
+class GridRun : public MarionetteRun {
+ public:
+  explicit GridRun(const MarionetteRunOptions& options) : options_(options) {
+    const PolyMesh mesh = ReadMesh(options.plan, MeshRequirements{true});
+    Eigen::VectorXd target;
+    if (!options.fit.empty()) {
+      const PolyMesh fit = ReadMesh(options.fit);
+      if (fit.n_vertices() != mesh.n_vertices())
+        throw InputError(options.fit + ": the target has " + std::to_string(fit.n_vertices()) +
+                         " vertices, the plan " + std::to_string(mesh.n_vertices()));
+      target.resize(fit.n_vertices());
+      for (auto v : fit.vertices()) target[v.idx()] = fit.point(v)[2];
+    } else if (options.row.empty() || options.column.empty()) {
+      throw InputError(
+          "give the guide curves (--row and --column heights, or --guides) or a target (--fit)");
+    }
+    const auto vector = [](const std::vector<double>& v) {
+      return Eigen::Map<const Eigen::VectorXd>(v.data(), v.size());
+    };
+    problem_ = std::make_unique<MarionetteGridProblem>(
+        mesh, options.plan, vector(options.row), vector(options.column), target,
+        MarionetteOptions{MarionetteSolverOptions(), options.lift.tolerance});
+  }
+
+  std::string Description() const override {
+    const MarionettePlan& plan = problem_->plan();
+    return Format("gproj marionette: %s: %d x %d faces, %d heights, %s\n", options_.plan.c_str(),
+                  plan.rows, plan.cols, plan.num_vertices(),
+                  problem_->fit() ? "least-squares fit to a target" : "lift from guide curves");
+  }
+  RunReport Run(const RunCallback& callback) override {
+    if (options_.solver == "gp") return RunMarionetteProblem(problem_.get(), callback);
+    return RunDirectly(problem_.get(),
+                       problem_->fit() ? "DIRECT: normal equations of the fit (002 eq. 14)"
+                                       : "DIRECT: propagation (002 eq. 2)",
+                       [this] { problem_->SetHeights(problem_->DirectHeights()); });
+  }
+  PolyMesh Result() const override { return problem_->Result(); }
+  std::vector<MarionetteFact> Facts() const override {
+    const MarionettePlan& plan = problem_->plan();
+    return {{"input", options_.plan}, {"fit", options_.fit}, {"faces", plan.rows * plan.cols}};
+  }
+  std::string ToleranceMeasure() const override { return "max_planarity"; }
+
+ private:
+  MarionetteRunOptions options_;
+  std::unique_ptr<MarionetteGridProblem> problem_;
+};
+
+// The prescribed values of a mesh lift: from the guide file, or --row and --column on a grid.
+std::vector<MarionetteTarget> MeshGuideValues(const MarionetteRunOptions& options,
+                                              const PolyMesh& mesh) {
+  if (!options.guides.empty()) {
+    if (!options.row.empty() || !options.column.empty())
+      throw InputError("give either --guides or --row/--column, not both");
+    const MarionetteGuideFile file =
+        ReadMarionetteGuides(options.guides, static_cast<int>(mesh.n_vertices()));
+    return ResolveMarionetteGuides(mesh, file.guides, file.vertices);
+  }
+  if (options.row.empty() || options.column.empty())
+    throw InputError("give the guides (--guides FILE, or --row and --column on a grid plan)");
+  return ResolveMarionetteGuides(
+      mesh, {}, GridGuideValues(DetectGridShape(mesh, options.plan), options.row, options.column));
+}
+
+// A plan of any connectivity lifted on the lines of a projection.
+class MeshRun : public MarionetteRun {
+ public:
+  explicit MeshRun(const MarionetteRunOptions& options) : options_(options) {
+    const MarionetteProjectionOptions projection =
+        MarionetteProjectionFromValues(options.projection, options.axis, options.centre);
+    if (!options.fit.empty())
+      throw InputError("--fit works with the vertical projection and --row/--column only");
+    std::string why;
+    if (!options.lift.IsValid(&why)) throw InputError("invalid option: " + why);
+    const PolyMesh mesh = ReadMesh(options.plan, MeshRequirements{true});
+    lines_ = MakeMarionetteLines(mesh, projection, options.plan);
+    layout_ = DecomposeIntoPatches(mesh);
+    prescribed_ = MeshGuideValues(options, mesh);
+    lift_ = LiftMarionetteMesh(lines_, layout_, prescribed_);  // also checks the guides for gp
+    problem_ = std::make_unique<MarionetteMeshProblem>(lines_, prescribed_, options.lift);
+  }
+
+  std::string Description() const override {
+    std::string text = Format(
+        "gproj marionette: %s: %d vertices, %zu quads, %s projection\npatches: %zu singular "
+        "vertices, %zu separatrices, %zu patches, %zu strips of patches (%d face strips, %d "
+        "closed): a lift needs %d guide values, the guides give %zu\n",
+        options_.plan.c_str(), lines_.num_vertices(), lines_.mesh.n_faces(),
+        options_.projection.c_str(), layout_.singular_vertices.size(), layout_.separatrices.size(),
+        layout_.patches.size(), layout_.patch_strips.size(), layout_.num_face_strips,
+        layout_.num_closed_face_strips, layout_.design_dimension(), prescribed_.size());
+    if (!lift_.redundant_faces.empty())
+      text +=
+          Format("note: the guides over-determine %zu faces (patches %d...) but agree with them\n",
+                 lift_.redundant_faces.size(), lift_.over_determined_patches.front());
+    return text;
+  }
+  RunReport Run(const RunCallback& callback) override {
+    if (options_.solver == "gp") return RunMarionetteProblem(problem_.get(), callback);
+    return RunDirectly(problem_.get(), "DIRECT: propagation (002 §2.4)",
+                       [this] { problem_->SetParameters(lift_.t); });
+  }
+  PolyMesh Result() const override { return problem_->Result(); }
+  std::vector<MarionetteFact> Facts() const override;
+  std::string ToleranceMeasure() const override { return "max_relative_det"; }
+
+ private:
+  MarionetteRunOptions options_;
+  MarionetteLines lines_;
+  MarionettePatchLayout layout_;
+  std::vector<MarionetteTarget> prescribed_;
+  MarionetteMeshLift lift_;
+  std::unique_ptr<MarionetteMeshProblem> problem_;
+};
+
+std::vector<MarionetteFact> MeshRun::Facts() const {
+  return {{"input", options_.plan},
+          {"guides", options_.guides},
+          {"projection", options_.projection},
+          {"faces", static_cast<int>(lines_.mesh.n_faces())},
+          {"singular_vertices", layout_.singular_vertices},
+          {"patches", layout_.patches},
+          {"patch_order", lift_.patch_order},
+          {"strips_of_patches", static_cast<int>(layout_.patch_strips.size())},
+          {"face_strips", layout_.num_face_strips},
+          {"design_dimension", layout_.design_dimension()},
+          {"guide_values", static_cast<int>(prescribed_.size())},
+          {"redundant_faces", lift_.redundant_faces},
+          {"over_determined_patches", lift_.over_determined_patches}};
+}
+
+// Planarity of a lifted closed strip.
+NamedValues StripMeasures(const PolyMesh& mesh) {
+  const PlanarityMeasures m = MeasurePlanarity(mesh, mesh);
+  return {{"max_planarity", m.max_planarity}, {"mean_planarity", m.mean_planarity}};
+}
+
+// A closed strip lifted by its closing condition.
+class StripRun : public MarionetteRun {
+ public:
+  explicit StripRun(const MarionetteRunOptions& options)
+      : options_(options), file_(ReadClosedStrip(options.closed_strip)) {
+    if (!std::isfinite(options.outer_height)) throw InputError("--outer-height must be finite");
+    lift_ = LiftClosedStrip(file_.strip, file_.inner_heights, options.outer_height);
+  }
+
+  std::string Description() const override {
+    std::string text = Format("gproj marionette: closed strip %s: %d quads\n",
+                              options_.closed_strip.c_str(), num_quads());
+    if (lift_.a_is_one)
+      return text + Format(
+                        "a = %.12g (= 1 within 1e-9): the inner curve must satisfy V.Z = 0; "
+                        "projected onto it (moved by at most %.3e); the outer start height is "
+                        "free: z0* = %.6g\n",
+                        lift_.a, InnerCurveChange(), lift_.outer_heights[0]);
+    return text + Format(
+                      "a = %.12g (!= 1): one closing lift; inner curve kept; closing height "
+                      "z0* = zN* = V.Z / (1 - a) = %.12g\n",
+                      lift_.a, lift_.outer_heights[0]);
+  }
+  RunReport Run(const RunCallback&) override;
+  PolyMesh Result() const override { return ClosedStripMesh(file_.strip, lift_); }
+  std::vector<MarionetteFact> Facts() const override {
+    return {{"closed_strip", options_.closed_strip},
+            {"quads", num_quads()},
+            {"a", lift_.a},
+            {"a_is_one", lift_.a_is_one},
+            {"closing_height", lift_.outer_heights[0]},
+            {"v_dot_z", lift_.v.dot(file_.inner_heights)},
+            {"inner_curve_change", InnerCurveChange()}};
+  }
+  std::string ToleranceMeasure() const override { return "max_planarity"; }
+
+ private:
+  int num_quads() const { return static_cast<int>(file_.inner_heights.size()); }
+  double InnerCurveChange() const {
+    return (lift_.inner_heights - file_.inner_heights).cwiseAbs().maxCoeff();
+  }
+
+  MarionetteRunOptions options_;
+  ClosedStripFile file_;
+  ClosedStripLift lift_;
+};
+
+// The measures of the strip with the given inner heights (initial) and of the lift (final).
+RunReport StripRun::Run(const RunCallback&) {
+  const auto start = Clock::now();
+  RunReport report;
+  report.solver = "direct";
+  report.termination = "DIRECT: closing lift (002 eq. 8)";
+  report.variables = 2 * num_quads();
+  ClosedStripLift given = lift_;
+  given.inner_heights = file_.inner_heights;
+  report.initial = StripMeasures(ClosedStripMesh(file_.strip, given));
+  report.final = StripMeasures(Result());
+  report.converged = ValueOf(report.final, "max_planarity") <= options_.lift.tolerance;
+  report.seconds = SecondsSince(start);
+  return report;
+}
+
+}  // namespace
+
+std::unique_ptr<MarionetteRun> MakeMarionetteRun(const MarionetteRunOptions& options) {
+  if (!options.closed_strip.empty()) {
+    if (!options.plan.empty()) throw InputError("give either a plan or --closed-strip, not both");
+    return std::make_unique<StripRun>(options);
+  }
+  if (options.plan.empty()) throw InputError("give a plan view (or --closed-strip FILE)");
+  if (!options.guides.empty() || options.projection != "vertical")
+    return std::make_unique<MeshRun>(options);
+  return std::make_unique<GridRun>(options);
+}
+
+RunReport RunMarionetteProblem(GuidedProblem* problem, const RunCallback& callback) {
+  RunReport report = problem->Run(callback);
+  report.converged = !report.failed && problem->MeetsTolerance(report.final);
+  return report;
+}
+
+RunReport RunDirectly(GuidedProblem* problem, const std::string& termination,
+                      const std::function<void()>& solve) {
+  const auto start = Clock::now();
+  RunReport report;
+  report.solver = "direct";
+  report.termination = termination;
+  report.variables = problem->problem().layout().num_variables();
+  report.initial = problem->Measure();
+  solve();
+  report.failed = !problem->problem().x().allFinite();
+  if (!report.failed) report.final = problem->Measure();
+  report.converged = !report.failed && problem->MeetsTolerance(report.final);
+  report.seconds = SecondsSince(start);
+  return report;
+}
+
+}  // namespace gproj

@@ -1,0 +1,78 @@
+#pragma once
+// The modes of Marionette meshes (002) behind one call, for `gproj marionette` and any other
+// front end: the inputs are read and checked (InputError of one line naming the file, line,
+// option or rule), then the mode runs and reports in the shared RunReport, so that the front
+// end only logs, writes and maps exit codes. Modes solved directly (propagation, the normal
+// equations of a fit, the closing lift of a strip) report as solver "direct" with no
+// iterations; the others run a GuidedProblem. Nothing is printed: descriptions are returned.
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "geometry/mesh_io.h"
+#include "problems/guided_problem.h"
+#include "problems/marionette_mesh.h"
+#include "problems/marionette_mesh_problem.h"
+
+namespace gproj {
+
+// What a Marionette run takes; the mode follows from what is given:
+//   closed_strip                 a closed strip (002 §2.5) lifted by its closing condition (eq. 8);
+//   guides, or a projection      a plan of any connectivity lifted on the lines of the projection
+//   other than vertical          (MarionetteMeshProblem), guides from the file or row / column;
+//   otherwise                    a grid plan lifted from row and column, or fitted to the heights
+//                                of the mesh `fit` (MarionetteGridProblem).
+struct MarionetteRunOptions {
+  std::string plan;                     // plan view: a quad mesh file
+  std::string guides;                   // guide file (ReadMarionetteGuides)
+  std::string fit;                      // target mesh with the plan's vertex order
+  std::string closed_strip;             // closed strip file (ReadClosedStrip) instead of a plan
+  std::vector<double> row, column;      // guide values of a grid plan's row 0 and column 0
+  std::string projection = "vertical";  // vertical, cylindrical or central
+  std::vector<double> axis = {0, 0, 0, 0, 0, 1};  // cylindrical: point and direction
+  std::vector<double> centre = {0, 0, 0};         // central: the centre
+  std::string solver = "direct";                  // direct, or gp (guided projection)
+  double outer_height = 0.0;  // closed strip with a = 1: height of outer vertex 0
+  // The tolerance of every mode, and guided projection's options on non-vertical lines.
+  MarionetteMeshOptions lift;
+};
+
+// A report key of a mode beyond the shared ones, and its value.
+struct MarionetteFact {
+  std::string name;
+  std::variant<bool, int, double, std::string, std::vector<int>, std::vector<MarionettePatch>>
+      value;
+};
+
+class MarionetteRun {
+ public:
+  virtual ~MarionetteRun() = default;
+  // What was read, for the log: lines ending in '\n'.
+  virtual std::string Description() const = 0;
+  // Solves; guided projection passes every record to `callback`.
+  virtual RunReport Run(const RunCallback& callback) = 0;
+  // The lifted mesh (after a run that did not fail).
+  virtual PolyMesh Result() const = 0;
+  // The mode's own report keys (input files, decomposition, closing condition, ...).
+  virtual std::vector<MarionetteFact> Facts() const = 0;
+  // The measure the tolerance bounds first (named in a message when it is missed).
+  virtual std::string ToleranceMeasure() const = 0;
+};
+
+// Reads and checks the inputs of the mode `options` asks for. Throws InputError.
+std::unique_ptr<MarionetteRun> MakeMarionetteRun(const MarionetteRunOptions& options);
+
+// Guided projection on `problem`, converged when its final measures meet the tolerance (also for
+// problems that do not stop at it).
+RunReport RunMarionetteProblem(GuidedProblem* problem, const RunCallback& callback);
+
+// A direct solve as a run: `problem`'s measures before and after `solve` sets its x; solver
+// "direct", no iterations, failed when x is not finite, converged when the final measures meet
+// the tolerance.
+RunReport RunDirectly(GuidedProblem* problem, const std::string& termination,
+                      const std::function<void()>& solve);
+
+}  // namespace gproj
