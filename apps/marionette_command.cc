@@ -3,17 +3,11 @@
 #include <iostream>
 #include <memory>
 #include <string>
-#include <variant>
 
 #include "apps/commands.h"
 #include "problems/marionette_run.h"
 
 namespace gproj {
-
-// A patch of the decomposition in the report (found by nlohmann's to_json lookup).
-void to_json(nlohmann::json& j, const MarionettePatch& p) {
-  j = {{"faces", p.faces.size()}, {"rows", p.rows}, {"cols", p.cols}, {"corners", p.corners}};
-}
 
 namespace {
 
@@ -24,10 +18,9 @@ struct MarionetteArgs {
 
 // Writes the mesh (unless the run failed) and the report; false (error printed) when it cannot.
 bool WriteOutputs(const MarionetteArgs& args, const MarionetteRun& run, const RunReport& report) {
-  nlohmann::json extra = {{"output", report.failed ? "" : args.output},
-                          {"tolerance", args.options.lift.tolerance}};
-  for (const MarionetteFact& fact : run.Facts())
-    std::visit([&](const auto& value) { extra[fact.name] = value; }, fact.value);
+  nlohmann::json extra = run.Facts();
+  extra.update({{"output", report.failed ? "" : args.output},
+                {"tolerance", args.options.lift.tolerance}});
   try {
     if (!report.failed) WriteMeshAtomically(run.Result(), args.output);
     if (!args.report.empty())
@@ -74,8 +67,8 @@ void RegisterMarionetteCommand(CLI::App* app, int* exit_code) {
       "--column / --fit, or any disk-like quad mesh (singular vertices allowed, 002 §2.4) with "
       "--guides: it is split into regular patches along the separatrices, and the guides must "
       "cross every strip of patches exactly once. --closed-strip lifts a closed strip instead "
-      "(002 §2.5, eq. 8). Exit codes: 0 done, 1 bad input (nothing written), 3 tolerance not "
-      "reached (gp, result written), 4 numerical failure (nothing written).");
+      "(002 §2.5, eq. 8). Exit codes: 0 tolerance met, 1 bad input (nothing written), 3 "
+      "tolerance not reached (result written), 4 numerical failure (nothing written).");
   cmd->add_option("plan", args->options.plan,
                   "Plan view: quad mesh (.obj/.off/.ply); vertex ids below are 0-based in file "
                   "order");
@@ -118,8 +111,10 @@ void RegisterMarionetteCommand(CLI::App* app, int* exit_code) {
                   "gp with a non-vertical projection: iterations at most")
       ->capture_default_str();
   cmd->add_option("--tolerance", args->options.lift.tolerance,
-                  "gp with --guides or a projection: max |det(p1-p0, p2-p0, p3-p0)| / (edge "
-                  "lengths) and guide error to reach, else exit code 3")
+                  "Every mode: the result's planarity to reach, else exit code 3 (with --guides "
+                  "or a projection: max |det(p1-p0, p2-p0, p3-p0)| / (edge lengths) and the "
+                  "guide error; grid plans and closed strips: max planarity, diagonal distance "
+                  "/ mean edge)")
       ->capture_default_str();
   cmd->add_option("--closed-strip", args->options.closed_strip,
                   "Closed strip file instead of a plan (002 §2.5): one line per vertex pair "

@@ -68,8 +68,9 @@ RunReport GuidedProblem::Run(const RunCallback& callback) {
         record.measures = MeasureAt(x);
         report.history.push_back(record);
         if (callback && !callback(record)) return CallbackResult::kAbort;
-        return HasTolerance() && MeetsTolerance(record.measures) ? CallbackResult::kConverged
-                                                                 : CallbackResult::kContinue;
+        return HasTolerance() && StopsAtTolerance() && MeetsTolerance(record.measures)
+                   ? CallbackResult::kConverged
+                   : CallbackResult::kContinue;
       });
   report.termination =
       std::string(TerminationTypeName(report.summary.termination)) + ": " + report.summary.message;
@@ -86,19 +87,32 @@ RunReport GuidedProblem::RunCeres(int max_iterations, const RunCallback& callbac
   report.variables = problem().layout().num_variables();
   report.initial = Measure();
   bool aborted = false;
-  const CeresSummary summary =
-      SolveWithCeres(ceres_options(max_iterations), &problem(),
-                     [&](const CeresIterationRecord& s, const Eigen::VectorXd& x) {
-                       RunRecord record = ToRunRecord(s);
-                       record.measures = MeasureAt(x);
-                       report.history.push_back(record);
-                       if (callback && !callback(record)) return !(aborted = true);
-                       return !HasTolerance() || !MeetsTolerance(record.measures);
-                     });
+  const CeresSummary summary = SolveWithCeres(
+      ceres_options(max_iterations), &problem(),
+      [&](const CeresIterationRecord& s, const Eigen::VectorXd& x) {
+        RunRecord record = ToRunRecord(s);
+        record.measures = MeasureAt(x);
+        report.history.push_back(record);
+        if (callback && !callback(record)) return !(aborted = true);
+        return !HasTolerance() || !StopsAtTolerance() || !MeetsTolerance(record.measures);
+      });
   report.termination = "ceres " + summary.ceres_termination + ": " + summary.message;
   report.iterations = summary.num_steps();
   report.failed = summary.termination == TerminationType::kFailure;
   Conclude(*this, start, aborted, &report);
+  return report;
+}
+
+RunReport GuidedProblem::RunDirect(const std::string& termination,
+                                   const std::function<void()>& solve) {
+  const auto start = Clock::now();
+  RunReport report;
+  report.solver = "direct";
+  report.termination = termination;
+  report.variables = problem().layout().num_variables();
+  report.initial = Measure();
+  solve();
+  Conclude(*this, start, /*aborted=*/false, &report);
   return report;
 }
 

@@ -78,6 +78,10 @@ class GuidedProblem {
   // of 003, which minimise for a fixed number of iterations): the run then never stops early
   // and counts as converged when it ends without failure or abort.
   virtual bool HasTolerance() const { return true; }
+  // false: guided projection stops by its own rules (residual and step tolerances, iterations)
+  // and the tolerance only judges the final iterate, e.g. for problems whose start already
+  // meets it or whose published runs take a fixed number of steps.
+  virtual bool StopsAtTolerance() const { return true; }
 
   NamedValues Measure() const { return MeasureAt(problem().x()); }
 
@@ -86,6 +90,10 @@ class GuidedProblem {
   RunReport Run(const RunCallback& callback = nullptr);
   // Ceres' Levenberg–Marquardt on the same rows, stopping when the tolerance is met.
   RunReport RunCeres(int max_iterations, const RunCallback& callback = nullptr);
+  // A direct solve (closed form, linear system, propagation) as a run: `solve` sets
+  // problem().x(); the report has solver "direct", no iterations, the measures before and
+  // after, and is judged like the others (failed when x is not finite).
+  RunReport RunDirect(const std::string& termination, const std::function<void()>& solve);
 };
 
 }  // namespace gproj

@@ -3,7 +3,7 @@
 // lifted from two guide curves, or fitted to target heights (002 eq. 14), by guided projection
 // on the rows of MakeMarionetteProblem (linear: one iteration solves them) or by Ceres on the
 // same rows. The direct solutions (propagation, the normal equations of the fit) are set with
-// SetHeights and reported by RunDirectly (problems/marionette_run.h).
+// SetHeights and reported by GuidedProblem::RunDirect.
 
 #include <Eigen/Core>
 #include <string>
@@ -26,9 +26,8 @@ struct MarionetteOptions {
 
 // Measures (the report's keys): max_planarity, mean_planarity, and max_guide_error for a lift or
 // rms_distance_to_target for a fit. A lift meets the tolerance when planarity and guide error
-// are within it. A fit is one least-squares solve that does not stop at the tolerance
-// (HasTolerance() false: x = 0 is planar); its caller judges the final planarity with
-// MeetsTolerance (as RunMarionetteProblem does).
+// are within it. A fit is one least-squares solve that does not stop at the tolerance (x = 0 is
+// planar): StopsAtTolerance() is false and the tolerance judges the final planarity.
 // x (#V heights) starts at 0.
 class MarionetteGridProblem : public GuidedProblem {
  public:
@@ -44,7 +43,7 @@ class MarionetteGridProblem : public GuidedProblem {
   CeresOptions ceres_options(int max_iterations) const override;
   NamedValues MeasureAt(const Eigen::VectorXd& x) const override;
   bool MeetsTolerance(const NamedValues& m) const override;
-  bool HasTolerance() const override { return !fit(); }
+  bool StopsAtTolerance() const override { return !fit(); }
 
   bool fit() const { return target_.size() > 0; }
   const MarionettePlan& plan() const { return plan_; }

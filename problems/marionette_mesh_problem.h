@@ -2,8 +2,8 @@
 // The Marionette mesh problem (002 §2.4, §4.1) on the shared run protocol: a plan of any
 // connectivity lifted on the lines of its projection from guide values, by guided projection on
 // the rows of MakeMarionetteMeshProblem or by Ceres on the same rows. The direct lift
-// (LiftMarionetteMesh's propagation) is set with SetParameters and reported by RunDirectly
-// (problems/marionette_run.h).
+// (LiftMarionetteMesh's propagation) is set with SetParameters and reported by
+// GuidedProblem::RunDirect (problems/marionette_run.h).
 
 #include <Eigen/Core>
 #include <string>
@@ -34,8 +34,7 @@ struct MarionetteMeshOptions {
 // first two. x starts at the plan's parameters with the prescribed values put in.
 // Guided projection stops by the solver's own rules (rows to solver.residual_tolerance, the
 // step, the iteration limit), not at the tolerance, so that the rows are solved to round-off:
-// HasTolerance() is false and the caller judges the final measures with MeetsTolerance (as
-// RunMarionetteProblem does).
+// StopsAtTolerance() is false and the tolerance judges the final measures.
 class MarionetteMeshProblem : public GuidedProblem {
  public:
   // `prescribed` from ResolveMarionetteGuides. Throws InputError (naming the face) for a
@@ -48,7 +47,7 @@ class MarionetteMeshProblem : public GuidedProblem {
   CeresOptions ceres_options(int max_iterations) const override;
   NamedValues MeasureAt(const Eigen::VectorXd& x) const override;
   bool MeetsTolerance(const NamedValues& m) const override;
-  bool HasTolerance() const override { return false; }
+  bool StopsAtTolerance() const override { return false; }
 
   // The line parameters t (#V) of the current x, and setting them (the normals stay).
   Eigen::VectorXd Parameters() const { return MarionetteMeshParameters(problem_); }

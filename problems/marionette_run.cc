@@ -58,14 +58,13 @@ class GridRun : public MarionetteRun {
                   problem_->fit() ? "least-squares fit to a target" : "lift from guide curves");
   }
   RunReport Run(const RunCallback& callback) override {
-    if (options_.solver == "gp") return RunMarionetteProblem(problem_.get(), callback);
-    return RunDirectly(problem_.get(),
-                       problem_->fit() ? "DIRECT: normal equations of the fit (002 eq. 14)"
-                                       : "DIRECT: propagation (002 eq. 2)",
-                       [this] { problem_->SetHeights(problem_->DirectHeights()); });
+    if (options_.solver == "gp") return problem_->Run(callback);
+    return problem_->RunDirect(problem_->fit() ? "DIRECT: normal equations of the fit (002 eq. 14)"
+                                               : "DIRECT: propagation (002 eq. 2)",
+                               [this] { problem_->SetHeights(problem_->DirectHeights()); });
   }
   PolyMesh Result() const override { return problem_->Result(); }
-  std::vector<MarionetteFact> Facts() const override {
+  nlohmann::json Facts() const override {
     const MarionettePlan& plan = problem_->plan();
     return {{"input", options_.plan}, {"fit", options_.fit}, {"faces", plan.rows * plan.cols}};
   }
@@ -126,12 +125,12 @@ class MeshRun : public MarionetteRun {
     return text;
   }
   RunReport Run(const RunCallback& callback) override {
-    if (options_.solver == "gp") return RunMarionetteProblem(problem_.get(), callback);
-    return RunDirectly(problem_.get(), "DIRECT: propagation (002 §2.4)",
-                       [this] { problem_->SetParameters(lift_.t); });
+    if (options_.solver == "gp") return problem_->Run(callback);
+    return problem_->RunDirect("DIRECT: propagation (002 §2.4)",
+                               [this] { problem_->SetParameters(lift_.t); });
   }
   PolyMesh Result() const override { return problem_->Result(); }
-  std::vector<MarionetteFact> Facts() const override;
+  nlohmann::json Facts() const override;
   std::string ToleranceMeasure() const override { return "max_relative_det"; }
 
  private:
@@ -143,13 +142,21 @@ class MeshRun : public MarionetteRun {
   std::unique_ptr<MarionetteMeshProblem> problem_;
 };
 
-std::vector<MarionetteFact> MeshRun::Facts() const {
+nlohmann::json PatchesJson(const std::vector<MarionettePatch>& patches) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const MarionettePatch& p : patches)
+    j.push_back(
+        {{"faces", p.faces.size()}, {"rows", p.rows}, {"cols", p.cols}, {"corners", p.corners}});
+  return j;
+}
+
+nlohmann::json MeshRun::Facts() const {
   return {{"input", options_.plan},
           {"guides", options_.guides},
           {"projection", options_.projection},
           {"faces", static_cast<int>(lines_.mesh.n_faces())},
           {"singular_vertices", layout_.singular_vertices},
-          {"patches", layout_.patches},
+          {"patches", PatchesJson(layout_.patches)},
           {"patch_order", lift_.patch_order},
           {"strips_of_patches", static_cast<int>(layout_.patch_strips.size())},
           {"face_strips", layout_.num_face_strips},
@@ -190,7 +197,7 @@ class StripRun : public MarionetteRun {
   }
   RunReport Run(const RunCallback&) override;
   PolyMesh Result() const override { return ClosedStripMesh(file_.strip, lift_); }
-  std::vector<MarionetteFact> Facts() const override {
+  nlohmann::json Facts() const override {
     return {{"closed_strip", options_.closed_strip},
             {"quads", num_quads()},
             {"a", lift_.a},
@@ -239,28 +246,6 @@ std::unique_ptr<MarionetteRun> MakeMarionetteRun(const MarionetteRunOptions& opt
   if (!options.guides.empty() || options.projection != "vertical")
     return std::make_unique<MeshRun>(options);
   return std::make_unique<GridRun>(options);
-}
-
-RunReport RunMarionetteProblem(GuidedProblem* problem, const RunCallback& callback) {
-  RunReport report = problem->Run(callback);
-  report.converged = !report.failed && problem->MeetsTolerance(report.final);
-  return report;
-}
-
-RunReport RunDirectly(GuidedProblem* problem, const std::string& termination,
-                      const std::function<void()>& solve) {
-  const auto start = Clock::now();
-  RunReport report;
-  report.solver = "direct";
-  report.termination = termination;
-  report.variables = problem->problem().layout().num_variables();
-  report.initial = problem->Measure();
-  solve();
-  report.failed = !problem->problem().x().allFinite();
-  if (!report.failed) report.final = problem->Measure();
-  report.converged = !report.failed && problem->MeetsTolerance(report.final);
-  report.seconds = SecondsSince(start);
-  return report;
 }
 
 }  // namespace gproj

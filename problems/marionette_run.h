@@ -9,13 +9,13 @@
 #include <functional>
 #include <memory>
 #include <string>
-#include <variant>
 #include <vector>
 
 #include "geometry/mesh_io.h"
 #include "problems/guided_problem.h"
 #include "problems/marionette_mesh.h"
 #include "problems/marionette_mesh_problem.h"
+#include "problems/report_json.h"
 
 namespace gproj {
 
@@ -40,13 +40,6 @@ struct MarionetteRunOptions {
   MarionetteMeshOptions lift;
 };
 
-// A report key of a mode beyond the shared ones, and its value.
-struct MarionetteFact {
-  std::string name;
-  std::variant<bool, int, double, std::string, std::vector<int>, std::vector<MarionettePatch>>
-      value;
-};
-
 class MarionetteRun {
  public:
   virtual ~MarionetteRun() = default;
@@ -57,22 +50,12 @@ class MarionetteRun {
   // The lifted mesh (after a run that did not fail).
   virtual PolyMesh Result() const = 0;
   // The mode's own report keys (input files, decomposition, closing condition, ...).
-  virtual std::vector<MarionetteFact> Facts() const = 0;
+  virtual nlohmann::json Facts() const = 0;
   // The measure the tolerance bounds first (named in a message when it is missed).
   virtual std::string ToleranceMeasure() const = 0;
 };
 
 // Reads and checks the inputs of the mode `options` asks for. Throws InputError.
 std::unique_ptr<MarionetteRun> MakeMarionetteRun(const MarionetteRunOptions& options);
-
-// Guided projection on `problem`, converged when its final measures meet the tolerance (also for
-// problems that do not stop at it).
-RunReport RunMarionetteProblem(GuidedProblem* problem, const RunCallback& callback);
-
-// A direct solve as a run: `problem`'s measures before and after `solve` sets its x; solver
-// "direct", no iterations, failed when x is not finite, converged when the final measures meet
-// the tolerance.
-RunReport RunDirectly(GuidedProblem* problem, const std::string& termination,
-                      const std::function<void()>& solve);
 
 }  // namespace gproj

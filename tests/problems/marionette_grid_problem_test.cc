@@ -44,7 +44,7 @@ TEST(MarionetteGridProblemTest, GuidedProjectionReachesTheDirectLiftInOneIterati
   EXPECT_LE(ValueOf(report.final, "max_guide_error"), 1e-12);
   EXPECT_LE(ValueOf(report.final, "max_planarity"), 1e-12);
   const RunReport d =
-      RunDirectly(&direct, "direct", [&] { direct.SetHeights(direct.DirectHeights()); });
+      direct.RunDirect("direct", [&] { direct.SetHeights(direct.DirectHeights()); });
   EXPECT_EQ(d.solver, "direct");
   EXPECT_EQ(d.iterations, 0);
   EXPECT_TRUE(d.converged);
@@ -63,14 +63,13 @@ TEST(MarionetteGridProblemTest, MissedToleranceAndNonFiniteHeightsAreReported) {
   MarionetteOptions strict;
   strict.tolerance = 1e-300;  // below the round-off of any lift
   MarionetteGridProblem lift = Lift(strict);
-  const RunReport missed =
-      RunDirectly(&lift, "direct", [&] { lift.SetHeights(lift.DirectHeights()); });
+  const RunReport missed = lift.RunDirect("direct", [&] { lift.SetHeights(lift.DirectHeights()); });
   EXPECT_FALSE(missed.converged);
   EXPECT_FALSE(missed.failed);
   EXPECT_GT(ValueOf(missed.final, "max_planarity"), 0.0);
 
   MarionetteGridProblem broken = Lift();
-  const RunReport failed = RunDirectly(&broken, "direct", [&] {
+  const RunReport failed = broken.RunDirect("direct", [&] {
     broken.SetHeights(Eigen::VectorXd::Constant(42, std::numeric_limits<double>::quiet_NaN()));
   });
   EXPECT_TRUE(failed.failed);
@@ -87,8 +86,8 @@ TEST(MarionetteGridProblemTest, FitRunsOneSolveAndIsJudgedByPlanarity) {
     MarionetteOptions options;
     options.tolerance = tolerance;
     MarionetteGridProblem fit(mesh, "", Eigen::VectorXd(), Eigen::VectorXd(), target, options);
-    EXPECT_FALSE(fit.HasTolerance());
-    const RunReport report = RunMarionetteProblem(&fit, nullptr);
+    EXPECT_FALSE(fit.StopsAtTolerance());
+    const RunReport report = fit.Run();
     EXPECT_EQ(report.iterations, 1);
     EXPECT_EQ(report.converged, tolerance > 1e-6) << ValueOf(report.final, "max_planarity");
     EXPECT_GT(ValueOf(report.final, "rms_distance_to_target"), 0.01);

@@ -32,10 +32,10 @@ struct Tower {
 TEST(MarionetteMeshProblemTest, GuidedProjectionSolvesTheRowsToRoundOff) {
   const Tower tower;
   MarionetteMeshProblem problem(tower.lines, tower.prescribed, {});
-  EXPECT_FALSE(problem.HasTolerance());
+  EXPECT_FALSE(problem.StopsAtTolerance());
   EXPECT_GT(ValueOf(problem.Measure(), "max_relative_det"), 1e-3);  // the plan is not a lift
   int records = 0;
-  const RunReport report = RunMarionetteProblem(&problem, [&](const RunRecord& r) {
+  const RunReport report = problem.Run([&](const RunRecord& r) {
     EXPECT_FALSE(std::isnan(ValueOf(r.measures, "max_relative_det")));
     return ++records > 0;
   });
@@ -61,7 +61,7 @@ TEST(MarionetteMeshProblemTest, OneIterationMissesTheTolerance) {
   MarionetteMeshOptions options;
   options.solver.max_iterations = 1;
   MarionetteMeshProblem problem(tower.lines, tower.prescribed, options);
-  const RunReport report = RunMarionetteProblem(&problem, nullptr);
+  const RunReport report = problem.Run();
   EXPECT_FALSE(report.failed);
   EXPECT_FALSE(report.converged);
   EXPECT_GT(ValueOf(report.final, "max_relative_det"), options.tolerance);
@@ -72,8 +72,7 @@ TEST(MarionetteMeshProblemTest, DirectPropagationIsReportedAsARun) {
   MarionetteMeshProblem problem(tower.lines, tower.prescribed, {});
   const MarionetteMeshLift lift =
       LiftMarionetteMesh(tower.lines, DecomposeIntoPatches(tower.lines.mesh), tower.prescribed);
-  const RunReport report =
-      RunDirectly(&problem, "propagation", [&] { problem.SetParameters(lift.t); });
+  const RunReport report = problem.RunDirect("propagation", [&] { problem.SetParameters(lift.t); });
   EXPECT_TRUE(report.converged);
   EXPECT_EQ(report.iterations, 0);
   EXPECT_GT(ValueOf(report.initial, "max_relative_det"), 1e-3);

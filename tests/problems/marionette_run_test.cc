@@ -44,10 +44,7 @@ TEST(MarionetteRunTest, ValenceSixGuidesLiftThePlanDirectlyAndByGuidedProjection
     EXPECT_TRUE(report.converged);
     EXPECT_LE(ValueOf(report.final, run->ToleranceMeasure()), 1e-12);
     EXPECT_EQ(run->Result().n_vertices(), 181u);
-    int design_dimension = 0;
-    for (const MarionetteFact& fact : run->Facts())
-      if (fact.name == "design_dimension") design_dimension = std::get<int>(fact.value);
-    EXPECT_EQ(design_dimension, 31);
+    EXPECT_EQ(run->Facts()["design_dimension"].get<int>(), 31);
   }
 }
 
