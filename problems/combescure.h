@@ -62,9 +62,10 @@ struct CombescureOptions {
   // Largest planarity of the reference accepted (diagonal distance / mean edge length).
   double reference_tolerance = 1e-6;
   // Converged when the max edge-parallelism angle (radians) and the max guide error (per mean
-  // guide length) are ≤ this. Tighter than the solver's residual tolerance reaches in fewer
-  // steps, so that guided projection stops by its own rule.
-  double tolerance = 1e-12;
+  // guide length) are ≤ this. One step leaves ~1e-9 of an O(1) error, so guided projection
+  // takes its second step as its own residual rule does; rounding stays below this while the
+  // coordinates are under ~1e4 mean edge lengths.
+  double tolerance = 1e-11;
   // The same bound for a propagation, whose only error is rounding.
   double propagation_tolerance = 1e-8;
   bool IsValid(std::string* why) const;

@@ -74,7 +74,7 @@ TEST(CombescureTest, GuidedProjectionAgreesWithPropagation) {
   const PolyMesh gp = combescure.Result();
   EXPECT_LT(MaxVertexDistance(gp, direct), 1e-9);
   EXPECT_LT(MeasureParallelism(mesh, gp).max_angle, 1e-10);
-  EXPECT_LT(ValueOf(report.final, "max_guide_error"), 1e-12);
+  EXPECT_LT(ValueOf(report.final, "max_guide_error"), 1e-11);
   // The start (the reference moved to the origin) is parallel but has the wrong lengths.
   EXPECT_GT(ValueOf(report.initial, "max_guide_error"), 1e-3);
   EXPECT_EQ(report.history.size(), static_cast<size_t>(report.iterations) + 1);
@@ -98,7 +98,7 @@ TEST(CombescureTest, RunStoppedShortIsNotConvergedAndNonFiniteStartFails) {
   const PolyMesh mesh = Revolution(7, 6);
   const GridShape shape = DetectGridShape(mesh);
   CombescureOptions options;
-  options.solver.max_iterations = 1;  // one step leaves ~ε² of the error: above 1e-12
+  options.solver.max_iterations = 1;  // one step leaves more than the tolerance
   options.solver.epsilon = 1e-3;
   Combescure short_run(mesh, shape, Varied(mesh, shape), options);
   const RunReport stopped = short_run.Run();
@@ -119,9 +119,7 @@ TEST(CombescureTest, CeresCrossCheckReachesTheGuidedProjectionResult) {
   const CombescureLengths lengths = Varied(mesh, shape);
   Combescure gp(mesh, shape, lengths, CombescureOptions());
   ASSERT_TRUE(gp.Run().converged);
-  CombescureOptions options;
-  options.tolerance = 1e-10;  // LM's least squares end near rounding, not at 1e-12 per se
-  Combescure ceres(mesh, shape, lengths, options);
+  Combescure ceres(mesh, shape, lengths, CombescureOptions());
   const RunReport report = ceres.RunCeres(50);
   EXPECT_EQ(report.solver, "ceres");
   EXPECT_TRUE(report.converged) << report.termination;
