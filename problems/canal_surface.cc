@@ -465,7 +465,7 @@ CanalSurface::CanalSurface(const CircularStripInput& input, const FrameAngles& a
                            const CanalSurfaceOptions& options)
     : options_(options), input_(input), angles_(angles) {
   std::string why;
-  if (!options.IsValid(&why)) throw InputError("canal: " + why);
+  if (!options.IsValid(&why)) throw InputError("invalid option: " + why);
   strip_ = BuildCircularStrip(input);
 }
 

@@ -212,7 +212,7 @@ Combescure::Combescure(const PolyMesh& reference, const GridShape& shape,
                        const CombescureLengths& lengths, const CombescureOptions& options)
     : options_(options), reference_(reference), shape_(shape), lengths_(lengths) {
   std::string why;
-  if (!options.IsValid(&why)) throw InputError("combescure: " + why);
+  if (!options.IsValid(&why)) throw InputError("invalid option: " + why);
   problem_ = MakeCombescureProblem(reference, shape, lengths, options.reference_tolerance);
 }
 
