@@ -43,7 +43,7 @@ void BM_CombescureGP(benchmark::State& state) {
   int iterations = 0;
   for (auto _ : state) {
     Problem problem = MakeCombescureProblem(s.mesh, s.shape, s.lengths);
-    const SolverSummary summary = Solve(CombescureSolverOptions(), &problem);
+    const SolverSummary summary = Solve(CombescureSolverDefaults(), &problem);
     iterations = summary.num_steps();
     benchmark::DoNotOptimize(problem.x().data());
   }

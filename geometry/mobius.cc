@@ -101,4 +101,15 @@ std::vector<Eigen::Vector3d> MRevolutionCentres(const std::array<Eigen::Vector3d
   return centres;
 }
 
+QuadImage InvertQuad(const std::array<Eigen::Vector3d, 4>& quad, const Eigen::Vector3d& centre,
+                     double ratio) {
+  QuadImage image;
+  for (int j = 0; j < 4; ++j) image.points[j] = Invert(quad[j], centre, ratio);
+  const auto& p = image.points;
+  const Eigen::Vector3d a = p[1] - p[0], b = p[2] - p[3];
+  image.side_angle = std::atan2(a.cross(b).norm(), std::abs(a.dot(b)));
+  image.diagonals = {(p[2] - p[0]).norm(), (p[3] - p[1]).norm()};
+  return image;
+}
+
 }  // namespace gproj

@@ -45,4 +45,15 @@ std::array<std::complex<double>, 2> MRevolutionCentres(std::complex<double> z1,
 std::vector<Eigen::Vector3d> MRevolutionCentres(const std::array<Eigen::Vector3d, 4>& quad,
                                                 double t, double tolerance = 1e-8);
 
+// The image of a quad P1 P2 P3 P4 under an inversion, as the M-revolution check needs it: the
+// angle between the image's sides P1'P2' and P4'P3' (0: parallel) and its diagonals |P1'P3'|,
+// |P2'P4'| (equal for an isosceles trapezoid).
+struct QuadImage {
+  std::array<Eigen::Vector3d, 4> points;
+  double side_angle = 0.0;  // radians, in [0, π/2]
+  std::array<double, 2> diagonals{};
+};
+QuadImage InvertQuad(const std::array<Eigen::Vector3d, 4>& quad, const Eigen::Vector3d& centre,
+                     double ratio);
+
 }  // namespace gproj

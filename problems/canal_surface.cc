@@ -3,8 +3,11 @@
 #include <ceres/ceres.h>
 
 #include <Eigen/Geometry>
+#include <chrono>
 #include <cmath>
 #include <memory>
+
+#include "problems/circular_mesh.h"
 
 namespace gproj {
 namespace {
@@ -110,10 +113,15 @@ bool BuildStripT(const std::vector<Eigen::Vector3d>& curve, const Eigen::Vector3
 }
 
 template <typename T>
+Vec3<T> NormalOfAngles(const T& lambda, const T& theta) {
+  return Vec3<T>(cos(lambda) * cos(theta), cos(lambda) * sin(theta), sin(lambda));
+}
+
+template <typename T>
 void FrameAtStart(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const T* angles,
                   Vec3<T>* t1, Vec3<T>* t2, Vec3<T>* n) {
   const T &lambda = angles[0], &theta = angles[1], &psi = angles[2];
-  *n = Vec3<T>(cos(lambda) * cos(theta), cos(lambda) * sin(theta), sin(lambda));
+  *n = NormalOfAngles<T>(lambda, theta);
   const Vec3<T> chord = Cast<T>(p1) - Cast<T>(p0);
   const Vec3<T> projected = chord - chord.dot(*n) * (*n);
   const Vec3<T> u = projected / projected.norm();
@@ -213,17 +221,66 @@ class CanalObjective final : public ceres::FirstOrderFunction {
   int num_parameters_ = 0;
 };
 
-class ProgressCallback final : public ceres::IterationCallback {
+// The parameters of the objective: [lengths (if optimised)] [λ, θ, ψ (if optimised)].
+std::vector<double> Pack(const CircularStripInput& input, const FrameAngles& angles,
+                         const CanalSmoothingOptions& options) {
+  std::vector<double> x;
+  if (options.optimize_lengths) x = input.lengths;
+  if (options.optimize_frame) x.insert(x.end(), {angles.lambda, angles.theta, angles.psi});
+  return x;
+}
+
+// The strip input and the frame that parameters x stand for.
+void Unpack(const double* x, const CanalSmoothingOptions& options, CircularStripInput* input,
+            FrameAngles* angles) {
+  int k = 0;
+  if (options.optimize_lengths)
+    for (auto& l : input->lengths) l = x[k++];
+  if (options.optimize_frame) *angles = {x[k], x[k + 1], x[k + 2]};
+}
+
+// F of 000 eq. 5 for parameters x.
+double EnergyAt(const double* x, const CanalSmoothingOptions& options, CircularStripInput input,
+                FrameAngles angles) {
+  Unpack(x, options, &input, &angles);
+  return MakeCyclidicStrip(BuildCircularStrip(input), angles).energy;
+}
+
+// Records every iterate (Ceres updates the parameters first) and asks the run's callback.
+class RecordingCallback final : public ceres::IterationCallback {
  public:
-  explicit ProgressCallback(std::function<void(int, double)> f) : f_(std::move(f)) {}
+  RecordingCallback(std::function<double()> energy, const RunCallback& callback,
+                    std::vector<RunRecord>* history)
+      : energy_(std::move(energy)), callback_(callback), history_(history) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
-    if (f_) f_(s.iteration, s.cost);
-    return ceres::SOLVER_CONTINUE;
+    RunRecord record;
+    record.iteration = s.iteration;
+    record.energy = s.cost;
+    record.step = s.step_norm;
+    record.max_constraint = NAN;  // no constraint rows
+    record.seconds = s.iteration_time_in_seconds;
+    record.measures = {{"smoothness_energy", energy_()}};
+    history_->push_back(record);
+    return !callback_ || callback_(record) ? ceres::SOLVER_CONTINUE : ceres::SOLVER_ABORT;
   }
 
  private:
-  std::function<void(int, double)> f_;
+  std::function<double()> energy_;
+  const RunCallback& callback_;
+  std::vector<RunRecord>* history_;
 };
+
+// The mean edge length of the strip, which makes the objective scale-free.
+double MeanEdgeLength(const CircularStrip& strip) {
+  double edge_sum = 0.0;
+  const int n = static_cast<int>(strip.p.size()) - 1;
+  for (int k = 0; k <= n; ++k) {
+    edge_sum += (strip.q[k] - strip.p[k]).norm();
+    if (k < n)
+      edge_sum += (strip.p[k + 1] - strip.p[k]).norm() + (strip.q[k + 1] - strip.q[k]).norm();
+  }
+  return edge_sum / (3 * n + 1);
+}
 
 }  // namespace
 
@@ -264,6 +321,10 @@ FrameAngles AnglesFromNormal(const Eigen::Vector3d& normal) {
   angles.lambda = std::asin(std::max(-1.0, std::min(1.0, n.z())));
   angles.theta = std::atan2(n.y(), n.x());
   return angles;
+}
+
+Eigen::Vector3d NormalOf(const FrameAngles& angles) {
+  return NormalOfAngles<double>(angles.lambda, angles.theta);
 }
 
 CyclidicStrip MakeCyclidicStrip(const CircularStrip& strip, const FrameAngles& angles) {
@@ -350,50 +411,104 @@ bool CanalSmoothingOptions::IsValid(std::string* why) const {
 
 CanalSmoothingSummary SmoothCanalStrip(const CircularStripInput& input, const FrameAngles& angles,
                                        const CanalSmoothingOptions& options,
-                                       const std::function<void(int, double)>& progress) {
+                                       const RunCallback& callback) {
   std::string why;
   if (!options.IsValid(&why)) throw InputError("canal smoothing: " + why);
   const CircularStrip strip = BuildCircularStrip(input);  // validates the input
-  double edge_sum = 0.0;
-  const int n = static_cast<int>(strip.p.size()) - 1;
-  for (int k = 0; k <= n; ++k) {
-    edge_sum += (strip.q[k] - strip.p[k]).norm();
-    if (k < n)
-      edge_sum += (strip.p[k + 1] - strip.p[k]).norm() + (strip.q[k + 1] - strip.q[k]).norm();
-  }
-  const double edge_scale = edge_sum / (3 * n + 1);
-  auto* objective = new CanalObjective(input, angles, options, edge_scale);
-  std::vector<double> x;
-  if (options.optimize_lengths) x = input.lengths;
-  if (options.optimize_frame) {
-    x.push_back(angles.lambda);
-    x.push_back(angles.theta);
-    x.push_back(angles.psi);
-  }
-  ceres::GradientProblem problem(objective);  // takes ownership
+  std::vector<double> x = Pack(input, angles, options);
+  ceres::GradientProblem problem(  // takes ownership
+      new CanalObjective(input, angles, options, MeanEdgeLength(strip)));
   ceres::GradientProblemSolver::Options ceres_options;
   ceres_options.line_search_direction_type = ceres::BFGS;
   ceres_options.max_num_iterations = options.max_iterations;
-  ProgressCallback callback(progress);
-  ceres_options.callbacks.push_back(&callback);
+  ceres_options.function_tolerance = options.function_tolerance;
+  ceres_options.update_state_every_iteration = true;
+  CanalSmoothingSummary out;
+  RecordingCallback recording([&] { return EnergyAt(x.data(), options, input, angles); }, callback,
+                              &out.history);
+  ceres_options.callbacks.push_back(&recording);
   ceres::GradientProblemSolver::Summary summary;
   ceres::Solve(ceres_options, problem, x.data(), &summary);
+  // Ceres calls no callback on the iterate where it stops by a tolerance; record it too.
+  if (out.history.size() < summary.iterations.size()) recording(summary.iterations.back());
 
-  CanalSmoothingSummary out;
   out.converged = summary.termination_type == ceres::CONVERGENCE;
   out.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  out.termination = std::string("ceres-bfgs ") +
+                    ceres::TerminationTypeToString(summary.termination_type) + ": " +
+                    summary.message;
   out.message = summary.BriefReport();
   out.initial_energy = MakeCyclidicStrip(strip, angles).energy;
-  int k = 0;
-  out.lengths = input.lengths;
-  if (options.optimize_lengths)
-    for (auto& l : out.lengths) l = x[k++];
-  out.angles = angles;
-  if (options.optimize_frame) out.angles = {x[k], x[k + 1], x[k + 2]};
   CircularStripInput result = input;
-  result.lengths = out.lengths;
+  out.angles = angles;
+  Unpack(x.data(), options, &result, &out.angles);
+  out.lengths = result.lengths;
   out.final_energy = MakeCyclidicStrip(BuildCircularStrip(result), out.angles).energy;
   return out;
+}
+
+Eigen::Vector3d DefaultCanalNormal(const CircularStrip& strip) {
+  const Eigen::Vector3d along = (strip.p[1] - strip.p[0]).normalized();
+  const Eigen::Vector3d across = strip.q[0] - strip.p[0];
+  return across - across.dot(along) * along;
+}
+
+bool CanalSurfaceOptions::IsValid(std::string* why) const {
+  if (segments < 1 || segments > 100000) {
+    *why = "segments must be in [1, 100000]";
+    return false;
+  }
+  return !smooth || smoothing.IsValid(why);
+}
+
+CanalSurface::CanalSurface(const CircularStripInput& input, const FrameAngles& angles,
+                           const CanalSurfaceOptions& options)
+    : options_(options), input_(input), angles_(angles) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("invalid option: " + why);
+  strip_ = BuildCircularStrip(input);
+}
+
+NamedValues CanalSurface::Measure() const {
+  const CyclidicStrip net = Net();
+  NamedValues m = {{"smoothness_energy", net.energy}};
+  const NamedValues mesh = MeasureCircularMesh(MeshCanalSurface(net, options_.segments));
+  m.insert(m.end(), mesh.begin(), mesh.end());
+  return m;
+}
+
+RunReport CanalSurface::Run(const RunCallback& callback) {
+  if (!options_.smooth) {
+    const auto start = std::chrono::steady_clock::now();
+    const NamedValues measures = Measure();
+    return ConstructionReport(
+        "none", measures, measures, true,
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  return Smooth(callback);
+}
+
+RunReport CanalSurface::Smooth(const RunCallback& callback) {
+  const auto start = std::chrono::steady_clock::now();
+  RunReport report;
+  report.solver = "ceres-bfgs";
+  try {
+    report.initial = Measure();
+  } catch (const InputError&) {
+    report.initial = {{"smoothness_energy", Net().energy}};
+  }
+  const CanalSmoothingSummary s = SmoothCanalStrip(input_, angles_, options_.smoothing, callback);
+  report.variables = static_cast<int>(Pack(input_, angles_, options_.smoothing).size());
+  input_.lengths = s.lengths;
+  angles_ = s.angles;
+  strip_ = BuildCircularStrip(input_);
+  report.final = Measure();
+  report.converged = s.converged;
+  report.termination = s.termination;
+  report.iterations = s.iterations;
+  report.history = s.history;
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
 }
 
 }  // namespace gproj

@@ -26,12 +26,12 @@
 // the result is circular (planar, and its vertices lie on the sphere through C_k and C_{k+1}).
 
 #include <Eigen/Core>
-#include <functional>
 #include <string>
 #include <vector>
 
 #include "geometry/circle.h"
 #include "geometry/mesh_io.h"
+#include "problems/guided_problem.h"
 
 namespace gproj {
 
@@ -60,6 +60,8 @@ struct FrameAngles {
 };
 // Angles whose normal is `normal` (normalised) and ψ = 0.
 FrameAngles AnglesFromNormal(const Eigen::Vector3d& normal);
+// The unit normal n of the angles.
+Eigen::Vector3d NormalOf(const FrameAngles& angles);
 
 struct Frame {
   Eigen::Vector3d t1, t2, n;
@@ -83,6 +85,10 @@ struct CanalSmoothingOptions {
   double length_weight = 0.1;
   bool optimize_lengths = true;
   bool optimize_frame = true;
+  // The smoothing's tolerance: BFGS stops, converged, when an iteration lowers the objective by
+  // less than this fraction (Ceres' function tolerance; its gradient and parameter tolerances
+  // keep Ceres' defaults and also count as converged).
+  double function_tolerance = 1e-6;
   bool IsValid(std::string* why) const;
 };
 
@@ -90,15 +96,61 @@ struct CanalSmoothingSummary {
   bool converged = false;
   int iterations = 0;
   double initial_energy = 0.0, final_energy = 0.0;  // F of eq. 5 (not the scaled objective)
+  std::string termination;                          // e.g. "ceres-bfgs CONVERGENCE: …"
   std::string message;                              // Ceres' report line
   std::vector<double> lengths;
   FrameAngles angles;
+  // Per iterate: the objective as energy, Ceres' step and time, F as smoothness_energy.
+  std::vector<RunRecord> history;
 };
 
-// Minimises the smoothing objective from `input` and `angles`. `progress(iteration, F)` is
-// called after each Ceres iteration (may be empty).
+// Minimises the smoothing objective from `input` and `angles` by Ceres' line-search BFGS.
+// `callback` gets every iterate's record (may be empty); returning false stops the run.
 CanalSmoothingSummary SmoothCanalStrip(const CircularStripInput& input, const FrameAngles& angles,
                                        const CanalSmoothingOptions& options,
-                                       const std::function<void(int, double)>& progress = nullptr);
+                                       const RunCallback& callback = nullptr);
+
+// The frame's default normal at P_0: in the first quad's plane, across the curve (towards Q_0),
+// so that the crossing arcs leave the strip's plane.
+Eigen::Vector3d DefaultCanalNormal(const CircularStrip& strip);
+
+struct CanalSurfaceOptions {
+  bool smooth = false;  // minimise 000 eq. 5 before meshing
+  CanalSmoothingOptions smoothing;
+  int segments = 12;  // quads across the strip in the canal mesh, in [1, 100000]
+  bool IsValid(std::string* why) const;
+};
+
+// A canal surface as one run: the strip from its input (the build step), the cyclidic net of a
+// frame, an optional smoothing, and the mesh. Measures: smoothness_energy (F of 000 eq. 5) and
+// MeasureCircularMesh's measures of the canal mesh.
+class CanalSurface {
+ public:
+  // Throws InputError for invalid options or an input BuildCircularStrip refuses.
+  CanalSurface(const CircularStripInput& input, const FrameAngles& angles,
+               const CanalSurfaceOptions& options);
+
+  // With options.smooth: SmoothCanalStrip (solver "ceres-bfgs"; converged when its tolerance is
+  // met; the history's measures are smoothness_energy only). Without: solver "none", no
+  // iterations, converged. Initial and final measures are Measure() before and after (initial:
+  // smoothness_energy only when the starting net cannot be meshed). Throws InputError when the
+  // final net cannot be meshed.
+  RunReport Run(const RunCallback& callback = nullptr);
+  NamedValues Measure() const;
+
+  const CircularStripInput& input() const { return input_; }  // with the current lengths
+  const FrameAngles& angles() const { return angles_; }
+  const CircularStrip& strip() const { return strip_; }
+  CyclidicStrip Net() const { return MakeCyclidicStrip(strip_, angles_); }
+  PolyMesh Mesh() const { return MeshCanalSurface(Net(), options_.segments); }
+
+ private:
+  RunReport Smooth(const RunCallback& callback);
+
+  CanalSurfaceOptions options_;
+  CircularStripInput input_;
+  FrameAngles angles_;
+  CircularStrip strip_;
+};
 
 }  // namespace gproj

@@ -3,10 +3,12 @@
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
 #include "constraints/edge_parallelism.h"
+#include "problems/circular_mesh.h"
 #include "problems/mesh_variables.h"
 #include "problems/pq_planarization.h"
 
@@ -137,8 +139,8 @@ PolyMesh CombescureByPropagation(const PolyMesh& reference, const GridShape& sha
 }
 
 Problem MakeCombescureProblem(const PolyMesh& reference, const GridShape& shape,
-                              const CombescureLengths& lengths) {
-  CheckCombescureInput(reference, shape, lengths);
+                              const CombescureLengths& lengths, double tolerance) {
+  CheckCombescureInput(reference, shape, lengths, tolerance);
   Problem problem;
   const int block = problem.layout().AddBlock("vertices", shape.num_vertices(), 3);
   problem.ResizeToLayout();
@@ -168,10 +170,8 @@ Problem MakeCombescureProblem(const PolyMesh& reference, const GridShape& shape,
   return problem;
 }
 
-SolverOptions CombescureSolverOptions() {
+SolverOptions CombescureSolverDefaults() {
   SolverOptions options;
-  // Linear rows: each step solves the regularised least squares exactly, and the proximal
-  // term ε² shrinks the remaining error by ~ε² per step.
   options.max_iterations = 5;
   options.epsilon = 1e-6;
   options.residual_tolerance = 1e-11;
@@ -180,14 +180,13 @@ SolverOptions CombescureSolverOptions() {
   return options;
 }
 
-PolyMesh CombescureResult(const PolyMesh& reference, const Problem& problem) {
-  PolyMesh mesh = reference;
-  for (auto v : mesh.vertices()) {
-    const Eigen::Vector3d p =
-        problem.x().segment<3>(problem.layout().ItemOffset(problem.layout().Item(0, v.idx())));
-    mesh.set_point(v, PolyMesh::Point(p.x(), p.y(), p.z()));
-  }
-  return mesh;
+bool CombescureOptions::IsValid(std::string* why) const {
+  for (const double t : {reference_tolerance, tolerance, propagation_tolerance})
+    if (!(t > 0.0) || !std::isfinite(t)) {
+      *why = "tolerances must be finite and > 0";
+      return false;
+    }
+  return solver.IsValid(why);
 }
 
 ParallelismMeasures MeasureParallelism(const PolyMesh& reference, const PolyMesh& mesh) {
@@ -207,6 +206,80 @@ ParallelismMeasures MeasureParallelism(const PolyMesh& reference, const PolyMesh
         std::min(m.min_length_ratio, (r.dot(s) >= 0 ? 1.0 : -1.0) * s.norm() / r.norm());
   }
   return m;
+}
+
+Combescure::Combescure(const PolyMesh& reference, const GridShape& shape,
+                       const CombescureLengths& lengths, const CombescureOptions& options)
+    : options_(options), reference_(reference), shape_(shape), lengths_(lengths) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("invalid option: " + why);
+  problem_ = MakeCombescureProblem(reference, shape, lengths, options.reference_tolerance);
+}
+
+CeresOptions Combescure::ceres_options(int max_iterations) const {
+  CeresOptions ceres;
+  ceres.max_iterations = max_iterations;
+  ceres.fairness_weight = options_.solver.fairness_weight;
+  ceres.num_threads = std::max(1, options_.solver.num_threads);
+  return ceres;
+}
+
+int Combescure::VertexOffset(int v) const {
+  return problem_.layout().ItemOffset(problem_.layout().Item(0, v));
+}
+
+PolyMesh Combescure::MeshAt(const Eigen::VectorXd& x) const {
+  PolyMesh mesh = reference_;
+  for (auto v : mesh.vertices()) {
+    const Eigen::Vector3d p = x.segment<3>(VertexOffset(v.idx()));
+    mesh.set_point(v, PolyMesh::Point(p.x(), p.y(), p.z()));
+  }
+  return mesh;
+}
+
+double Combescure::GuideErrorAt(const PolyMesh& mesh) const {
+  double error = (Point(mesh, 0) - lengths_.origin).norm(), scale = 0.0;
+  const auto guide = [&](int a, int b, double length) {
+    const Eigen::Vector3d asked =
+        length * (Point(reference_, b) - Point(reference_, a)).normalized();
+    error = std::max(error, (Point(mesh, b) - Point(mesh, a) - asked).norm());
+    scale += std::abs(length);
+  };
+  for (int j = 0; j < shape_.cols; ++j)
+    guide(shape_.Vertex(0, j), shape_.Vertex(0, j + 1), lengths_.row[j]);
+  for (int i = 0; i < shape_.rows; ++i)
+    guide(shape_.Vertex(i, 0), shape_.Vertex(i + 1, 0), lengths_.column[i]);
+  scale /= shape_.rows + shape_.cols;
+  return scale > 0.0 ? error / scale : error;
+}
+
+NamedValues Combescure::MeasureAt(const Eigen::VectorXd& x) const {
+  const PolyMesh mesh = MeshAt(x);
+  const ParallelismMeasures p = MeasureParallelism(reference_, mesh);
+  NamedValues m = MeasureCircularMesh(mesh);
+  m.push_back({"max_edge_parallelism_angle", p.max_angle});
+  m.push_back({"worst_parallel_edge", static_cast<double>(p.worst_edge)});
+  m.push_back({"min_edge_length_ratio", p.min_length_ratio});
+  m.push_back({"max_guide_error", GuideErrorAt(mesh)});
+  return m;
+}
+
+bool Combescure::WithinTolerance(const NamedValues& m, double tolerance) {
+  return ValueOf(m, "max_edge_parallelism_angle") <= tolerance &&
+         ValueOf(m, "max_guide_error") <= tolerance;
+}
+
+RunReport Combescure::RunPropagation() {
+  const auto start = std::chrono::steady_clock::now();
+  const NamedValues initial = Measure();
+  const PolyMesh mesh =
+      CombescureByPropagation(reference_, shape_, lengths_, options_.reference_tolerance);
+  for (auto v : mesh.vertices())
+    problem_.x().segment<3>(VertexOffset(v.idx())) = Point(mesh, v.idx());
+  const NamedValues final = Measure();
+  return ConstructionReport(
+      "propagation", initial, final, WithinTolerance(final, options_.propagation_tolerance),
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
 }  // namespace gproj

@@ -86,13 +86,52 @@ TEST_F(SuperCanalCommandTest, CanalBuildsACircularMeshAndSmoothingLowersTheEnerg
   EXPECT_LT(report["final"]["max_concyclicity"].get<double>(), 1e-10);
   EXPECT_LT(report["strip"]["max_concyclicity"].get<double>(), 1e-10);
   EXPECT_TRUE(Exists("strip.obj"));
-  const double before = report["energy"]["final"].get<double>();
+  const double before = report["final"]["smoothness_energy"].get<double>();
   r = Gproj(base + " --smooth");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   report = Json("r.json");
-  EXPECT_LT(report["energy"]["final"].get<double>(), 0.5 * before);
+  EXPECT_LT(report["final"]["smoothness_energy"].get<double>(), 0.5 * before);
   EXPECT_GT(report["history"].size(), 1u);
   EXPECT_LT(report["final"]["max_concyclicity"].get<double>(), 1e-10);
+}
+
+TEST_F(SuperCanalCommandTest, CanalSmoothingCutShortExitsThreeWithTheResultWritten) {
+  const CommandRun r =
+      Gproj("canal " + Data("canal_curve.txt") +
+            " --first-point -0.5,0.5,2 --length 2 --smooth --max-iterations 2 -o " +
+            Path("out.obj") + " --report " + Path("r.json"));
+  EXPECT_EQ(r.exit_code, 3) << r.err << r.out;
+  EXPECT_TRUE(Exists("out.obj"));
+  const nlohmann::json report = Json("r.json");
+  EXPECT_FALSE(report["converged"].get<bool>());
+  EXPECT_FALSE(report["failed"].get<bool>());
+  EXPECT_EQ(report["solver"], "ceres-bfgs");
+  EXPECT_EQ(report["iterations"], 2);
+  EXPECT_EQ(report["history"].size(), 3u);
+  EXPECT_LT(report["final"]["smoothness_energy"].get<double>(),
+            report["initial"]["smoothness_energy"].get<double>());
+  EXPECT_NE(r.err.find("result was written"), std::string::npos) << r.err;
+}
+
+TEST_F(SuperCanalCommandTest, ReportsFollowTheSharedSchema) {
+  const std::string in = Data("revolution_13x17.obj");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"invert " + in + " --centre 4,0.5,0.3 --ratio 9", "none"},
+      {"combescure " + in + " --column-scale 0.5", "propagation"},
+      {"combescure " + in + " --column-scale 0.5 --method gp", "gp"},
+      {"canal " + Data("canal_curve.txt") + " --first-point -0.5,0.5,2 --length 2", "none"}};
+  for (const auto& [command, solver] : cases) {
+    const CommandRun r = Gproj(command + " -o " + Path("out.obj") + " --report " + Path("r.json"));
+    ASSERT_EQ(r.exit_code, 0) << command << "\n" << r.err;
+    const nlohmann::json report = Json("r.json");
+    EXPECT_EQ(report["solver"], solver) << command;
+    EXPECT_EQ(report["output"], Path("out.obj")) << command;
+    for (const char* key : {"command", "converged", "failed", "termination", "iterations",
+                            "seconds", "variables", "initial", "final", "history"})
+      EXPECT_TRUE(report.contains(key)) << command << ": " << key;
+    EXPECT_LT(report["final"]["max_concyclicity"].get<double>(), 1e-10) << command;
+    EXPECT_TRUE(report["initial"].contains("max_planarity")) << command;
+  }
 }
 
 TEST_F(SuperCanalCommandTest, CanalRefusesBadCurveFilesAndLengths) {

@@ -94,7 +94,7 @@ TEST(CanalSurfaceTest, SmoothingLowersTheEnergyWithBfgs) {
   CanalSmoothingOptions options;
   int calls = 0;
   const CanalSmoothingSummary s =
-      SmoothCanalStrip(in, start, options, [&](int, double) { ++calls; });
+      SmoothCanalStrip(in, start, options, [&](const RunRecord&) { return ++calls, true; });
   EXPECT_GT(calls, 0);
   EXPECT_GT(s.iterations, 0);
   EXPECT_LT(s.final_energy, 0.5 * s.initial_energy) << s.message;
@@ -102,6 +102,46 @@ TEST(CanalSurfaceTest, SmoothingLowersTheEnergyWithBfgs) {
   CircularStripInput out = in;
   out.lengths = s.lengths;
   EXPECT_LT(MeasureCircularity(StripMesh(BuildCircularStrip(out))).max_concyclicity, 1e-10);
+}
+
+TEST(CanalSurfaceTest, RunReportsTheSmoothingWithNamedMeasures) {
+  CanalSurfaceOptions options;
+  options.smooth = true;
+  options.segments = 6;
+  CanalSurface canal(Input(), AnglesFromNormal(Eigen::Vector3d(0.2, -0.5, 1.0)), options);
+  int calls = 0;
+  const RunReport report = canal.Run([&](const RunRecord&) { return ++calls, true; });
+  EXPECT_EQ(report.solver, "ceres-bfgs");
+  EXPECT_TRUE(report.converged) << report.termination;
+  EXPECT_FALSE(report.failed);
+  EXPECT_EQ(calls, static_cast<int>(report.history.size()));
+  EXPECT_EQ(report.history.size(), static_cast<size_t>(report.iterations) + 1);
+  // F per iterate, from the start to the end.
+  EXPECT_DOUBLE_EQ(ValueOf(report.history.front().measures, "smoothness_energy"),
+                   ValueOf(report.initial, "smoothness_energy"));
+  EXPECT_DOUBLE_EQ(ValueOf(report.history.back().measures, "smoothness_energy"),
+                   ValueOf(report.final, "smoothness_energy"));
+  EXPECT_LT(ValueOf(report.final, "smoothness_energy"),
+            0.5 * ValueOf(report.initial, "smoothness_energy"));
+  EXPECT_LT(ValueOf(report.final, "max_concyclicity"), 1e-10);
+  EXPECT_EQ(canal.Mesh().n_faces(), 8u * 6u);
+}
+
+TEST(CanalSurfaceTest, SmoothingCutShortIsNotConvergedAndWithoutSmoothingNothingRuns) {
+  CanalSurfaceOptions options;
+  options.smooth = true;
+  options.smoothing.max_iterations = 1;
+  const FrameAngles angles = AnglesFromNormal(Eigen::Vector3d(0.2, -0.5, 1.0));
+  const RunReport cut = CanalSurface(Input(), angles, options).Run();
+  EXPECT_FALSE(cut.converged) << cut.termination;
+  EXPECT_EQ(cut.iterations, 1);
+  options.smooth = false;
+  CanalSurface plain(Input(), angles, options);
+  const RunReport none = plain.Run();
+  EXPECT_EQ(none.solver, "none");
+  EXPECT_TRUE(none.converged);
+  EXPECT_EQ(none.iterations, 0);
+  EXPECT_DOUBLE_EQ(ValueOf(none.final, "smoothness_energy"), plain.Net().energy);
 }
 
 TEST(CanalSurfaceTest, BadInputIsRefused) {

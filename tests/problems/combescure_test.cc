@@ -67,12 +67,63 @@ TEST(CombescureTest, GuidedProjectionAgreesWithPropagation) {
   const GridShape shape = DetectGridShape(mesh);
   const CombescureLengths lengths = Varied(mesh, shape);
   const PolyMesh direct = CombescureByPropagation(mesh, shape, lengths);
-  Problem problem = MakeCombescureProblem(mesh, shape, lengths);
-  const SolverSummary summary = Solve(CombescureSolverOptions(), &problem);
-  ASSERT_TRUE(summary.converged()) << summary.FullReport();
-  const PolyMesh gp = CombescureResult(mesh, problem);
+  Combescure combescure(mesh, shape, lengths, CombescureOptions());
+  const RunReport report = combescure.Run();
+  ASSERT_TRUE(report.converged) << report.termination;
+  EXPECT_FALSE(report.failed);
+  const PolyMesh gp = combescure.Result();
   EXPECT_LT(MaxVertexDistance(gp, direct), 1e-9);
   EXPECT_LT(MeasureParallelism(mesh, gp).max_angle, 1e-10);
+  EXPECT_LT(ValueOf(report.final, "max_guide_error"), 1e-11);
+  // The start (the reference moved to the origin) is parallel but has the wrong lengths.
+  EXPECT_GT(ValueOf(report.initial, "max_guide_error"), 1e-3);
+  EXPECT_EQ(report.history.size(), static_cast<size_t>(report.iterations) + 1);
+}
+
+TEST(CombescureTest, PropagationReportsTheSameMeasuresWithoutIterations) {
+  const PolyMesh mesh = Revolution(9, 8);
+  const GridShape shape = DetectGridShape(mesh);
+  const CombescureLengths lengths = Varied(mesh, shape);
+  Combescure combescure(mesh, shape, lengths, CombescureOptions());
+  const RunReport report = combescure.RunPropagation();
+  EXPECT_EQ(report.solver, "propagation");
+  EXPECT_EQ(report.iterations, 0);
+  EXPECT_TRUE(report.converged);
+  EXPECT_LT(MaxVertexDistance(combescure.Result(), CombescureByPropagation(mesh, shape, lengths)),
+            1e-15);
+  EXPECT_LT(ValueOf(report.final, "max_edge_parallelism_angle"), 1e-10);
+}
+
+TEST(CombescureTest, RunStoppedShortIsNotConvergedAndNonFiniteStartFails) {
+  const PolyMesh mesh = Revolution(7, 6);
+  const GridShape shape = DetectGridShape(mesh);
+  CombescureOptions options;
+  options.solver.max_iterations = 1;  // one step leaves more than the tolerance
+  options.solver.epsilon = 1e-3;
+  Combescure short_run(mesh, shape, Varied(mesh, shape), options);
+  const RunReport stopped = short_run.Run();
+  EXPECT_FALSE(stopped.converged);
+  EXPECT_FALSE(stopped.failed);
+  EXPECT_GT(ValueOf(stopped.final, "max_guide_error"), options.tolerance);
+
+  Combescure broken(mesh, shape, Varied(mesh, shape), CombescureOptions());
+  broken.problem().x()[4] = NAN;
+  const RunReport failed = broken.Run();
+  EXPECT_TRUE(failed.failed);
+  EXPECT_FALSE(failed.converged);
+}
+
+TEST(CombescureTest, CeresCrossCheckReachesTheGuidedProjectionResult) {
+  const PolyMesh mesh = Revolution(6, 7);
+  const GridShape shape = DetectGridShape(mesh);
+  const CombescureLengths lengths = Varied(mesh, shape);
+  Combescure gp(mesh, shape, lengths, CombescureOptions());
+  ASSERT_TRUE(gp.Run().converged);
+  Combescure ceres(mesh, shape, lengths, CombescureOptions());
+  const RunReport report = ceres.RunCeres(50);
+  EXPECT_EQ(report.solver, "ceres");
+  EXPECT_TRUE(report.converged) << report.termination;
+  EXPECT_LT(MaxVertexDistance(ceres.Result(), gp.Result()), 1e-9);
 }
 
 TEST(CombescureTest, NonPlanarReferenceIsRefusedNamingTheFace) {

@@ -1,0 +1,150 @@
+// `gproj canal`: a canal surface meshed by circular quads from a circular strip on a curve
+// (000 §3.2–3.3, §4.1), optionally smoothed (000 eq. 5).
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "apps/super_canal_commands.h"
+#include "geometry/text_input.h"
+#include "problems/canal_surface.h"
+#include "problems/circular_mesh.h"
+
+namespace gproj {
+namespace {
+
+struct CanalArgs {
+  std::string curve, strip;
+  MeshOutputs outputs;
+  std::vector<double> first_point, lengths, normal;
+  double length = 0.0, psi = 0.0;
+  CanalSurfaceOptions options;
+};
+
+// The strip's input from the options (curve file, first point, lengths).
+CircularStripInput StripInputFromArgs(const CanalArgs& args) {
+  CircularStripInput input;
+  input.curve = ReadPoints(args.curve);
+  input.first_point = Vector3(args.first_point, "--first-point");
+  const size_t n = input.curve.size();
+  if (!args.lengths.empty()) {
+    if (args.length > 0.0) throw InputError("give either --lengths or --length, not both");
+    input.lengths = args.lengths;
+  } else if (args.length > 0.0) {
+    input.lengths.assign(n, args.length);
+  } else {
+    throw InputError(
+        "give the lengths across the strip (--lengths, one per curve point, or "
+        "--length for all)");
+  }
+  if (input.lengths.size() != n)
+    throw InputError("--lengths needs one value per curve point (" + std::to_string(n) + "), got " +
+                     std::to_string(input.lengths.size()));
+  return input;
+}
+
+// The canal surface of the options; its frame's normal is --normal or the default.
+std::unique_ptr<CanalSurface> CanalFromArgs(const CanalArgs& args) {
+  args.outputs.Check();
+  CheckMeshOutputPath("--strip", args.strip);
+  const CircularStripInput input = StripInputFromArgs(args);
+  FrameAngles angles =
+      AnglesFromNormal(args.normal.empty() ? DefaultCanalNormal(BuildCircularStrip(input))
+                                           : Vector3(args.normal, "--normal"));
+  angles.psi = args.psi;
+  return std::make_unique<CanalSurface>(input, angles, args.options);
+}
+
+int RunCanal(const CanalArgs& args) {
+  std::unique_ptr<CanalSurface> canal;
+  RunReport report;
+  PolyMesh mesh;
+  try {
+    canal = CanalFromArgs(args);
+    const CircularStripInput& input = canal->input();
+    std::printf("gproj canal: %s: %zu curve points, %zu strip quads; first point (%g, %g, %g)\n",
+                args.curve.c_str(), input.curve.size(), input.curve.size() - 1,
+                input.first_point.x(), input.first_point.y(), input.first_point.z());
+    const IterationLog log({"smoothness_energy"});  // F = sum of 1/R^2 over the strip's arcs
+    if (args.options.smooth) std::printf("shape smoothing (000 eq. 5), Ceres line-search BFGS\n");
+    if (args.options.smooth) log.PrintHeader();
+    report = canal->Run([&log](const RunRecord& r) { return log.Print(r), true; });
+    mesh = canal->Mesh();
+    if (!args.strip.empty()) WriteMeshAtomically(StripMesh(canal->strip()), args.strip);
+  } catch (const InputError& e) {
+    std::cerr << "gproj canal: " << e.what() << "\n";
+    return kExitInputError;
+  }
+  const NamedValues strip = MeasureCircularMesh(StripMesh(canal->strip()));
+  std::printf("F: %.6g -> %.6g\n", ValueOf(report.initial, "smoothness_energy"),
+              ValueOf(report.final, "smoothness_energy"));
+  PrintMeasures("strip", strip);
+  PrintMeasures("canal mesh", report.final);
+  const FrameAngles& a = canal->angles();
+  const Eigen::Vector3d n = NormalOf(a);
+  nlohmann::json extra = {{"curve", args.curve}, {"lengths", canal->input().lengths}};
+  extra["frame"] = {{"lambda", a.lambda}, {"theta", a.theta}, {"psi", a.psi}};
+  extra["frame"]["normal"] = {n.x(), n.y(), n.z()};
+  for (const NamedValue& v : strip) extra["strip"][v.name] = v.value;
+  extra["mesh"] = {{"rows", canal->strip().p.size() - 1}, {"segments", args.options.segments}};
+  char title[160];
+  std::snprintf(title, sizeof(title), "Canal surface, %zu circular quads, max concyclicity %.1e",
+                mesh.n_faces(), ValueOf(report.final, "max_concyclicity"));
+  return WriteAndConclude("canal", report, mesh, title, args.outputs, extra, "smoothness_energy",
+                          args.options.smoothing.function_tolerance, args.strip);
+}
+
+}  // namespace
+
+void RegisterCanalCommand(CLI::App* app, int* exit_code) {
+  auto args = std::make_shared<CanalArgs>();
+  CLI::App* cmd = app->add_subcommand(
+      "canal",
+      "Canal surface from a circular strip (000 §3.2-3.3, §4.1): points P_k on a curve, a first "
+      "point fixing the first circle and the lengths |P_k Q_k| give a strip of circular quads "
+      "by propagation; a frame at P_0 makes it a cyclidic net whose crossing arcs are the "
+      "canal surface's circles; the surface is meshed by circular quads between them. "
+      "--smooth minimises 000 eq. 5 (Ceres line-search BFGS). Exit codes as for planarize.");
+  cmd->add_option("curve", args->curve,
+                  "Curve points P_0..P_n: one 'x y z' per line ('#' comments)")
+      ->required();
+  cmd->add_option("-o,--output", args->outputs.mesh, "Canal mesh to write (circular quads)")
+      ->required();
+  cmd->add_option("--first-point", args->first_point,
+                  "x,y,z of the point that fixes the first circle (with P_0 and P_1)")
+      ->delimiter(',')
+      ->required();
+  cmd->add_option("--lengths", args->lengths, "|P_k Q_k| for every curve point (comma separated)")
+      ->delimiter(',');
+  cmd->add_option("--length", args->length, "The same |P_k Q_k| for every curve point");
+  cmd->add_option(
+         "--normal", args->normal,
+         "Normal of the cyclidic net at P_0 (default: in the first quad's plane, across the "
+         "curve)")
+      ->delimiter(',');
+  cmd->add_option("--psi", args->psi,
+                  "Rotation (radians) of the frame's first tangent about the normal")
+      ->capture_default_str();
+  cmd->add_option("--segments", args->options.segments, "Quads across the strip in the canal mesh")
+      ->capture_default_str();
+  cmd->add_flag("--smooth", args->options.smooth, "Minimise the smoothness energy of 000 eq. 5");
+  cmd->add_option("--length-weight", args->options.smoothing.length_weight,
+                  "Weight keeping the lengths near the input during --smooth")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_flag("!--fixed-lengths", args->options.smoothing.optimize_lengths,
+                "Keep the lengths; smooth over the frame only");
+  cmd->add_option("--max-iterations", args->options.smoothing.max_iterations,
+                  "BFGS iterations at most")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  cmd->add_option("--strip", args->strip, "Also write the circular strip (2 x (n+1) vertices)");
+  cmd->add_option("--report", args->outputs.report, "Write a JSON report");
+  cmd->add_option("--picture", args->outputs.picture,
+                  "Write a shaded SVG picture of the canal mesh");
+  cmd->callback([args, exit_code]() { *exit_code = RunCanal(*args); });
+}
+
+}  // namespace gproj

@@ -1,0 +1,43 @@
+#pragma once
+// What `gproj combescure`, `gproj invert` and `gproj canal` (circular meshes by construction,
+// 000) share: their registrations (RegisterSuperCanalCommands calls all three), vector options,
+// the measures line and the writing of a mesh with its picture and report.
+
+#include <CLI/CLI.hpp>
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "apps/command_support.h"
+#include "geometry/mesh_io.h"
+
+namespace gproj {
+
+void RegisterCombescureCommand(CLI::App* app, int* exit_code);
+void RegisterInvertCommand(CLI::App* app, int* exit_code);
+void RegisterCanalCommand(CLI::App* app, int* exit_code);
+
+// x, y, z from a comma-separated option; throws InputError naming `option` unless the values
+// are three finite numbers.
+Eigen::Vector3d Vector3(const std::vector<double>& values, const std::string& option);
+
+// A mesh-producing command's outputs: -o/--output, --report and --picture.
+struct MeshOutputs {
+  std::string mesh, report, picture;
+  // Throws InputError for a path that cannot be written, before any work.
+  void Check() const;
+};
+
+// "<label>: max planarity …, max concyclicity …" from MeasureCircularMesh's values.
+void PrintMeasures(const char* label, const NamedValues& measures);
+
+// Unless the run failed, writes the mesh and the picture (titled `title`); then the report
+// (ReportJson with `extra` and "output"), all atomically. Returns ConcludeRun's exit code,
+// which names `measure` and `tolerance` for a missed tolerance and lists `outputs` and `also`
+// as written; kExitInputError when a file cannot be written.
+int WriteAndConclude(const std::string& command, const RunReport& report, const PolyMesh& mesh,
+                     const std::string& title, const MeshOutputs& outputs, nlohmann::json extra,
+                     const std::string& measure, double tolerance, const std::string& also = "");
+
+}  // namespace gproj

@@ -1,0 +1,30 @@
+#include "problems/circular_mesh.h"
+
+#include "geometry/circle.h"
+#include "problems/pq_planarization.h"
+
+namespace gproj {
+
+NamedValues MeasureCircularMesh(const PolyMesh& mesh) {
+  const PlanarityMeasures p = MeasurePlanarity(mesh, mesh);
+  const CircularityMeasures c = MeasureCircularity(mesh);
+  return {{"max_planarity", p.max_planarity},
+          {"mean_planarity", p.mean_planarity},
+          {"max_concyclicity", c.max_concyclicity},
+          {"mean_concyclicity", c.mean_concyclicity},
+          {"worst_concyclic_face", static_cast<double>(c.worst_face)}};
+}
+
+RunReport ConstructionReport(const std::string& solver, const NamedValues& initial,
+                             const NamedValues& final, bool converged, double seconds) {
+  RunReport report;
+  report.solver = solver;
+  report.converged = converged;
+  report.termination = "constructed directly (" + solver + ")";
+  report.seconds = seconds;
+  report.initial = initial;
+  report.final = final;
+  return report;
+}
+
+}  // namespace gproj

@@ -1,0 +1,23 @@
+#pragma once
+// What the super-canal constructions (Combescure transformations, inversions, canal surfaces;
+// 000) share: the measures of a circular mesh, and the report of a construction that takes no
+// iterations.
+
+#include <string>
+
+#include "geometry/mesh_io.h"
+#include "problems/guided_problem.h"
+
+namespace gproj {
+
+// Planarity and concyclicity of a quad mesh, per mean edge length, as named values (the
+// report's keys): max_planarity, mean_planarity (diagonal distance), max_concyclicity,
+// mean_concyclicity (distance to the fitted circle), worst_concyclic_face.
+NamedValues MeasureCircularMesh(const PolyMesh& mesh);
+
+// The report of a construction without iterations (a propagation, an inversion): `solver`
+// names it, iterations 0, an empty history, `initial` and `final` its measures.
+RunReport ConstructionReport(const std::string& solver, const NamedValues& initial,
+                             const NamedValues& final, bool converged, double seconds);
+
+}  // namespace gproj
