@@ -92,8 +92,8 @@ int RunCanal(const CanalArgs& args) {
   char title[160];
   std::snprintf(title, sizeof(title), "Canal surface, %zu circular quads, max concyclicity %.1e",
                 mesh.n_faces(), ValueOf(report.final, "max_concyclicity"));
-  return WriteAndConclude("canal", report, mesh, title, args.outputs, extra, "smoothness_energy",
-                          args.options.smoothing.function_tolerance, args.strip);
+  // The smoothing's tolerance is Ceres' relative function decrease, not a bound on a measure.
+  return WriteAndConclude("canal", report, mesh, title, args.outputs, extra, "", 0.0, args.strip);
 }
 
 }  // namespace

@@ -111,7 +111,10 @@ int ConcludeRun(const std::string& command, const RunReport& report, const std::
   for (const std::string& path : written)
     if (!path.empty()) files += (files.empty() ? "" : ", ") + path;
   std::printf("wrote %s\n", files.c_str());
-  if (code == kExitNotConverged)
+  if (code == kExitNotConverged && measure.empty())
+    std::fprintf(stderr, "gproj %s: not converged (%s); the result was written, exit code %d\n",
+                 command.c_str(), report.termination.c_str(), kExitNotConverged);
+  else if (code == kExitNotConverged)
     std::fprintf(stderr,
                  "gproj %s: tolerance %.1e not reached (%s %.3e); the result was written, exit "
                  "code %d\n",

@@ -50,7 +50,8 @@ class IterationLog {
 int ExitCodeOf(const RunReport& report);
 
 // Prints how the run ended and what was written, and the error line for a failure or a missed
-// tolerance (naming `measure` and `tolerance`); returns ExitCodeOf(report).
+// tolerance (naming `measure` and `tolerance`; with no measure, the termination, for runs
+// whose tolerance is the solver's own); returns ExitCodeOf(report).
 int ConcludeRun(const std::string& command, const RunReport& report, const std::string& measure,
                 double tolerance, const std::vector<std::string>& written);
 

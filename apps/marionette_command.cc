@@ -19,8 +19,8 @@ struct MarionetteArgs {
 // Writes the mesh (unless the run failed) and the report; false (error printed) when it cannot.
 bool WriteOutputs(const MarionetteArgs& args, const MarionetteRun& run, const RunReport& report) {
   nlohmann::json extra = run.Facts();
-  extra.update({{"output", report.failed ? "" : args.output},
-                {"tolerance", args.options.lift.tolerance}});
+  extra.update(
+      {{"output", report.failed ? "" : args.output}, {"tolerance", args.options.lift.tolerance}});
   try {
     if (!report.failed) WriteMeshAtomically(run.Result(), args.output);
     if (!args.report.empty())
