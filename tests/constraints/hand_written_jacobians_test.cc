@@ -1,0 +1,203 @@
+// Hand-written Jacobians against automatic differentiation. Families that keep a hand-written
+// Jacobian (for speed, or because they predate terms) are checked here against the residual
+// written once more as a function templated on the scalar type, as a term would be, and
+// differentiated by forward-mode automatic differentiation (ceres::Jet): values and every
+// derivative must agree to round-off, and a derivative the family declares structurally zero
+// (RowTouches) must be zero.
+#include <ceres/jet.h>
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <array>
+#include <cmath>
+#include <random>
+
+#include "constraints/circular_quad.h"
+#include "constraints/closeness.h"
+#include "constraints/control_net.h"
+#include "constraints/curvature_auxiliaries.h"
+#include "constraints/edge_parallelism.h"
+#include "constraints/frame_point_planarity.h"
+#include "constraints/isoline_alignment.h"
+#include "constraints/line_quad_planarity.h"
+#include "constraints/marionette_planarity.h"
+#include "constraints/normal_orthogonality.h"
+#include "constraints/quad_diagonal_planarity.h"
+
+namespace gproj {
+namespace {
+
+template <int N>
+using Local = std::array<double, N>;
+
+// A random local vector (fixed seed per call site through `seed`).
+template <int N>
+Local<N> RandomLocal(unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Local<N> x;
+  for (double& v : x) v = u(rng);
+  return x;
+}
+
+// Compares element e of `family` at x with the automatic derivatives of `residual` (a functor
+// templated on the scalar: residual(const T* x_local, T* rows)).
+template <int N, int Rows, typename Residual>
+void ExpectMatchesAutomatic(const ConstraintFamily& family, int e, const Local<N>& x,
+                            const Residual& residual) {
+  ASSERT_EQ(family.rows_per_element(), Rows) << family.name();
+  using Jet = ceres::Jet<double, N>;
+  std::array<Jet, N> xj;
+  for (int i = 0; i < N; ++i) xj[i] = Jet(x[i], i);
+  std::array<Jet, Rows> rows;
+  residual(xj.data(), rows.data());
+  std::array<double, Rows> phi;
+  std::array<double, Rows * N> jac;
+  family.EvaluateElement(e, x.data(), phi.data(), jac.data());
+  for (int r = 0; r < Rows; ++r) {
+    EXPECT_NEAR(phi[r], rows[r].a, 1e-13 * (1.0 + std::abs(rows[r].a)))
+        << family.name() << " row " << r;
+    for (int l = 0; l < N; ++l) {
+      const double automatic = rows[r].v[l];
+      EXPECT_NEAR(jac[r * N + l], automatic, 1e-12 * (1.0 + std::abs(automatic)))
+          << family.name() << " row " << r << " local " << l;
+      if (!family.RowTouches(e, r, l))
+        EXPECT_EQ(automatic, 0.0) << family.name() << " row " << r << " declared not to touch "
+                                  << l;
+    }
+  }
+}
+
+template <typename T>
+using Vec3 = Eigen::Matrix<T, 3, 1>;
+
+template <typename T>
+Vec3<T> At(const T* x, int offset) {
+  return Vec3<T>(x[offset], x[offset + 1], x[offset + 2]);
+}
+
+TEST(HandWrittenJacobianTest, ClosenessIsTheOffsetFromItsTarget) {
+  const double target[3] = {0.3, -0.2, 0.7};
+  Closeness family;
+  family.AddTarget(0, target);
+  ExpectMatchesAutomatic<3, 3>(family, 0, RandomLocal<3>(1), [&](const auto* v, auto* r) {
+    for (int c = 0; c < 3; ++c) r[c] = v[c] - target[c];
+  });
+}
+
+TEST(HandWrittenJacobianTest, NormalOrthogonalityAndUnitNormal) {
+  EdgeNormalOrthogonality orthogonality;
+  orthogonality.AddElement({0, 1, 2});
+  ExpectMatchesAutomatic<9, 1>(orthogonality, 0, RandomLocal<9>(2), [](const auto* x, auto* r) {
+    r[0] = At(x, 0).dot(At(x, 6) - At(x, 3));
+  });
+  UnitNormal unit;
+  unit.AddElement({0});
+  ExpectMatchesAutomatic<3, 1>(unit, 0, RandomLocal<3>(3),
+                               [](const auto* n, auto* r) { r[0] = At(n, 0).squaredNorm() - 1.0; });
+}
+
+TEST(HandWrittenJacobianTest, QuadDiagonalPlanarityWithTheExactNormal) {
+  QuadDiagonalPlanarity family;
+  family.AddElement({0, 1, 2, 3});
+  ExpectMatchesAutomatic<12, 1>(family, 0, RandomLocal<12>(4), [](const auto* x, auto* r) {
+    const auto b0 = At(x, 0), b1 = At(x, 3), b2 = At(x, 6), b3 = At(x, 9);
+    const auto n = (b2 - b0).cross(b3 - b1).normalized();
+    r[0] = n.dot(0.5 * (b0 + b2 - b1 - b3));
+  });
+}
+
+TEST(HandWrittenJacobianTest, LineQuadPlanarityOnItsLines) {
+  const std::array<Eigen::Vector3d, 4> o = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0.1),
+                                            Eigen::Vector3d(1, 1, 0), Eigen::Vector3d(0, 1, -0.2)};
+  const std::array<Eigen::Vector3d, 4> d = {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(0.1, 0, 1),
+                                            Eigen::Vector3d(0, 0.3, 1), Eigen::Vector3d(0, 0, 1)};
+  LineQuadPlanarity family;
+  family.AddQuad(0, {1, 2, 3, 4}, o, d);
+  ExpectMatchesAutomatic<7, 5>(family, 0, RandomLocal<7>(5), [&](const auto* x, auto* r) {
+    using T = std::decay_t<decltype(x[0])>;
+    const Vec3<T> n = At(x, 0);
+    auto p = [&](int j) -> Vec3<T> { return o[j].cast<T>() + x[3 + j] * d[j].cast<T>(); };
+    for (int j = 0; j < 4; ++j) r[j] = n.dot(p((j + 1) % 4) - p(j));
+    r[4] = n.squaredNorm() - 1.0;
+  });
+}
+
+TEST(HandWrittenJacobianTest, MarionettePlanarityOverThePlan) {
+  const double alpha = 0.7, beta = 1.3;
+  MarionettePlanarity family;
+  family.AddQuad(0, 1, 2, 3, alpha, beta);
+  ExpectMatchesAutomatic<4, 1>(family, 0, RandomLocal<4>(6), [&](const auto* z, auto* r) {
+    r[0] = z[2] - z[0] - alpha * (z[1] - z[0]) - beta * (z[3] - z[0]);
+  });
+}
+
+TEST(HandWrittenJacobianTest, EdgeParallelismAndEdgeVector) {
+  const Eigen::Vector3d direction(0.3, -1.2, 0.5), vector(0.2, 0.1, -0.4);
+  EdgeParallelism parallel;
+  parallel.AddEdge(0, 1, direction);
+  ExpectMatchesAutomatic<6, 3>(parallel, 0, RandomLocal<6>(7), [&](const auto* x, auto* r) {
+    using T = std::decay_t<decltype(x[0])>;
+    const Vec3<T> cross = direction.normalized().cast<T>().cross(At(x, 3) - At(x, 0));
+    for (int c = 0; c < 3; ++c) r[c] = cross[c];
+  });
+  EdgeVector edge;
+  edge.AddEdge(0, 1, vector);
+  ExpectMatchesAutomatic<6, 3>(edge, 0, RandomLocal<6>(8), [&](const auto* x, auto* r) {
+    for (int c = 0; c < 3; ++c) r[c] = x[3 + c] - x[c] - vector[c];
+  });
+}
+
+TEST(HandWrittenJacobianTest, FramePointPlanarityWithFrozenShapeParameters) {
+  const double wl = 1.7, wr = 0.6;
+  FramePointPlanarity family;
+  family.AddEdge(0, 1, 2, 3, 4, 5, 6, wl, wr);
+  ExpectMatchesAutomatic<21, 4>(family, 0, RandomLocal<21>(9), [&](const auto* x, auto* r) {
+    using T = std::decay_t<decltype(x[0])>;
+    const Vec3<T> n = At(x, 0);
+    auto b = [&](int i) { return At(x, 3 + 3 * i); };
+    const Vec3<T> f1 = (b(1) + wl * b(2)) / (1.0 + wl), f4 = (b(5) + wr * b(4)) / (1.0 + wr);
+    r[0] = n.dot(f1 - b(0));
+    r[1] = n.dot(b(3) - b(0));
+    r[2] = n.dot(f4 - b(0));
+    r[3] = n.squaredNorm() - 1.0;
+  });
+}
+
+TEST(HandWrittenJacobianTest, CircularQuadPlanarConcyclicAndCentred) {
+  CircularQuad family;
+  family.AddQuad(0, 1, 2, 3, 4);
+  ExpectMatchesAutomatic<19, 10>(family, 0, RandomLocal<19>(10), [](const auto* x, auto* r) {
+    const auto n = At(x, 0), m = At(x, 3);
+    const auto rho = x[6];
+    auto v = [&](int j) { return At(x, 7 + 3 * j); };
+    for (int j = 0; j < 4; ++j) r[j] = n.dot(v((j + 1) % 4) - v(j));
+    r[4] = n.squaredNorm() - 1.0;
+    for (int j = 0; j < 4; ++j) r[5 + j] = (v(j) - m).squaredNorm() - rho;
+    r[9] = n.dot(m - v(0));
+  });
+}
+
+TEST(HandWrittenJacobianTest, EdgeLengthPreservationRelativeToTheReference) {
+  const double length = 0.8;
+  EdgeLengthPreservation family(1.0);
+  family.AddEdge(0, 1, length);
+  ExpectMatchesAutomatic<6, 1>(family, 0, RandomLocal<6>(11), [&](const auto* x, auto* r) {
+    r[0] = ((At(x, 0) - At(x, 3)).squaredNorm() - length * length) / (2.0 * length);
+  });
+}
+
+TEST(HandWrittenJacobianTest, IsolineAlignmentByCentralDifferences) {
+  const double inv_du = 2.5, inv_dv = 1.5;
+  IsolineAlignment family(1.0, /*normalized=*/false);
+  family.AddSample(0, 1, 2, 3, inv_du, inv_dv);
+  ExpectMatchesAutomatic<48, 1>(family, 0, RandomLocal<48>(12), [&](const auto* x, auto* r) {
+    auto psi = [&](int item, int offset) { return x[kCurvatureAuxDim * item + offset]; };
+    const auto hu = inv_du * (psi(0, kH) - psi(1, kH)), ku = inv_du * (psi(0, kK) - psi(1, kK));
+    const auto hv = inv_dv * (psi(2, kH) - psi(3, kH)), kv = inv_dv * (psi(2, kK) - psi(3, kK));
+    r[0] = hu * kv - hv * ku;
+  });
+}
+
+}  // namespace
+}  // namespace gproj
