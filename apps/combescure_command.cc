@@ -43,14 +43,17 @@ int RunCombescure(const CombescureArgs& args) {
     combescure = std::make_unique<Combescure>(reference, shape, lengths, args.options);
     std::printf("gproj combescure: %s: %d x %d faces; %s\n", args.input.c_str(), shape.rows,
                 shape.cols,
-                args.method == "gp" ? "guided projection with edge-parallelism rows"
-                                    : "propagation (000 eq. 4)");
+                args.method == "gp"      ? "guided projection with edge-parallelism rows"
+                : args.method == "ceres" ? "Levenberg-Marquardt on the edge-parallelism rows"
+                                         : "propagation (000 eq. 4)");
   } catch (const InputError& e) {
     std::cerr << "gproj combescure: " << e.what() << "\n";
     return kExitInputError;
   }
   PrintMeasures("reference", combescure->Measure());
-  const RunReport report = args.method == "gp" ? combescure->Run() : combescure->RunPropagation();
+  const RunReport report = args.method == "gp"      ? combescure->Run()
+                           : args.method == "ceres" ? combescure->RunCeres(200)
+                                                    : combescure->RunPropagation();
   const double angle = ValueOf(report.final, "max_edge_parallelism_angle");
   if (!report.failed) {
     std::printf("solved in %.4f s; max edge-parallelism angle %.3e rad\n", report.seconds, angle);
@@ -69,7 +72,7 @@ int RunCombescure(const CombescureArgs& args) {
                                 {"row_lengths", lengths.row},
                                 {"column_lengths", lengths.column}};
   const double tolerance =
-      args.method == "gp" ? args.options.tolerance : args.options.propagation_tolerance;
+      args.method == "propagation" ? args.options.propagation_tolerance : args.options.tolerance;
   return WriteAndConclude("combescure", report, combescure->Result(), title, args.outputs, extra,
                           "max_edge_parallelism_angle", tolerance);
 }
@@ -100,8 +103,9 @@ void RegisterCombescureCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--origin", args->origin, "Position of vertex (0, 0) (default: unchanged)")
       ->delimiter(',');
   cmd->add_option("--method", args->method,
-                  "propagation (linear time) or gp (guided projection, edge-parallelism rows)")
-      ->check(CLI::IsMember({"propagation", "gp"}))
+                  "propagation (linear time), gp (guided projection, edge-parallelism rows) or "
+                  "ceres (Levenberg-Marquardt on the same rows: the cross-check)")
+      ->check(CLI::IsMember({"propagation", "gp", "ceres"}))
       ->capture_default_str();
   cmd->add_option("--tolerance", args->options.reference_tolerance,
                   "Largest reference planarity accepted (diagonal distance / mean edge)")

@@ -44,7 +44,7 @@ int RunMarionette(const MarionetteArgs& args) {
   }
   std::printf("%s", run->Description().c_str());
   const IterationLog log({"max_constraint", run->ToleranceMeasure()});
-  if (args.options.solver == "gp") log.PrintHeader();
+  if (args.options.solver != "direct") log.PrintHeader();
   const RunReport report = run->Run([&log](const RunRecord& r) { return log.Print(r), true; });
   if (!WriteOutputs(args, *run, report)) return kExitInputError;
   std::printf("final:");
@@ -104,8 +104,9 @@ void RegisterMarionetteCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--solver", args->options.solver,
                   "direct: propagation (linear time) / normal equations of the fit; gp: guided "
                   "projection (one iteration when vertical, several for other projections; the "
-                  "guides are first checked by propagation)")
-      ->check(CLI::IsMember({"direct", "gp"}))
+                  "guides are first checked by propagation); ceres: Levenberg-Marquardt on the "
+                  "same rows (the cross-check)")
+      ->check(CLI::IsMember({"direct", "gp", "ceres"}))
       ->capture_default_str();
   cmd->add_option("--max-iterations", args->options.lift.solver.max_iterations,
                   "gp with a non-vertical projection: iterations at most")

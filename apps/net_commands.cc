@@ -15,7 +15,8 @@ namespace gproj {
 namespace {
 
 struct NetArgs {
-  std::string input, output, reference, report, star_form = "normals", linear_solver = "cholmod";
+  std::string input, output, reference, report, star_form = "normals", linear_solver = "cholmod",
+                                                solver = "gp";
   std::string surface_mesh, picture;
   int samples = 8;
   bool allow_not_simply_connected = false;
@@ -34,6 +35,11 @@ void AddSharedOptions(CLI::App* cmd, NetArgs* args) {
                   "Vertex-star planarity: normals (auxiliary normal per inner vertex) or quads "
                   "(n-2 quads of each star)")
       ->check(CLI::IsMember({"normals", "quads"}))
+      ->capture_default_str();
+  cmd->add_option("--solver", args->solver,
+                  "gp: guided projection (default); ceres: Levenberg-Marquardt on the same rows "
+                  "(cross-check; closeness and fairness at fixed weights)")
+      ->check(CLI::IsMember({"gp", "ceres"}))
       ->capture_default_str();
   cmd->add_option("--tolerance", o.tolerance,
                   "A-net step stops when max star planarity (neighbour distance from the star "
@@ -98,7 +104,10 @@ int RunANet(NetArgs& args) {
   std::printf("gproj anet: %s: %zu vertices, %zu quads, %d variables\n", args.input.c_str(),
               mesh.n_vertices(), mesh.n_faces(), anet->problem().layout().num_variables());
   StarLog().PrintHeader();
-  const RunReport report = anet->Run([](const RunRecord& r) { return StarLog().Print(r), true; });
+  const auto print = [](const RunRecord& r) { return StarLog().Print(r), true; };
+  const RunReport report = args.solver == "gp"
+                               ? anet->Run(print)
+                               : anet->RunCeres(args.options.anet.solver.max_iterations, print);
   const nlohmann::json extra = {{"input", args.input},
                                 {"output", report.failed ? "" : args.output},
                                 {"vertices", mesh.n_vertices()},
@@ -157,6 +166,7 @@ int RunHNet(NetArgs& args) {
   std::unique_ptr<PolyMesh> reference;
   if (!Prepare("hnet", &args, &mesh, &reference)) return kExitInputError;
   args.options.allow_not_simply_connected = args.allow_not_simply_connected;
+  args.options.use_ceres = args.solver == "ceres";
   std::unique_ptr<HNet> hnet;
   try {
     hnet = std::make_unique<HNet>(mesh, reference.get(), args.options);

@@ -209,7 +209,8 @@ CeresOptions ANet::ceres_options(int max_iterations) const {
   CeresOptions options;
   options.max_iterations = max_iterations;
   options.fairness_weight = options_.solver.fairness_weight;
-  options.soft_scale = options_.ceres_soft_scale;
+  options.soft_scale =
+      options_.ceres_soft_scale > 0.0 ? options_.ceres_soft_scale : options_.tolerance / 100.0;
   options.num_threads = std::max(1, options_.solver.num_threads);
   return options;
 }

@@ -39,8 +39,10 @@ struct ANetOptions {
   // Stop when the max star planarity (neighbour distance from the star plane / mean edge) is
   // ≤ this.
   double tolerance = 1e-9;
-  // The Ceres cross-check's fixed factor on the soft (closeness, fairness) weights.
-  double ceres_soft_scale = 1.0;
+  // The Ceres cross-check's fixed factor on the soft (closeness, fairness) weights (0:
+  // tolerance / 100, as for planarisation: the planarity left at the fixed-weight optimum is
+  // roughly proportional to the soft weights).
+  double ceres_soft_scale = 0.0;
 
   bool IsValid(std::string* why) const;
 };

@@ -408,6 +408,30 @@ void FreezeWeights(const std::vector<double>& w, VertexUpdate* u) {
   }
 }
 
+struct VertexUpdateResult {
+  bool failed = false, converged = false;
+  int steps = 0;
+  std::string message;
+};
+
+// One vertex update: guided projection with `options`, or (use_ceres) Ceres' LM on the same
+// rows with the soft terms at the options' initial soft scale.
+VertexUpdateResult SolveVertexUpdate(const SolverOptions& options, bool use_ceres,
+                                     VertexUpdate* update) {
+  if (!use_ceres) {
+    const SolverSummary s = gproj::Solve(options, &update->problem);
+    return {s.termination == TerminationType::kFailure, s.converged(), s.num_steps(), s.message};
+  }
+  CeresOptions c;
+  c.max_iterations = options.max_iterations;
+  c.fairness_weight = options.fairness_weight;
+  c.soft_scale = options.initial_soft_scale;
+  c.num_threads = std::max(1, options.num_threads);
+  const CeresSummary s = SolveWithCeres(c, &update->problem);
+  return {s.termination == TerminationType::kFailure,
+          s.termination == TerminationType::kConvergence, s.num_steps(), s.message};
+}
+
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -421,7 +445,9 @@ bool HNet::RunANetStep(const PolyMesh& reference, const IterationCallback& on_it
   report.solver = "gp";
   if (MeasureStarPlanarity(mesh_, mesh_).max_star_planarity <= options_.anet.tolerance) return true;
   ANet anet(mesh_, &reference, options_.anet);
-  const RunReport step = anet.Run(on_iteration);
+  const RunReport step = options_.use_ceres
+                             ? anet.RunCeres(options_.anet.solver.max_iterations, on_iteration)
+                             : anet.Run(on_iteration);
   report.history = step.history;
   report.iterations = step.iterations;
   report.summary = step.summary;
@@ -473,15 +499,16 @@ void HNet::RunRounds(const PolyMesh& reference, const RoundCallback& on_round,
     const bool last = settled || round + 1 == options_.max_rounds;
     if (!last) {
       FreezeWeights(w_, update.get());
-      const SolverSummary s = gproj::Solve(solver_options, &update->problem);
-      if (s.termination == TerminationType::kFailure) {
+      const VertexUpdateResult s =
+          SolveVertexUpdate(solver_options, options_.use_ceres, update.get());
+      if (s.failed) {
         report.failed = true;
         report.termination = "vertex update failed: " + s.message;
         return;
       }
-      r.vertex_update_converged = s.converged();
-      r.solver_iterations = s.num_steps();
-      report.iterations += s.num_steps();
+      r.vertex_update_converged = s.converged;
+      r.solver_iterations = s.steps;
+      report.iterations += s.steps;
     }
     r.seconds = SecondsSince(round_start);
     summary->rounds.push_back(r);

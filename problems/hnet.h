@@ -93,6 +93,10 @@ struct HNetOptions {
   double residual_tolerance = 1e-10;
   // Allow meshes that are not simply connected (the extension is then an optimisation only).
   bool allow_not_simply_connected = false;
+  // The cross-check: the A-net step and every vertex update by Ceres' Levenberg–Marquardt on
+  // the same rows (the A-net step's soft terms at anet.ceres_soft_scale, the updates' at
+  // round_soft_scale) instead of guided projection.
+  bool use_ceres = false;
 };
 
 struct HNetRound {

@@ -59,6 +59,8 @@ class GridRun : public MarionetteRun {
   }
   RunReport Run(const RunCallback& callback) override {
     if (options_.solver == "gp") return problem_->Run(callback);
+    if (options_.solver == "ceres")
+      return problem_->RunCeres(options_.lift.solver.max_iterations, callback);
     return problem_->RunDirect(problem_->fit() ? "DIRECT: normal equations of the fit (002 eq. 14)"
                                                : "DIRECT: propagation (002 eq. 2)",
                                [this] { problem_->SetHeights(problem_->DirectHeights()); });
@@ -126,6 +128,8 @@ class MeshRun : public MarionetteRun {
   }
   RunReport Run(const RunCallback& callback) override {
     if (options_.solver == "gp") return problem_->Run(callback);
+    if (options_.solver == "ceres")
+      return problem_->RunCeres(options_.lift.solver.max_iterations, callback);
     return problem_->RunDirect("DIRECT: propagation (002 §2.4)",
                                [this] { problem_->SetParameters(lift_.t); });
   }
@@ -240,9 +244,14 @@ RunReport StripRun::Run(const RunCallback&) {
 std::unique_ptr<MarionetteRun> MakeMarionetteRun(const MarionetteRunOptions& options) {
   if (!options.closed_strip.empty()) {
     if (!options.plan.empty()) throw InputError("give either a plan or --closed-strip, not both");
+    if (options.solver != "direct")
+      throw InputError("--closed-strip is lifted directly (002 eq. 8): --solver " + options.solver +
+                       " does not apply");
     return std::make_unique<StripRun>(options);
   }
   if (options.plan.empty()) throw InputError("give a plan view (or --closed-strip FILE)");
+  if (options.solver != "direct" && options.solver != "gp" && options.solver != "ceres")
+    throw InputError("--solver must be direct, gp or ceres, not '" + options.solver + "'");
   if (!options.guides.empty() || options.projection != "vertical")
     return std::make_unique<MeshRun>(options);
   return std::make_unique<GridRun>(options);

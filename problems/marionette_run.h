@@ -34,7 +34,8 @@ struct MarionetteRunOptions {
   std::string projection = "vertical";  // vertical, cylindrical or central
   std::vector<double> axis = {0, 0, 0, 0, 0, 1};  // cylindrical: point and direction
   std::vector<double> centre = {0, 0, 0};         // central: the centre
-  std::string solver = "direct";                  // direct, or gp (guided projection)
+  // direct, gp (guided projection) or ceres (Levenberg–Marquardt on the same rows)
+  std::string solver = "direct";
   double outer_height = 0.0;  // closed strip with a = 1: height of outer vertex 0
   // The tolerance of every mode, and guided projection's options on non-vertical lines.
   MarionetteMeshOptions lift;

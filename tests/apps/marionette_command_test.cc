@@ -126,7 +126,7 @@ std::string Repeat(const std::string& value, int count) {
 }
 
 TEST_F(MarionetteMeshCommandTest, CylindricalTowerWithConstantRadiiIsACylinder) {
-  for (const char* solver : {"direct", "gp"}) {
+  for (const char* solver : {"direct", "gp", "ceres"}) {
     const Run r = Marionette(kData + "marionette_tower_12x18.obj --projection cylindrical " +
                              "--axis 0,0,-5,0,0,3 --row " + Repeat("7.5", 19) + " --column " +
                              Repeat("7.5", 13) + " --solver " + solver);
@@ -136,6 +136,7 @@ TEST_F(MarionetteMeshCommandTest, CylindricalTowerWithConstantRadiiIsACylinder) 
     for (const auto& p : v) EXPECT_NEAR(std::hypot(p[0], p[1]), 7.5, 1e-9);
     EXPECT_LE(Report()["final"]["max_relative_det"].get<double>(), 1e-12);
     EXPECT_EQ(Report()["projection"], "cylindrical");
+    EXPECT_EQ(Report()["solver"], solver);
   }
 }
 
@@ -190,6 +191,10 @@ std::string RingFile(double jitter) {
 }
 
 TEST_F(MarionetteMeshCommandTest, ClosedStripReportsAAndTheClosingHeight) {
+  const Run ceres =
+      Marionette("--closed-strip " + Write("s.txt", RingFile(0.1)) + " --solver ceres");
+  EXPECT_EQ(ceres.exit_code, 1);
+  EXPECT_NE(ceres.err.find("--solver ceres does not apply"), std::string::npos) << ceres.err;
   const Run r = Marionette("--closed-strip " + Write("s.txt", RingFile(0.1)));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   nlohmann::json report = Report();

@@ -213,6 +213,31 @@ TEST_F(PlanarizeCommandTest, HNetWritesPatchesSurfaceAndReport) {
   EXPECT_EQ(Slurp(dir_ / "p.svg").rfind("<svg", 0), 0u);
 }
 
+// The cross-check from the command line: A-net and H-net by Ceres' Levenberg–Marquardt on the
+// same rows, judged by the same tolerances.
+TEST_F(PlanarizeCommandTest, ANetAndHNetRunTheCeresCrossCheck) {
+  const std::string jittered = Write("jittered.obj",
+                                     "v -1 -1 1\nv -1 0 0.05\nv -1 1 -1\nv 0 -1 0\nv 0 0 0.04\n"
+                                     "v 0 1 0\nv 1 -1 -1\nv 1 0 0\nv 1 1 1\n"
+                                     "f 1 4 5 2\nf 2 5 6 3\nf 4 7 8 5\nf 5 8 9 6\n");
+  const CommandRun a =
+      Gproj("anet " + jittered + " -o " + (dir_ / "a.obj").string() +
+            " --solver ceres --tolerance 1e-6 --report " + (dir_ / "a.json").string());
+  EXPECT_EQ(a.exit_code, 0) << a.err << a.out;
+  const nlohmann::json anet = nlohmann::json::parse(Slurp(dir_ / "a.json"));
+  EXPECT_EQ(anet["solver"], "ceres");
+  EXPECT_LE(anet["final"]["max_star_planarity"].get<double>(), 1e-6);
+  EXPECT_GT(anet["initial"]["max_star_planarity"].get<double>(), 1e-3);
+
+  const std::string hypar = Write("hypar.obj", kHypar3x3);
+  const CommandRun h = Gproj("hnet " + hypar + " -o " + (dir_ / "h.json").string() +
+                             " --solver ceres --report " + (dir_ / "h_report.json").string());
+  EXPECT_EQ(h.exit_code, 0) << h.err << h.out;
+  const nlohmann::json hnet = nlohmann::json::parse(Slurp(dir_ / "h_report.json"));
+  EXPECT_TRUE(hnet["converged"].get<bool>());
+  EXPECT_LT(hnet["final"]["max_tangent_angle_deg"].get<double>(), 1e-3);
+}
+
 // One round cannot show the weights settled: exit 3, the patches and the report written.
 TEST_F(PlanarizeCommandTest, HNetWithoutSettledWeightsExitsThree) {
   const std::string in = Write("hypar.obj", kHypar3x3);

@@ -11,8 +11,8 @@ namespace {
 
 class SuperCanalCommandTest : public CommandTest {};
 
-TEST_F(SuperCanalCommandTest, CombescureByBothMethodsKeepsEdgesParallelAndQuadsCircular) {
-  for (const std::string method : {"propagation", "gp"}) {
+TEST_F(SuperCanalCommandTest, CombescureByEveryMethodKeepsEdgesParallelAndQuadsCircular) {
+  for (const std::string method : {"propagation", "gp", "ceres"}) {
     const CommandRun r =
         Gproj("combescure " + Data("revolution_13x17.obj") + " -o " + Path("out.obj") +
               " --method " + method +
@@ -22,6 +22,7 @@ TEST_F(SuperCanalCommandTest, CombescureByBothMethodsKeepsEdgesParallelAndQuadsC
     ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
     const nlohmann::json report = Json("r.json");
     EXPECT_TRUE(report["converged"].get<bool>());
+    EXPECT_EQ(report["method"], method);
     EXPECT_LT(report["final"]["max_edge_parallelism_angle"].get<double>(), 1e-10) << method;
     EXPECT_LT(report["final"]["max_planarity"].get<double>(), 1e-10) << method;
     EXPECT_LT(report["final"]["max_concyclicity"].get<double>(), 1e-10) << method;

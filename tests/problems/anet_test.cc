@@ -129,6 +129,7 @@ TEST(ANetTest, CeresCrossCheckReachesTheSameObjective) {
   options.solver.epsilon = 1e-6;
   options.solver.max_iterations = 300;
   options.tolerance = 1e-300;
+  options.ceres_soft_scale = 1.0;  // the soft weights guided projection keeps
   ANet gp(mesh, nullptr, options), ceres(mesh, nullptr, options);
   const RunReport report = gp.Run();
   ASSERT_TRUE(report.summary.converged()) << report.summary.FullReport();
