@@ -114,31 +114,37 @@ void RegisterCanalCommand(CLI::App* app, int* exit_code) {
       ->required();
   cmd->add_option("--first-point", args->first_point,
                   "x,y,z of the point that fixes the first circle (with P_0 and P_1)")
+      ->check(Finite())
       ->delimiter(',')
       ->required();
   cmd->add_option("--lengths", args->lengths, "|P_k Q_k| for every curve point (comma separated)")
+      ->check(Finite())
       ->delimiter(',');
-  cmd->add_option("--length", args->length, "The same |P_k Q_k| for every curve point");
+  cmd->add_option("--length", args->length, "The same |P_k Q_k| for every curve point")
+      ->check(Finite());
   cmd->add_option(
          "--normal", args->normal,
          "Normal of the cyclidic net at P_0 (default: in the first quad's plane, across the "
-         "curve)")
+         "curve; not zero)")
+      ->check(Finite())
       ->delimiter(',');
   cmd->add_option("--psi", args->psi,
                   "Rotation (radians) of the frame's first tangent about the normal")
+      ->check(Finite())
       ->capture_default_str();
   cmd->add_option("--segments", args->options.segments, "Quads across the strip in the canal mesh")
+      ->check(Within(1, 100000))
       ->capture_default_str();
   cmd->add_flag("--smooth", args->options.smooth, "Minimise the smoothness energy of 000 eq. 5");
   cmd->add_option("--length-weight", args->options.smoothing.length_weight,
                   "Weight keeping the lengths near the input during --smooth")
-      ->check(CLI::NonNegativeNumber)
+      ->check(NonNegative())
       ->capture_default_str();
   cmd->add_flag("!--fixed-lengths", args->options.smoothing.optimize_lengths,
                 "Keep the lengths; smooth over the frame only");
   cmd->add_option("--max-iterations", args->options.smoothing.max_iterations,
                   "BFGS iterations at most")
-      ->check(CLI::Range(1, 100000))
+      ->check(Within(1, 100000))
       ->capture_default_str();
   cmd->add_option("--strip", args->strip, "Also write the circular strip (2 x (n+1) vertices)");
   cmd->add_option("--report", args->outputs.report, "Write a JSON report");

@@ -91,16 +91,22 @@ void RegisterCombescureCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--row-lengths", args->row,
                   "Signed lengths of edges (0, j) -> (0, j+1) (comma separated; default: the "
                   "reference's times --row-scale)")
+      ->check(Finite())
       ->delimiter(',');
   cmd->add_option("--column-lengths", args->column,
                   "Signed lengths of edges (i, 0) -> (i+1, 0) (default: the reference's times "
                   "--column-scale)")
+      ->check(Finite())
       ->delimiter(',');
-  cmd->add_option("--row-scale", args->row_scale, "Scale of the reference's row lengths")
+  cmd->add_option("--row-scale", args->row_scale, "Scale of the reference's row lengths (> 0)")
+      ->check(Positive())
       ->capture_default_str();
-  cmd->add_option("--column-scale", args->column_scale, "Scale of the reference's column lengths")
+  cmd->add_option("--column-scale", args->column_scale,
+                  "Scale of the reference's column lengths (> 0)")
+      ->check(Positive())
       ->capture_default_str();
   cmd->add_option("--origin", args->origin, "Position of vertex (0, 0) (default: unchanged)")
+      ->check(Finite())
       ->delimiter(',');
   cmd->add_option("--method", args->method,
                   "propagation (linear time), gp (guided projection, edge-parallelism rows) or "
@@ -109,7 +115,7 @@ void RegisterCombescureCommand(CLI::App* app, int* exit_code) {
       ->capture_default_str();
   cmd->add_option("--tolerance", args->options.reference_tolerance,
                   "Largest reference planarity accepted (diagonal distance / mean edge)")
-      ->check(CLI::PositiveNumber)
+      ->check(Positive())
       ->capture_default_str();
   cmd->add_option("--report", args->outputs.report, "Write a JSON report");
   cmd->add_option("--picture", args->outputs.picture, "Write a shaded SVG picture of the result");

@@ -36,29 +36,87 @@ void CheckMeshOutputPath(const std::string& option, const std::string& path) {
   }
 }
 
+namespace {
+
+// A validator of finite numbers for which `ok` holds; `rule` completes "<value> is not ...".
+CLI::Validator FiniteWhere(const std::function<bool(double)>& ok, const std::string& rule,
+                           const std::string& description) {
+  return CLI::Validator(
+      [ok, rule](std::string& text) -> std::string {
+        double value = 0.0;
+        size_t used = 0;
+        try {
+          value = std::stod(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used != text.size() || !std::isfinite(value)) return text + " is not a finite number";
+        return ok(value) ? "" : text + " is not " + rule;
+      },
+      description);
+}
+
+std::string Compact(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", value);
+  return text;
+}
+
+}  // namespace
+
+CLI::Validator Finite() {
+  return FiniteWhere([](double) { return true; }, "finite", "FINITE");
+}
+
+CLI::Validator Positive() {
+  return FiniteWhere([](double v) { return v > 0.0; }, "> 0", "POSITIVE");
+}
+
+CLI::Validator NonNegative() {
+  return FiniteWhere([](double v) { return v >= 0.0; }, ">= 0", "NONNEGATIVE");
+}
+
+CLI::Validator Within(double min, double max) {
+  const std::string range = "[" + Compact(min) + ", " + Compact(max) + "]";
+  return FiniteWhere([min, max](double v) { return v >= min && v <= max; }, "in " + range,
+                     "in " + range);
+}
+
+void CheckMemory(const std::string& what, double bytes) {
+  const double memory =
+      static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGESIZE));
+  if (memory > 0.0 && bytes > memory) {
+    char text[160];
+    std::snprintf(text, sizeof(text),
+                  " needs about %.3g GB, more than the machine's %.3g GB of memory", bytes / 1e9,
+                  memory / 1e9);
+    throw InputError(what + text);
+  }
+}
+
 void AddSolverOptions(CLI::App* command, SolverOptions* solver, std::string* linear_solver) {
   command->add_option("--max-iterations", solver->max_iterations, "Iterations at most")
-      ->check(CLI::Range(0, 100000))
+      ->check(Within(0, 100000))
       ->capture_default_str();
   command
       ->add_option("--fairness", solver->fairness_weight,
                    "omega_f: weight of the fairness (second differences along polylines)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(NonNegative())
       ->capture_default_str();
   command
       ->add_option("--soft-decay", solver->soft_weight_decay,
                    "Closeness and fairness weights are multiplied by this each iteration ...")
-      ->check(CLI::Range(1e-12, 1.0))
+      ->check(Within(1e-12, 1.0))
       ->capture_default_str();
   command
       ->add_option("--soft-floor", solver->soft_weight_floor,
                    "... down to this fraction of their initial value")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(Within(0.0, 1.0))
       ->capture_default_str();
   command
       ->add_option("--epsilon", solver->epsilon,
                    "epsilon: weight of the proximal term eps^2 |x - x^k|^2")
-      ->check(CLI::PositiveNumber)
+      ->check(Positive())
       ->capture_default_str();
   command
       ->add_option("--linear-solver", *linear_solver,
@@ -66,7 +124,7 @@ void AddSolverOptions(CLI::App* command, SolverOptions* solver, std::string* lin
       ->check(CLI::IsMember({"cholmod", "eigen"}))
       ->capture_default_str();
   command->add_option("--threads", solver->num_threads, "Threads for BLAS / Ceres (0: default)")
-      ->check(CLI::Range(0, 256))
+      ->check(Within(0, 256))
       ->capture_default_str();
 }
 

@@ -26,6 +26,19 @@ void CheckOutputPath(const std::string& option, const std::string& path);
 // The same, and the extension must be a mesh format (.obj, .off or .ply).
 void CheckMeshOutputPath(const std::string& option, const std::string& path);
 
+// Checks of numeric options. CLI11's own let NaN and infinity through and print bounds like
+// 1.797e308 in full; these refuse non-finite values and name the rule compactly, e.g.
+// "--epsilon: nan is not a finite number", "--soft-decay: 2 is not in [1e-12, 1]". They apply
+// to each value of a list option.
+CLI::Validator Finite();
+CLI::Validator Positive();                      // finite and > 0
+CLI::Validator NonNegative();                   // finite and ≥ 0
+CLI::Validator Within(double min, double max);  // finite and in [min, max]
+
+// Throws InputError "<what> needs about N GB, more than the machine's M GB of memory" when
+// `bytes` (an estimate made before allocating) exceeds the physical memory.
+void CheckMemory(const std::string& what, double bytes);
+
 // Guided projection's options as command-line options (--max-iterations, --epsilon,
 // --soft-decay, --soft-floor, --fairness, --linear-solver, --threads), with the problem's
 // defaults shown in --help. `linear_solver` receives the backend's name; ApplyLinearSolver

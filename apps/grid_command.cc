@@ -30,23 +30,33 @@ void RegisterGridCommand(CLI::App* app, int* exit_code) {
       ->check(CLI::IsMember({"paraboloid", "hypar", "hyperboloid", "enneper", "revolution"}))
       ->capture_default_str();
   cmd->add_option("--nu", args->grid.nu, "Vertices along u")
-      ->check(CLI::Range(2, 100000))
+      ->check(Within(2, 100000))
       ->capture_default_str();
   cmd->add_option("--nv", args->grid.nv, "Vertices along v")
-      ->check(CLI::Range(2, 100000))
+      ->check(Within(2, 100000))
       ->capture_default_str();
-  cmd->add_option("--a", args->grid.a, "Coefficient of x^2")->capture_default_str();
-  cmd->add_option("--b", args->grid.b, "Coefficient of y^2")->capture_default_str();
-  cmd->add_option("--c", args->grid.c, "Coefficient of x y")->capture_default_str();
+  cmd->add_option("--a", args->grid.a, "Coefficient of x^2")
+      ->check(Finite())
+      ->capture_default_str();
+  cmd->add_option("--b", args->grid.b, "Coefficient of y^2")
+      ->check(Finite())
+      ->capture_default_str();
+  cmd->add_option("--c", args->grid.c, "Coefficient of x y")
+      ->check(Finite())
+      ->capture_default_str();
   cmd->add_option(
          "--noise", args->grid.noise,
          "Noise amplitude as a fraction of the grid spacing (mean edge for asymptotic nets)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(NonNegative())
       ->capture_default_str();
   cmd->add_option("--seed", args->grid.seed, "Random seed")->capture_default_str();
   cmd->callback([args, exit_code]() {
     try {
       CheckMeshOutputPath("--output", args->output);
+      // An OpenMesh vertex with its quad and halfedges, and the text written, take about 400 B.
+      CheckMemory(
+          "--nu " + std::to_string(args->grid.nu) + " --nv " + std::to_string(args->grid.nv),
+          400.0 * args->grid.nu * args->grid.nv);
       if (args->surface == "paraboloid") {
         WriteMeshAtomically(MakeQuadGrid(args->grid), args->output);
       } else {

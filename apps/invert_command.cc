@@ -95,17 +95,22 @@ void RegisterInvertCommand(CLI::App* app, int* exit_code) {
       "the concyclic quad P1 P2 P3 P4 to an isosceles trapezoid with P1'P2' = t P4'P3'.");
   cmd->add_option("mesh", args->input, "Mesh to invert (.obj/.off/.ply)")->required();
   cmd->add_option("-o,--output", args->outputs.mesh, "Inverted mesh to write")->required();
-  cmd->add_option("--centre", args->centre, "Centre of inversion x,y,z")->delimiter(',');
+  cmd->add_option("--centre", args->centre, "Centre of inversion x,y,z")
+      ->check(Finite())
+      ->delimiter(',');
   cmd->add_option("--ratio", args->ratio, "Ratio k of the inversion (non-zero)")
+      ->check(Finite())
       ->capture_default_str();
   cmd->add_option("--m-revolution", args->m_revolution,
                   "P1,P2,P3,P4 (12 comma-separated numbers): four concyclic points whose image "
                   "must be an isosceles trapezoid")
+      ->check(Finite())
       ->delimiter(',');
   cmd->add_option("--t", args->t, "Ratio of the trapezoid's parallel sides (> 0)")
+      ->check(Positive())
       ->capture_default_str();
   cmd->add_option("--root", args->root, "Which of the (up to) two centres to use: 0 or 1")
-      ->check(CLI::Range(0, 1))
+      ->check(Within(0, 1))
       ->capture_default_str();
   cmd->add_option("--report", args->outputs.report, "Write a JSON report");
   cmd->add_option("--picture", args->outputs.picture, "Write a shaded SVG picture of the result");

@@ -75,10 +75,12 @@ void RegisterMarionetteCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("-o,--output", args->output, "Lifted mesh to write (atomically)")->required();
   cmd->add_option("--row", args->options.row,
                   "Guide values of vertices (0, j), j = 0..cols of a grid plan (comma separated)")
+      ->check(Finite())
       ->delimiter(',');
   cmd->add_option("--column", args->options.column,
                   "Guide values of vertices (i, 0), i = 0..rows; its first value must equal "
                   "--row's")
+      ->check(Finite())
       ->delimiter(',');
   cmd->add_option("--guides", args->options.guides,
                   "Guide file for a plan of any connectivity, one entry a line ('#' comments): "
@@ -93,9 +95,11 @@ void RegisterMarionetteCommand(CLI::App* app, int* exit_code) {
       ->capture_default_str();
   cmd->add_option("--axis", args->options.axis,
                   "Cylindrical axis: point and direction px,py,pz,dx,dy,dz")
+      ->check(Finite())
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--centre", args->options.centre, "Centre of the central projection x,y,z")
+      ->check(Finite())
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--fit", args->options.fit,
@@ -110,12 +114,14 @@ void RegisterMarionetteCommand(CLI::App* app, int* exit_code) {
       ->capture_default_str();
   cmd->add_option("--max-iterations", args->options.lift.solver.max_iterations,
                   "gp with a non-vertical projection: iterations at most")
+      ->check(Within(1, 100000))
       ->capture_default_str();
   cmd->add_option("--tolerance", args->options.lift.tolerance,
                   "Every mode: the result's planarity to reach, else exit code 3 (with --guides "
                   "or a projection: max |det(p1-p0, p2-p0, p3-p0)| / (edge lengths) and the "
                   "guide error; grid plans and closed strips: max planarity, diagonal distance "
                   "/ mean edge)")
+      ->check(Positive())
       ->capture_default_str();
   cmd->add_option("--closed-strip", args->options.closed_strip,
                   "Closed strip file instead of a plan (002 §2.5): one line per vertex pair "
@@ -125,6 +131,7 @@ void RegisterMarionetteCommand(CLI::App* app, int* exit_code) {
                   "the inner heights onto V.Z = 0");
   cmd->add_option("--outer-height", args->options.outer_height,
                   "--closed-strip with a = 1: height of the first outer vertex (free)")
+      ->check(Finite())
       ->capture_default_str();
   cmd->add_option("--report", args->report, "Write a JSON report");
   cmd->callback([args, exit_code]() { *exit_code = RunMarionette(*args); });

@@ -44,15 +44,15 @@ void AddSharedOptions(CLI::App* cmd, NetArgs* args) {
   cmd->add_option("--tolerance", o.tolerance,
                   "A-net step stops when max star planarity (neighbour distance from the star "
                   "plane / mean edge) is <= this")
-      ->check(CLI::PositiveNumber)
+      ->check(Positive())
       ->capture_default_str();
   cmd->add_option("--tangent", o.tangent_weight,
                   "Weight of the distance to the reference's tangent planes")
-      ->check(CLI::NonNegativeNumber)
+      ->check(NonNegative())
       ->capture_default_str();
   cmd->add_option("--point", o.point_weight,
                   "Weight of the distance to the reference's closest points")
-      ->check(CLI::NonNegativeNumber)
+      ->check(NonNegative())
       ->capture_default_str();
   cmd->add_option("--fairness-order", o.fairness_order, "2: second differences, 3: third")
       ->check(CLI::IsMember({2, 3}))
@@ -230,14 +230,14 @@ void RegisterNetCommands(CLI::App* app, int* exit_code) {
   h->add_option("--picture", hnet->picture,
                 "Also write a shaded picture of the patchwork (.svg, opens in any browser)");
   h->add_option("--samples", hnet->samples, "Samples per patch edge for --surface-mesh")
-      ->check(CLI::Range(1, 200))
+      ->check(Within(1, 200))
       ->capture_default_str();
   h->add_option("--rounds", hnet->options.max_rounds,
                 "Alternations of weight and vertex updates at most")
-      ->check(CLI::Range(1, 1000))
+      ->check(Within(1, 1000))
       ->capture_default_str();
   h->add_option("--frame-weight", hnet->options.frame_weight, "Weight of frame-point planarity")
-      ->check(CLI::PositiveNumber)
+      ->check(Positive())
       ->capture_default_str();
   h->add_flag(
       "--allow-not-simply-connected", hnet->allow_not_simply_connected,

@@ -123,11 +123,11 @@ void RegisterPlanarizeCommand(CLI::App* app, int* exit_code) {
       ->check(CLI::IsMember({"gp", "ceres"}));
   cmd->add_option("--tolerance", args->options.tolerance,
                   "Stop when max planarity (diagonal distance / mean edge length) is <= this")
-      ->check(CLI::PositiveNumber)
+      ->check(Positive())
       ->capture_default_str();
   cmd->add_option("--closeness", args->options.closeness_weight,
                   "Weight of closeness to the input vertices (mesh scaled to mean edge 1)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(NonNegative())
       ->capture_default_str();
   cmd->add_flag("--circular", args->options.circular,
                 "Circular quads (planar and concyclic, 000 §2) instead of planar ones; the "
@@ -140,7 +140,7 @@ void RegisterPlanarizeCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--ceres-soft-scale", args->options.ceres_soft_scale,
                   "With --solver ceres: fixed factor on the closeness and fairness weights "
                   "(0: tolerance / 100)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(NonNegative())
       ->capture_default_str();
   AddSolverOptions(cmd, &args->options.solver, &args->linear_solver);
   cmd->callback([args, exit_code]() { *exit_code = RunPlanarize(*args); });

@@ -80,15 +80,15 @@ void RegisterWeingartenCommand(CLI::App* app, int* exit_code) {
   for (const auto& n : WeingartenPresetNames()) presets += (presets.empty() ? "" : ", ") + n;
   CLI::App* cmd = app->add_subcommand(
       "weingarten",
-      "Weingarten surface (003): moves the control points of a B-spline (JSON, SPEC §4) so that "
-      "the isolines of H and K align, keeping it close to the input. Exit codes as for "
-      "planarize.");
+      "Weingarten surface (003): moves a B-spline's control points (JSON, SPEC §4) so that the "
+      "isolines of H and K align, close to the input. Exit codes as for planarize.");
   cmd->add_option("input", args->input, "B-spline surface (.json)")->required();
   cmd->add_option("-o,--output", args->files.output, "Optimised B-spline (.json)")->required();
   cmd->add_option("--preset", args->settings.preset, "Weights of 003 Table 1: " + presets)
       ->capture_default_str();
   cmd->add_option("--samples", args->settings.samples,
                   "Samples NU NV (default: 2 per control point and direction, as in Table 2)")
+      ->check(Within(5, 100000))
       ->expected(2);
   cmd->add_option("--relation", args->settings.relation,
                   "Curvature relation: none, linear (fitted each iteration) or bspline")
@@ -96,53 +96,53 @@ void RegisterWeingartenCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--linear", args->settings.linear,
                   "Fixed linear relation a,b,c: a H + b K + c = 0 in input units (e.g. 0,1,0: "
                   "developable; 1,0,0: minimal; 1,0,-c: H = c)")
+      ->check(Finite())
       ->delimiter(',');
   cmd->add_option("--relation-on", args->settings.relation_on,
-                  "A fixed relation's rows use H, K of the surface itself (default) or the "
-                  "auxiliaries (003 §3.2.2)")
+                  "A fixed relation on the surface's own H, K (default) or the auxiliaries")
       ->check(CLI::IsMember({"surface", "auxiliaries"}));
   cmd->add_option("--steps", args->settings.steps,
-                  "plain: every step kept (default); monotone: a step is kept only if it lowers "
-                  "the energy, else ε grows; projected: monotone, and the auxiliaries are reset "
-                  "to their exact values after each step (default of preset fig3)")
+                  "plain: every step kept; monotone: only steps that lower the energy (else ε "
+                  "grows); projected: monotone, auxiliaries reset after each step (fig3)")
       ->check(CLI::IsMember({"plain", "monotone", "projected"}));
   cmd->add_option("--solver", args->solver,
-                  "gp: guided projection (default); ceres: Levenberg-Marquardt on the same rows "
-                  "(soft terms at their final weights)")
+                  "gp: guided projection; ceres: Levenberg-Marquardt on the same rows (soft "
+                  "terms at their final weights)")
       ->check(CLI::IsMember({"gp", "ceres"}))
       ->capture_default_str();
   cmd->add_flag("--no-auxiliaries", args->settings.no_auxiliaries,
-                "Control points are the only unknowns (only with --linear and the relation on "
-                "the surface)");
+                "Control points are the only unknowns (needs --linear on the surface)");
   WeingartenSettings& s = args->settings;
-  for (const auto& [name, value, help] :
-       std::initializer_list<std::tuple<const char*, std::optional<double>*, const char*>>{
-           {"--alignment", &s.alignment, "Override ω_al (isoline alignment)"},
-           {"--closeness", &s.closeness, "Override ω_cl (closeness to the input)"},
-           {"--shape", &s.shape, "Override ω_sh (control-net lengths)"},
-           {"--geodesic-parallel", &s.geodesic_parallel, "Override ω_gp (eq. 8)"},
-           {"--epsilon", &s.epsilon, "Override ε of eq. 11 (proximal weight)"},
-           {"--soft-start", &s.soft_start,
-            "Soft terms start this many times stronger and relax to their weights (≥ 1)"},
-           {"--fairness", &s.fairness, "Override ω_f of eq. 11 (control-net fairness)"},
+  for (const auto& [name, value, help, check] : std::initializer_list<
+           std::tuple<const char*, std::optional<double>*, const char*, CLI::Validator>>{
+           {"--alignment", &s.alignment, "Override ω_al (isoline alignment)", NonNegative()},
+           {"--closeness", &s.closeness, "Override ω_cl (closeness to the input)", NonNegative()},
+           {"--shape", &s.shape, "Override ω_sh (control-net lengths)", NonNegative()},
+           {"--geodesic-parallel", &s.geodesic_parallel, "Override ω_gp (eq. 8)", NonNegative()},
+           {"--epsilon", &s.epsilon, "Override ε of eq. 11 (proximal weight)", Positive()},
+           {"--soft-start", &s.soft_start, "Soft terms start this much stronger (≥ 1)",
+            Within(1.0, 1e12)},
+           {"--fairness", &s.fairness, "Override ω_f of eq. 11 (control-net fairness)",
+            NonNegative()},
            {"--definitions", &s.definitions,
-            "Weight of the rows defining the auxiliaries (relative errors; default 1)"},
-           {"--boundary", &s.boundary,
-            "Weight of boundary gliding along the input's boundary control polygon"}})
-    cmd->add_option(name, *value, help)->check(CLI::NonNegativeNumber);
+            "Weight of the rows defining the auxiliaries (relative errors; default 1)", Positive()},
+           {"--boundary", &s.boundary, "Weight of gliding along the input's boundary polygon",
+            NonNegative()}})
+    cmd->add_option(name, *value, help)->check(check);
   cmd->add_option("--refine", args->settings.refine_levels,
                   "Multiresolution levels: insert a knot in every span and re-optimise")
-      ->check(CLI::Range(0, 4))
+      ->check(Within(0, 4))
       ->capture_default_str();
   cmd->add_option("--max-iterations", args->settings.max_iterations,
-                  "Guided-projection iterations per level (default 10)");
+                  "Guided-projection iterations per level (default 10)")
+      ->check(Within(1, 100000));
   cmd->add_option("--tolerance", args->settings.tolerance,
-                  "Stop when the misalignment (with --linear: the max relation residual, input "
-                  "units) is <= this; exit 3 if it is not reached. Default: none, the preset's "
-                  "iterations are run (exit 0 unless the solver fails)")
-      ->check(CLI::NonNegativeNumber);
+                  "Stop when the misalignment (--linear: max relation residual, input units) is "
+                  "<= this, else exit 3. Default: none, the preset's iterations are run")
+      ->check(NonNegative());
   cmd->add_option("--molds", args->settings.molds,
-                  "Cluster the samples into at most this many molds in the (H, sqrt K) plane");
+                  "Cluster the samples into at most this many molds in the (H, sqrt K) plane")
+      ->check(Within(0, 1000000));
   for (const Output& o : Outputs(args.get())) cmd->add_option(o.option, *o.path, o.help);
   cmd->callback([args, exit_code]() { *exit_code = RunWeingartenCommand(*args); });
 }

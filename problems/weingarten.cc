@@ -246,11 +246,20 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
   std::string why;
   if (!options.IsValid(&why)) throw InputError("invalid Weingarten options: " + why);
   ValidateBSpline(input);
-  const int su = options.samples_u > 0 ? options.samples_u : options.samples_per_control * input.nu;
-  const int sv = options.samples_v > 0 ? options.samples_v : options.samples_per_control * input.nv;
-  if (su < 5 || sv < 5)
-    throw InputError("at least 5 samples per direction are needed; got " + std::to_string(su) +
-                     " x " + std::to_string(sv));
+  const int64_t su64 = options.samples_u > 0
+                           ? options.samples_u
+                           : static_cast<int64_t>(options.samples_per_control) * input.nu;
+  const int64_t sv64 = options.samples_v > 0
+                           ? options.samples_v
+                           : static_cast<int64_t>(options.samples_per_control) * input.nv;
+  if (su64 < 5 || sv64 < 5)
+    throw InputError("at least 5 samples per direction are needed; got " + std::to_string(su64) +
+                     " x " + std::to_string(sv64));
+  if (su64 * sv64 > kMaxWeingartenSamples)
+    throw InputError(std::to_string(su64) + " x " + std::to_string(sv64) + " samples: at most " +
+                     std::to_string(kMaxWeingartenSamples) +
+                     " are supported (each adds 12 unknowns and their rows)");
+  const int su = static_cast<int>(su64), sv = static_cast<int>(sv64);
   maps_ = MakeSampleMaps(input, su, sv);
   ScaleToTargetCurvature();
   const std::vector<SampleTerms> stencils = AddCurvatureDefinitions();

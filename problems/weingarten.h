@@ -11,6 +11,7 @@
 // and measures are reported in input units.
 
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -118,6 +119,10 @@ struct WeingartenSettings {
   // The preset with the overrides applied; throws InputError naming the rule broken.
   WeingartenOptions ToOptions() const;
 };
+
+// The most samples a problem takes (12 unknowns each: 24 million unknowns, about 20 GB with the
+// factorisation); more is refused before anything is allocated.
+constexpr int64_t kMaxWeingartenSamples = 2000000;
 
 // Number of unknowns as counted in 003 Table 2.
 int WeingartenVariableCount(int nu, int nv, int su, int sv, bool geodesic_parallel);

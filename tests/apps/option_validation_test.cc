@@ -1,0 +1,79 @@
+// Careless options on every command: NaN, infinity, negative and out-of-range values are
+// refused before any work with one line naming the option (exit 1, nothing written), and sizes
+// that cannot fit are refused up front instead of aborting later.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "apps/command_test_util.h"
+
+namespace gproj {
+namespace {
+
+class OptionValidationTest : public CommandTest {};
+
+struct BadOption {
+  std::string args;    // after "gproj", output to out.*
+  std::string option;  // named in the message
+  std::string rule;    // the rule broken, as the message says it
+};
+
+TEST_F(OptionValidationTest, NonFiniteAndOutOfRangeValuesAreRefusedNamingTheOption) {
+  const std::string grid = Data("noisy_grid_21x21.obj"), spline = Data("freeform_10x10.json");
+  const std::string weingarten = "weingarten " + spline + " -o " + Path("out.json");
+  const std::vector<BadOption> cases = {
+      {"planarize " + grid + " -o " + Path("out.obj") + " --epsilon nan", "--epsilon",
+       "nan is not a finite number"},
+      {"planarize " + grid + " -o " + Path("out.obj") + " --closeness inf", "--closeness",
+       "inf is not a finite number"},
+      {"planarize " + grid + " -o " + Path("out.obj") + " --soft-decay 2", "--soft-decay",
+       "2 is not in [1e-12, 1]"},
+      {weingarten + " --max-iterations -1", "--max-iterations", "-1 is not in [1, 100000]"},
+      {weingarten + " --epsilon 0", "--epsilon", "0 is not > 0"},
+      {weingarten + " --alignment nan", "--alignment", "nan is not a finite number"},
+      {weingarten + " --boundary nan", "--boundary", "nan is not a finite number"},
+      {weingarten + " --soft-start nan", "--soft-start", "nan is not a finite number"},
+      {weingarten + " --molds -5", "--molds", "-5 is not in [0, 1e+06]"},
+      {weingarten + " --samples 0 0", "--samples", "0 is not in [5, 100000]"},
+      {"marionette " + Data("marionette_plan_21x21.obj") + " -o " + Path("out.obj") +
+           " --max-iterations -5",
+       "--max-iterations", "-5 is not in [1, 100000]"},
+      {"marionette " + Data("marionette_plan_21x21.obj") + " -o " + Path("out.obj") +
+           " --tolerance -1",
+       "--tolerance", "-1 is not > 0"},
+      {"marionette " + Data("marionette_plan_21x21.obj") + " -o " + Path("out.obj") +
+           " --row 0,nan --column 0,1",
+       "--row", "nan is not a finite number"},
+      {"combescure " + Data("revolution_13x17.obj") + " -o " + Path("out.obj") + " --row-scale 0",
+       "--row-scale", "0 is not > 0"},
+      {"grid -o " + Path("out.obj") + " --noise nan", "--noise", "nan is not a finite number"},
+      {"canal " + Data("canal_curve.txt") + " -o " + Path("out.obj") +
+           " --first-point 0,0,nan --length 1",
+       "--first-point", "nan is not a finite number"},
+  };
+  for (const BadOption& c : cases) {
+    const CommandRun r = Gproj(c.args);
+    EXPECT_EQ(r.exit_code, 1) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.option + ": " + c.rule), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+  EXPECT_FALSE(Exists("out.obj"));
+  EXPECT_FALSE(Exists("out.json"));
+}
+
+TEST_F(OptionValidationTest, SizesThatCannotFitAreRefusedBeforeAllocating) {
+  const CommandRun grid = Gproj("grid -o " + Path("g.obj") + " --nu 100000 --nv 100000");
+  EXPECT_EQ(grid.exit_code, 1) << grid.err;
+  EXPECT_NE(grid.err.find("--nu 100000 --nv 100000 needs about"), std::string::npos) << grid.err;
+  EXPECT_FALSE(Exists("g.obj"));
+  const CommandRun samples = Gproj("weingarten " + Data("freeform_10x10.json") + " -o " +
+                                   Path("w.json") + " --samples 100000 100000");
+  EXPECT_EQ(samples.exit_code, 1) << samples.err;
+  EXPECT_NE(samples.err.find("100000 x 100000 samples: at most"), std::string::npos) << samples.err;
+  EXPECT_FALSE(Exists("w.json"));
+}
+
+}  // namespace
+}  // namespace gproj
