@@ -1,0 +1,193 @@
+// gproj.combescure, gproj.invert, gproj.canal: the circular-mesh constructions of 000 (the
+// commands `gproj combescure`, `gproj invert`, `gproj canal`) as calls on numpy arrays.
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/mobius.h"
+#include "geometry/quad_grid.h"
+#include "problems/canal_surface.h"
+#include "problems/circular_mesh.h"
+#include "problems/combescure.h"
+#include "python/conversions.h"
+#include "python/module.h"
+#include "python/run_bridge.h"
+
+namespace gproj::python {
+namespace {
+
+py::tuple RunCombescure(const py::object& vertices, const py::object& faces,
+                        const std::string& method, const std::optional<std::vector<double>>& row,
+                        const std::optional<std::vector<double>>& column, double row_scale,
+                        double column_scale, const py::object& origin, double tolerance) {
+  if (method != "propagation" && method != "gp")
+    throw InputError("method must be propagation or gp, not '" + method + "'");
+  CombescureOptions options;
+  options.reference_tolerance = tolerance;
+  const PolyMesh reference = MeshFromArrays(vertices, faces, true);
+  const GridShape shape = DetectGridShape(reference, "mesh");
+  CombescureLengths lengths = ReferenceLengths(reference, shape);
+  for (double& l : lengths.row) l *= row_scale;
+  for (double& l : lengths.column) l *= column_scale;
+  if (row) lengths.row = *row;
+  if (column) lengths.column = *column;
+  if (!origin.is_none()) lengths.origin = Vector3FromPython(origin, "origin");
+  Combescure combescure(reference, shape, lengths, options);
+  const RunReport report = [&] {
+    py::gil_scoped_release release;
+    return method == "gp" ? combescure.Run() : combescure.RunPropagation();
+  }();
+  const nlohmann::json extra = {{"input", nullptr},
+                                {"output", nullptr},
+                                {"method", method},
+                                {"row_lengths", lengths.row},
+                                {"column_lengths", lengths.column}};
+  return py::make_tuple(VerticesToArray(combescure.Result()),
+                        ReportToPython("combescure", report, extra));
+}
+
+py::tuple RunInvert(const py::object& vertices, const py::object& faces, const py::object& centre,
+                    double ratio) {
+  const auto start = std::chrono::steady_clock::now();
+  const Eigen::Vector3d c = Vector3FromPython(centre, "centre");
+  const PolyMesh mesh = MeshFromArrays(vertices, faces, false);
+  const PolyMesh out = InvertMesh(mesh, c, ratio);
+  const RunReport report = ConstructionReport(
+      "none", MeasureCircularMesh(mesh), MeasureCircularMesh(out), true,
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  const nlohmann::json extra = {
+      {"input", nullptr}, {"output", nullptr}, {"ratio", ratio}, {"centre", {c.x(), c.y(), c.z()}}};
+  return py::make_tuple(VerticesToArray(out), ReportToPython("invert", report, extra));
+}
+
+CircularStripInput StripInput(const py::object& curve, const py::object& first_point,
+                              const std::optional<std::vector<double>>& lengths, double length) {
+  CircularStripInput input;
+  input.curve = PointsFromArray(curve, "curve");
+  input.first_point = Vector3FromPython(first_point, "first_point");
+  const std::size_t n = input.curve.size();
+  if (lengths && length > 0.0) throw InputError("give either lengths or length, not both");
+  if (lengths) {
+    input.lengths = *lengths;
+  } else if (length > 0.0) {
+    input.lengths.assign(n, length);
+  } else {
+    throw InputError(
+        "give the lengths across the strip (lengths, one per curve point, or "
+        "length for all)");
+  }
+  if (input.lengths.size() != n)
+    throw InputError("lengths needs one value per curve point (" + std::to_string(n) + "), got " +
+                     std::to_string(input.lengths.size()));
+  return input;
+}
+
+nlohmann::json CanalExtra(const CanalSurface& canal, int segments) {
+  const FrameAngles& a = canal.angles();
+  const Eigen::Vector3d n = NormalOf(a);
+  nlohmann::json extra = {
+      {"curve", nullptr}, {"output", nullptr}, {"lengths", canal.input().lengths}};
+  extra["frame"] = {{"lambda", a.lambda}, {"theta", a.theta}, {"psi", a.psi}};
+  extra["frame"]["normal"] = {n.x(), n.y(), n.z()};
+  for (const NamedValue& v : MeasureCircularMesh(StripMesh(canal.strip())))
+    extra["strip"][v.name] = v.value;
+  extra["mesh"] = {{"rows", canal.strip().p.size() - 1}, {"segments", segments}};
+  return extra;
+}
+
+py::tuple RunCanal(const py::object& curve, const py::object& first_point,
+                   const std::optional<std::vector<double>>& lengths, double length,
+                   const py::object& normal, double psi, int segments, bool smooth,
+                   double length_weight, bool fixed_lengths, int max_iterations,
+                   const py::object& callback) {
+  CanalSurfaceOptions options;
+  options.segments = segments;
+  options.smooth = smooth;
+  options.smoothing.length_weight = length_weight;
+  options.smoothing.optimize_lengths = !fixed_lengths;
+  options.smoothing.max_iterations = max_iterations;
+  const CircularStripInput input = StripInput(curve, first_point, lengths, length);
+  FrameAngles angles =
+      AnglesFromNormal(normal.is_none() ? DefaultCanalNormal(BuildCircularStrip(input))
+                                        : Vector3FromPython(normal, "normal"));
+  angles.psi = psi;
+  CanalSurface canal(input, angles, options);
+  RunBridge bridge(callback);
+  const RunReport report = bridge.Call([&] { return canal.Run(bridge.callback()); });
+  return py::make_tuple(MeshToPython(canal.Mesh()),
+                        ReportToPython("canal", report, CanalExtra(canal, segments)));
+}
+
+const char* const kCombescureDoc = R"(combescure(V, F, ...) -> (V_out, report)
+
+Combescure transformation (`gproj combescure`, 000 §2.4-2.5): a mesh with every edge parallel
+to a planar quad grid's, from the edge lengths along row 0 and column 0.
+
+    V: (n, 3) float64, F: (m, 4) integer quads of a planar grid in `grid` vertex order.
+    method: "propagation" (linear time) or "gp" (guided projection, edge-parallelism rows).
+    row_lengths: signed lengths of edges (0, j) -> (0, j+1) (default: the reference's times
+        row_scale).
+    column_lengths: signed lengths of edges (i, 0) -> (i+1, 0) (default: the reference's
+        times column_scale).
+    row_scale, column_scale: scales of the reference's lengths.
+    origin: position (3,) of vertex (0, 0) (default: unchanged).
+    tolerance: largest reference planarity accepted (diagonal distance / mean edge).
+
+Returns V_out: (n, 3) float64 and the report dict (the keys of --report).
+)";
+
+const char* const kInvertDoc = R"(invert(V, F, centre, ratio=1.0) -> (V_out, report)
+
+Inversion (Moebius transformation, `gproj invert`, 000 eq. 1): CM' = k / |CM|^2 CM. Circular
+meshes stay circular.
+
+    V: (n, 3) float64, F: (m, k) integer faces (or a list of faces).
+    centre: (3,) centre of inversion.
+    ratio: k (non-zero).
+
+Returns V_out: (n, 3) float64 and the report dict.
+)";
+
+const char* const kCanalDoc = R"(canal(curve, first_point, ...) -> ((V, F), report)
+
+Canal surface from a circular strip (`gproj canal`, 000 §3.2-3.3, §4.1), optionally smoothed
+(000 eq. 5, Ceres line-search BFGS).
+
+    curve: (n, 3) float64 points P_0..P_{n-1}.
+    first_point: (3,) the point fixing the first circle (with P_0 and P_1).
+    lengths: |P_k Q_k| per curve point (n,), or length: the same for all.
+    normal: (3,) normal of the cyclidic net at P_0 (default: in the first quad's plane, across
+        the curve).
+    psi: rotation (radians) of the frame's first tangent about the normal.
+    segments: quads across the strip in the canal mesh.
+    smooth: minimise the smoothness energy of 000 eq. 5 first; length_weight keeps the lengths
+        near the input, fixed_lengths smooths over the frame only, max_iterations bounds BFGS.
+    callback: as for planarize, with the smoothing's records.
+
+Returns the canal mesh (V: (N, 3) float64, F: (M, 4) int32) and the report dict.
+)";
+
+}  // namespace
+
+void BindConstructions(py::module_& m) {
+  const CombescureOptions co;
+  m.def("combescure", &RunCombescure, kCombescureDoc, py::arg("V"), py::arg("F"), py::kw_only(),
+        py::arg("method") = "propagation", py::arg("row_lengths") = py::none(),
+        py::arg("column_lengths") = py::none(), py::arg("row_scale") = 1.0,
+        py::arg("column_scale") = 1.0, py::arg("origin") = py::none(),
+        py::arg("tolerance") = co.reference_tolerance);
+  m.def("invert", &RunInvert, kInvertDoc, py::arg("V"), py::arg("F"), py::kw_only(),
+        py::arg("centre"), py::arg("ratio") = 1.0);
+  const CanalSurfaceOptions ca;
+  m.def("canal", &RunCanal, kCanalDoc, py::arg("curve"), py::arg("first_point"), py::kw_only(),
+        py::arg("lengths") = py::none(), py::arg("length") = 0.0, py::arg("normal") = py::none(),
+        py::arg("psi") = 0.0, py::arg("segments") = ca.segments, py::arg("smooth") = false,
+        py::arg("length_weight") = ca.smoothing.length_weight, py::arg("fixed_lengths") = false,
+        py::arg("max_iterations") = ca.smoothing.max_iterations, py::arg("callback") = py::none());
+}
+
+}  // namespace gproj::python

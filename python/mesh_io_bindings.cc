@@ -1,0 +1,96 @@
+// gproj.read_mesh, gproj.write_mesh and gproj.grid.
+#include <functional>
+#include <string>
+
+#include "geometry/parametric_grid.h"
+#include "geometry/quad_grid.h"
+#include "python/conversions.h"
+#include "python/module.h"
+
+namespace gproj::python {
+namespace {
+
+py::tuple ReadMeshArrays(const std::string& path) {
+  PolyMesh mesh;
+  {
+    py::gil_scoped_release release;
+    mesh = ReadMesh(path);
+  }
+  return MeshToPython(mesh);
+}
+
+void WriteMeshArrays(const std::string& path, const py::object& vertices, const py::object& faces) {
+  CheckMeshExtension(path);
+  const PolyMesh mesh = MeshFromArrays(vertices, faces, false);
+  py::gil_scoped_release release;
+  WriteMeshAtomically(mesh, path);
+}
+
+// `gproj grid`: the paraboloid grid, or a parametric surface's.
+py::tuple Grid(int nu, int nv, const std::string& surface, double a, double b, double c,
+               double noise, std::uint32_t seed) {
+  if (nu < 2 || nv < 2 || nu > 100000 || nv > 100000)
+    throw InputError("nu and nv must be in [2, 100000]");
+  if (!(noise >= 0.0)) throw InputError("noise must be >= 0");
+  if (surface == "paraboloid") return MeshToPython(MakeQuadGrid({nu, nv, a, b, c, noise, seed}));
+  if (surface != "revolution" && surface != "hypar" && surface != "hyperboloid" &&
+      surface != "enneper")
+    throw InputError(
+        "surface must be paraboloid, hypar, hyperboloid, enneper or revolution, not '" + surface +
+        "'");
+  ParametricGridOptions o;
+  o.nu = nu;
+  o.nv = nv;
+  o.jitter = noise;
+  o.seed = seed;
+  const auto f = surface == "revolution"
+                     ? std::function<Eigen::Vector3d(double, double)>(RevolutionSurface)
+                     : AsymptoticSurface(surface);
+  return MeshToPython(MakeParametricGrid(f, o));
+}
+
+}  // namespace
+
+void BindMeshIo(py::module_& m) {
+  m.def("read_mesh", &ReadMeshArrays, py::arg("path"), R"(read_mesh(path) -> (V, F)
+
+Reads an .obj, .off or .ply polygon mesh, checked like the command line's inputs.
+
+    path: the file.
+
+Returns V: (n, 3) float64 and F: (m, k) int32 when every face has k vertices, else a list of
+faces (lists of 0-based vertex indices). Raises ValueError naming the file, line and rule for a
+bad file (the command line's message).
+)");
+  m.def("write_mesh", &WriteMeshArrays, py::arg("path"), py::arg("V"), py::arg("F"),
+        R"(write_mesh(path, V, F)
+
+Writes a mesh atomically (temporary file, then rename) with exact double coordinates.
+
+    path: .obj, .off or .ply.
+    V: (n, 3) float64 vertex positions.
+    F: (m, k) integer faces, or a list of faces (0-based vertex indices).
+
+Raises ValueError for a bad mesh (non-finite coordinate, index out of range, degenerate or
+non-manifold face) or a path that cannot be written.
+)");
+  const QuadGridOptions g;
+  m.def("grid", &Grid, py::kw_only(), py::arg("nu") = g.nu, py::arg("nv") = g.nv,
+        py::arg("surface") = "paraboloid", py::arg("a") = g.a, py::arg("b") = g.b,
+        py::arg("c") = g.c, py::arg("noise") = 0.05, py::arg("seed") = g.seed,
+        R"(grid(nu=21, nv=21, ...) -> (V, F)
+
+A noisy quad grid (`gproj grid`), the test input of the problems.
+
+    nu, nv: vertices along u and v (>= 2); vertex (i, j) is i * nv + j.
+    surface: "paraboloid" (z = a x^2 + b y^2 + c x y over [-1, 1]^2), an asymptotic net
+        "hypar", "hyperboloid", "enneper", or a circular net "revolution".
+    a, b, c: the paraboloid's coefficients.
+    noise: noise amplitude as a fraction of the grid spacing (mean edge for the nets).
+    seed: random seed.
+
+Returns V: (nu * nv, 3) float64, F: ((nu - 1) * (nv - 1), 4) int32.
+)");
+}
+
+}  // namespace gproj::python

@@ -1,0 +1,233 @@
+// gproj.planarize, gproj.anet, gproj.hnet: the commands `gproj planarize`, `gproj anet` and
+// `gproj hnet` as calls on numpy arrays, with the same reports.
+#include <memory>
+#include <string>
+
+#include "problems/anet.h"
+#include "problems/hnet.h"
+#include "problems/pq_planarization.h"
+#include "python/conversions.h"
+#include "python/module.h"
+#include "python/run_bridge.h"
+#include "python/solver_args.h"
+
+namespace gproj::python {
+namespace {
+
+// The report's "options" (as `gproj planarize` writes them).
+nlohmann::json PlanarizeOptionsJson(const PQPlanarizationOptions& o) {
+  return {{"tolerance", o.tolerance},
+          {"max_iterations", o.solver.max_iterations},
+          {"planarity_weight", o.planarity_weight},
+          {"closeness_weight", o.closeness_weight},
+          {"fairness_weight", o.solver.fairness_weight},
+          {"fairness_order", o.fairness_order},
+          {"soft_weight_decay", o.solver.soft_weight_decay},
+          {"soft_weight_floor", o.solver.soft_weight_floor},
+          {"epsilon", o.solver.epsilon},
+          {"circular", o.circular},
+          {"ceres_soft_scale", o.ceres_soft_scale}};
+}
+
+void CheckSolverName(const std::string& solver) {
+  if (solver != "gp" && solver != "ceres")
+    throw InputError("solver must be gp or ceres, not '" + solver + "'");
+}
+
+py::tuple Planarize(const py::object& vertices, const py::object& faces, double tolerance,
+                    bool circular, double closeness, int fairness_order, double ceres_soft_scale,
+                    const std::string& solver, const py::object& callback, int max_iterations,
+                    double fairness, double epsilon, double soft_decay, double soft_floor,
+                    const std::string& linear_solver, int threads) {
+  PQPlanarizationOptions options;
+  options.tolerance = tolerance;
+  options.circular = circular;
+  options.closeness_weight = closeness;
+  options.fairness_order = fairness_order;
+  options.ceres_soft_scale = ceres_soft_scale;
+  SolverArgs{max_iterations, fairness, epsilon, soft_decay, soft_floor, linear_solver, threads}
+      .ApplyTo(&options.solver);
+  CheckSolverName(solver);
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("invalid option: " + why);
+  const PolyMesh input = MeshFromArrays(vertices, faces, true);
+  PQPlanarization pq(input, options);
+  RunBridge bridge(callback);
+  const RunReport report = bridge.Call([&] {
+    return solver == "gp" ? pq.Run(bridge.callback())
+                          : pq.RunCeres(options.solver.max_iterations, bridge.callback());
+  });
+  const nlohmann::json extra = {
+      {"input", nullptr},
+      {"output", nullptr},
+      {"linear_solver", LinearSolverTypeName(options.solver.linear_solver)},
+      {"vertices", input.n_vertices()},
+      {"faces", input.n_faces()},
+      {"options", PlanarizeOptionsJson(options)}};
+  return py::make_tuple(VerticesToArray(pq.Result()), ReportToPython("planarize", report, extra));
+}
+
+const char* const kPlanarizeDoc = R"(planarize(V, F, ...) -> (V_out, report)
+
+PQ planarisation (`gproj planarize`): every quad planar, the shape kept by closeness to the
+input and fairness along the mesh polylines. Circular quads (planar and concyclic) with
+circular=True.
+
+    V: (n, 3) float64 vertex positions (any real dtype is converted).
+    F: (m, 4) integer array of quads (0-based vertex indices), or a list of faces.
+    tolerance: stop when max planarity (diagonal distance / mean edge length) <= this.
+    circular: circular quads (000 §2); the tolerance then also bounds the concyclicity.
+    closeness: weight of closeness to the input (mesh scaled to mean edge 1).
+    fairness_order: 2 (second differences) or 3 (third differences).
+    ceres_soft_scale: with solver="ceres", fixed factor on the closeness and fairness weights
+        (0: tolerance / 100).
+    solver: "gp" (guided projection) or "ceres" (Levenberg-Marquardt on the same rows).
+    callback: None or callback(record: dict) called at the start and after every iteration
+        with the keys of report["history"] entries; returning False stops the run (the result
+        so far is returned). Ctrl-C stops the run and raises KeyboardInterrupt.
+
+Returns V_out: (n, 3) float64, and the report dict (the keys of `--report`; "input" and
+"output" are None). Raises ValueError for bad arrays or options, with the command line's
+message.
+)";
+
+const char* const kStarFormDoc = R"(
+    star_form: "normals" (an auxiliary normal per inner vertex) or "quads" (n-2 quads per star).
+    tolerance: stop when max star planarity (neighbour distance from the star plane / mean
+        edge) <= this.
+    tangent: weight of the distance to the reference's tangent planes.
+    point: weight of the distance to the reference's closest points.
+    fairness_order: 2 or 3.
+    reference: None (the input itself) or a reference surface (Vr, Fr), any polygon mesh.
+)";
+
+ANetOptions NetOptions(const std::string& star_form, double tolerance, double tangent, double point,
+                       int fairness_order, const SolverArgs& solver) {
+  if (star_form != "normals" && star_form != "quads")
+    throw InputError("star_form must be normals or quads, not '" + star_form + "'");
+  ANetOptions o;
+  o.star_form = star_form == "quads" ? StarPlanarityForm::kQuads : StarPlanarityForm::kNormals;
+  o.tolerance = tolerance;
+  o.tangent_weight = tangent;
+  o.point_weight = point;
+  o.fairness_order = fairness_order;
+  solver.ApplyTo(&o.solver);
+  std::string why;
+  if (!o.IsValid(&why)) throw InputError("invalid option: " + why);
+  return o;
+}
+
+std::unique_ptr<PolyMesh> ReferenceMesh(const py::object& reference) {
+  if (reference.is_none()) return nullptr;
+  const auto pair = reference.cast<py::tuple>();
+  if (pair.size() != 2) throw InputError("reference must be a pair (V, F)");
+  return std::make_unique<PolyMesh>(MeshFromArrays(pair[0], pair[1], false));
+}
+
+py::tuple RunANet(const py::object& vertices, const py::object& faces, const std::string& star_form,
+                  double tolerance, double tangent, double point, int fairness_order,
+                  const py::object& reference, const py::object& callback, int max_iterations,
+                  double fairness, double epsilon, double soft_decay, double soft_floor,
+                  const std::string& linear_solver, int threads) {
+  const ANetOptions options = NetOptions(
+      star_form, tolerance, tangent, point, fairness_order,
+      {max_iterations, fairness, epsilon, soft_decay, soft_floor, linear_solver, threads});
+  const PolyMesh mesh = MeshFromArrays(vertices, faces, true);
+  CheckANetTopology(mesh, "mesh");
+  const std::unique_ptr<PolyMesh> ref = ReferenceMesh(reference);
+  ANet anet(mesh, ref.get(), options);
+  RunBridge bridge(callback);
+  const RunReport report = bridge.Call([&] { return anet.Run(bridge.callback()); });
+  const nlohmann::json extra = {{"input", nullptr},
+                                {"output", nullptr},
+                                {"vertices", mesh.n_vertices()},
+                                {"faces", mesh.n_faces()}};
+  return py::make_tuple(VerticesToArray(anet.Result()), ReportToPython("anet", report, extra));
+}
+
+py::tuple RunHNet(const py::object& vertices, const py::object& faces, const std::string& star_form,
+                  double tolerance, double tangent, double point, int fairness_order,
+                  const py::object& reference, int rounds, double frame_weight,
+                  bool allow_not_simply_connected, const py::object& callback, int max_iterations,
+                  double fairness, double epsilon, double soft_decay, double soft_floor,
+                  const std::string& linear_solver, int threads) {
+  HNetOptions options;
+  options.anet = NetOptions(
+      star_form, tolerance, tangent, point, fairness_order,
+      {max_iterations, fairness, epsilon, soft_decay, soft_floor, linear_solver, threads});
+  if (rounds < 1 || rounds > 1000) throw InputError("rounds must be in [1, 1000]");
+  if (!(frame_weight > 0.0)) throw InputError("frame_weight must be > 0");
+  options.max_rounds = rounds;
+  options.frame_weight = frame_weight;
+  options.allow_not_simply_connected = allow_not_simply_connected;
+  const PolyMesh mesh = MeshFromArrays(vertices, faces, true);
+  CheckANetTopology(mesh, "mesh");
+  const std::unique_ptr<PolyMesh> ref = ReferenceMesh(reference);
+  HNet hnet(mesh, ref.get(), options);
+  RunBridge bridge(callback);
+  const HNetSummary summary = bridge.Call([&] { return hnet.Run(bridge.callback()); });
+  nlohmann::json report = HNet::ReportJson(summary);
+  report.update({{"input", nullptr}, {"output", nullptr}});
+  const bool usable = !summary.report.failed && !summary.rounds.empty();
+  return py::make_tuple(usable ? JsonToPython(HNetJson(hnet.mesh(), hnet.weights())) : py::none(),
+                        JsonToPython(report));
+}
+
+const char* const kHNetDoc = R"(hnet(V, F, ...) -> (hnet, report)
+
+H-net (`gproj hnet`): extends an A-net (running the A-net step first when needed) to smoothly
+joined rational bilinear patches (004 §2-3).
+
+    V: (n, 3) float64, F: (m, 4) integer quads of a simply connected mesh with even inner
+        valences.
+    rounds: alternations of weight and vertex updates at most.
+    frame_weight: weight of frame-point planarity.
+    allow_not_simply_connected: optimise meshes that are not simply connected.
+    callback: as for planarize, with the A-net step's records.
+
+Returns the H-net as a dict (the JSON of `gproj hnet -o`: "vertices" (n, 3), "faces" and four
+corner "weights" per face; None when the run failed) and the report dict.
+)";
+
+}  // namespace
+
+void BindMeshProblems(py::module_& m) {
+  const PQPlanarizationOptions pq;
+  DefineFunction(
+      m, "planarize", &Planarize, (std::string(kPlanarizeDoc) + kSolverArgsDoc).c_str(),
+      std::tuple_cat(
+          std::make_tuple(py::arg("V"), py::arg("F"), py::kw_only(),
+                          py::arg("tolerance") = pq.tolerance, py::arg("circular") = pq.circular,
+                          py::arg("closeness") = pq.closeness_weight,
+                          py::arg("fairness_order") = pq.fairness_order,
+                          py::arg("ceres_soft_scale") = pq.ceres_soft_scale,
+                          py::arg("solver") = "gp", py::arg("callback") = py::none()),
+          SolverArgList(pq.solver)));
+  const ANetOptions an;
+  const auto net_args = std::make_tuple(
+      py::arg("V"), py::arg("F"), py::kw_only(), py::arg("star_form") = "normals",
+      py::arg("tolerance") = an.tolerance, py::arg("tangent") = an.tangent_weight,
+      py::arg("point") = an.point_weight, py::arg("fairness_order") = an.fairness_order,
+      py::arg("reference") = py::none());
+  const std::string anet_doc = std::string(R"(anet(V, F, ...) -> (V_out, report)
+
+A-net (`gproj anet`): makes the vertex stars of a quad mesh planar, close to a reference surface
+and fair (004 §3.2).
+
+    V: (n, 3) float64, F: (m, 4) integer quads roughly along asymptotic directions.)") +
+                               kStarFormDoc + "    callback: as for planarize.\n" + kSolverArgsDoc;
+  DefineFunction(m, "anet", &RunANet, anet_doc.c_str(),
+                 std::tuple_cat(net_args, std::make_tuple(py::arg("callback") = py::none()),
+                                SolverArgList(an.solver)));
+  const HNetOptions hn;
+  DefineFunction(m, "hnet", &RunHNet,
+                 (std::string(kHNetDoc) + kStarFormDoc + kSolverArgsDoc).c_str(),
+                 std::tuple_cat(net_args,
+                                std::make_tuple(py::arg("rounds") = hn.max_rounds,
+                                                py::arg("frame_weight") = hn.frame_weight,
+                                                py::arg("allow_not_simply_connected") = false,
+                                                py::arg("callback") = py::none()),
+                                SolverArgList(hn.anet.solver)));
+}
+
+}  // namespace gproj::python

@@ -1,0 +1,36 @@
+// The `gproj` Python module: guided projection from numpy.
+#include "python/module.h"
+
+#include "geometry/input_error.h"
+
+PYBIND11_MODULE(gproj, m) {
+  m.doc() = R"(gproj: guided projection for architectural geometry, from numpy.
+
+Meshes are numpy arrays: V (n, 3) float64 vertex positions and F (m, k) int32 faces (0-based
+vertex indices; a list of faces for meshes with faces of different sizes).
+
+    read_mesh, write_mesh, grid      meshes in and out (.obj, .off, .ply)
+    planarize, anet, hnet,           the command line's problems, one call each, returning the
+    marionette_lift, marionette_fit, result and the report as a dict (the keys of --report)
+    combescure, invert, canal,
+    weingarten
+    Problem                          your own problem: variable blocks, built-in terms
+                                     (planarity, closeness, fairness), terms written in Python,
+                                     solved by guided projection or Ceres
+
+Bad input raises ValueError with the command line's message.)";
+  namespace py = pybind11;
+  py::register_exception_translator([](std::exception_ptr error) {
+    try {
+      if (error) std::rethrow_exception(error);
+    } catch (const gproj::InputError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    }
+  });
+  gproj::python::BindMeshIo(m);
+  gproj::python::BindMeshProblems(m);
+  gproj::python::BindConstructions(m);
+  gproj::python::BindWeingarten(m);
+  gproj::python::BindMarionette(m);
+  gproj::python::BindGenericProblem(m);
+}

@@ -1,0 +1,17 @@
+#pragma once
+// The parts of the `gproj` Python module, each defined in its own file (module.cc calls them).
+
+#include <pybind11/pybind11.h>
+
+namespace gproj::python {
+
+namespace py = pybind11;
+
+void BindMeshIo(py::module_& m);          // read_mesh, write_mesh, grid
+void BindMeshProblems(py::module_& m);    // planarize, anet, hnet
+void BindConstructions(py::module_& m);   // combescure, invert, canal
+void BindWeingarten(py::module_& m);      // weingarten
+void BindMarionette(py::module_& m);      // marionette_lift, marionette_fit
+void BindGenericProblem(py::module_& m);  // Problem: blocks, terms, solve
+
+}  // namespace gproj::python

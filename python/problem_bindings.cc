@@ -1,0 +1,306 @@
+// gproj.Problem: the generic API (solver/problem.h) from Python — variable blocks, the
+// built-in planarity, closeness and fairness terms, terms written in Python, and a solve by
+// guided projection or by Ceres returning the summary as a dict.
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "constraints/closeness.h"
+#include "constraints/polyline_fairness.h"
+#include "constraints/quad_planarity.h"
+#include "geometry/input_error.h"
+#include "problems/guided_problem.h"
+#include "python/module.h"
+#include "python/problem_solve.h"
+#include "python/python_term.h"
+#include "python/run_bridge.h"
+#include "python/solver_args.h"
+#include "solver/ceres_adapter.h"
+#include "solver/guided_projection.h"
+
+namespace gproj::python {
+namespace {
+
+using IndexArray = py::array_t<long long, py::array::c_style | py::array::forcecast>;
+
+// A Problem and the error slot its Python terms share.
+struct PyProblem {
+  Problem problem;
+  std::shared_ptr<ErrorSlot> errors = std::make_shared<ErrorSlot>();
+
+  const VariableBlock& Block(int b) const {
+    if (b < 0 || b >= problem.layout().num_blocks())
+      throw InputError("no block " + std::to_string(b) + " (the problem has " +
+                       std::to_string(problem.layout().num_blocks()) + ")");
+    return problem.layout().block(b);
+  }
+  void CheckName(const std::string& name) {
+    if (name.empty() || problem.FindFamily(name) != nullptr)
+      throw InputError("term name '" + name + "' is empty or already used");
+  }
+};
+
+FamilyRole RoleOf(const std::string& role) {
+  if (role == "constraint") return FamilyRole::kConstraint;
+  if (role == "soft") return FamilyRole::kSoft;
+  if (role == "fairness") return FamilyRole::kFairness;
+  throw InputError("role must be constraint, soft or fairness, not '" + role + "'");
+}
+
+// An (m, k) index array, each index in [0, limit); `what` names it in messages.
+std::vector<std::vector<int>> IndexRows(const py::object& value, int k, int limit,
+                                        const std::string& what) {
+  const py::array raw = py::array::ensure(value);
+  if (!raw || (raw.dtype().kind() != 'i' && raw.dtype().kind() != 'u'))
+    throw InputError(what + " must be an integer array");
+  const IndexArray array(raw);
+  if (array.ndim() != 2 || (k > 0 && array.shape(1) != k))
+    throw InputError(what + " must have shape (m, " + (k > 0 ? std::to_string(k) : "k") + ")");
+  const auto view = array.unchecked<2>();
+  std::vector<std::vector<int>> rows(view.shape(0), std::vector<int>(view.shape(1)));
+  for (py::ssize_t i = 0; i < view.shape(0); ++i)
+    for (py::ssize_t j = 0; j < view.shape(1); ++j) {
+      if (view(i, j) < 0 || view(i, j) >= limit)
+        throw InputError(what + ": row " + std::to_string(i) + " has index " +
+                         std::to_string(view(i, j)) + ", outside [0, " + std::to_string(limit) +
+                         ")");
+      rows[i][j] = static_cast<int>(view(i, j));
+    }
+  return rows;
+}
+
+int AddBlock(PyProblem& p, const std::string& name, int items, int dim, bool eliminable) {
+  if (items < 0 || dim < 1) throw InputError("a block needs items >= 0 and dim >= 1");
+  if (name.empty() || p.problem.layout().FindBlock(name) >= 0)
+    throw InputError("block name '" + name + "' is empty or already used");
+  const int b = p.problem.layout().AddBlock(name, items, dim, eliminable);
+  p.problem.ResizeToLayout();
+  return b;
+}
+
+py::array_t<double> BlockValues(const PyProblem& p, int b) {
+  const VariableBlock& block = p.Block(b);
+  py::array_t<double> out({block.num_items, block.item_dim});
+  std::copy_n(p.problem.x().data() + block.offset, block.size(), out.mutable_data());
+  return out;
+}
+
+void SetBlockValues(PyProblem& p, int b, const py::object& values) {
+  const VariableBlock& block = p.Block(b);
+  const auto array = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(values);
+  if (!array || array.size() != block.size())
+    throw InputError("block '" + block.name + "' needs " + std::to_string(block.num_items) + " x " +
+                     std::to_string(block.item_dim) + " values");
+  std::copy_n(array.data(), block.size(), p.problem.x().data() + block.offset);
+}
+
+py::array_t<int> Items(const PyProblem& p, int b) {
+  const VariableBlock& block = p.Block(b);
+  py::array_t<int> out(block.num_items);
+  for (int i = 0; i < block.num_items; ++i) out.mutable_data()[i] = block.first_item + i;
+  return out;
+}
+
+// Planarity of the quads `faces` of `vertex_block` with a new eliminable normal block
+// (initialised from the diagonals at x); returns the normal block.
+int AddPlanarity(PyProblem& p, int vertex_block, const py::object& faces, double weight,
+                 const std::string& name) {
+  const VariableBlock& vertices = p.Block(vertex_block);
+  if (vertices.item_dim != 3) throw InputError("planarity needs a block of 3D points");
+  p.CheckName(name);
+  const auto quads = IndexRows(faces, 4, vertices.num_items, "faces");
+  const int normals =
+      AddBlock(p, name + "_normals", static_cast<int>(quads.size()), 3, /*eliminable=*/true);
+  auto* planarity = p.problem.AddFamily<QuadPlanarity>(weight, name);
+  const VariableLayout& layout = p.problem.layout();
+  Eigen::VectorXd& x = p.problem.x();
+  for (int f = 0; f < static_cast<int>(quads.size()); ++f) {
+    int v[4];
+    Eigen::Vector3d corner[4];
+    for (int j = 0; j < 4; ++j) {
+      v[j] = layout.Item(vertex_block, quads[f][j]);
+      corner[j] = x.segment<3>(layout.ItemOffset(v[j]));
+    }
+    x.segment<3>(layout.Index(normals, f, 0)) =
+        QuadPlanarity::InitialNormal(corner[0], corner[1], corner[2], corner[3]);
+    planarity->AddQuad(layout.Item(normals, f), v[0], v[1], v[2], v[3]);
+  }
+  return normals;
+}
+
+// Closeness of the block's items to targets (default: their values now).
+void AddCloseness(PyProblem& p, int b, double weight, const std::string& name,
+                  const std::string& role, const py::object& targets) {
+  const VariableBlock& block = p.Block(b);
+  p.CheckName(name);
+  const auto values = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(
+      targets.is_none() ? py::object(BlockValues(p, b)) : targets);
+  if (!values || values.size() != block.size())
+    throw InputError("targets must be " + std::to_string(block.num_items) + " x " +
+                     std::to_string(block.item_dim) + " values");
+  auto* closeness = p.problem.AddFamily<Closeness>(block.item_dim, weight, name, RoleOf(role));
+  for (int i = 0; i < block.num_items; ++i)
+    closeness->AddTarget(block.first_item + i, values.data() + i * block.item_dim);
+}
+
+void AddFairness(PyProblem& p, int b, const py::object& stencils, double weight,
+                 const std::string& name) {
+  const VariableBlock& block = p.Block(b);
+  p.CheckName(name);
+  const auto rows = IndexRows(stencils, 0, block.num_items, "stencils");
+  const int order = rows.empty() ? 2 : static_cast<int>(rows[0].size()) - 1;
+  if (order != 2 && order != 3)
+    throw InputError("stencils must be (k, 3) (second differences) or (k, 4) (third)");
+  auto* fairness = p.problem.AddFamily<PolylineFairness>(order, block.item_dim, weight, name);
+  for (std::vector<int> row : rows) {
+    for (int& i : row) i += block.first_item;
+    fairness->AddElement(row);
+  }
+}
+
+void AddPythonTerm(PyProblem& p, const std::string& name, const py::function& function, int rows,
+                   const py::object& items, const std::string& role, double weight) {
+  p.CheckName(name);
+  if (rows < 1) throw InputError("a term has at least one row");
+  const VariableLayout& layout = p.problem.layout();
+  const auto elements = IndexRows(items, 0, layout.num_items(), "items");
+  auto* term =
+      p.problem.AddFamily<PythonTerm>(name, rows, function, RoleOf(role), weight, p.errors);
+  for (const std::vector<int>& element : elements) {
+    int local_dim = 0;
+    for (int item : element) local_dim += layout.ItemDim(item);
+    term->AddPythonElement(element, local_dim);
+  }
+}
+
+py::dict Solve(PyProblem& p, const std::string& solver, const py::object& callback,
+               int max_iterations, double fairness, double epsilon, double soft_decay,
+               double soft_floor, double residual_tolerance, double step_tolerance,
+               const std::string& linear_solver, int threads, double soft_scale) {
+  GenericSolveArgs args;
+  SolverArgs{max_iterations, fairness, epsilon, soft_decay, soft_floor, linear_solver, threads}
+      .ApplyTo(&args.gp);
+  args.gp.residual_tolerance = residual_tolerance;
+  args.gp.step_tolerance = step_tolerance;
+  args.ceres.max_iterations = max_iterations;
+  args.ceres.fairness_weight = fairness;
+  args.ceres.soft_scale = soft_scale;
+  args.ceres.num_threads = threads > 0 ? threads : 1;
+  return SolveProblem(&p.problem, p.errors.get(), solver, callback, args);
+}
+
+const char* const kProblemDoc = R"(A problem of your own: unknowns in named blocks, terms
+(families of rows), solved by guided projection or Ceres from the same definitions.
+
+    p = gproj.Problem()
+    V = p.add_block("vertices", n, 3)          # block id; x grows by n * 3 zeros
+    p.set_values(V, vertices)                   # (n, 3)
+    p.add_planarity(V, quads)                   # quads: (m, 4) indices into the block
+    p.add_closeness(V, weight=0.1)              # soft: stay near the current values
+    p.add_term("on_sphere", f, 1, p.items(V)[:, None])   # a term written in Python
+    summary = p.solve()                         # or p.solve("ceres")
+    p.values(V)                                 # (n, 3) result
+)";
+
+const char* const kAddTermDoc =
+    R"(add_term(name, function, rows, items, role="constraint", weight=1.0)
+
+A term written in Python (for prototyping; every element calls back into Python).
+
+    name: identifier of the term, unique in the problem (a key of the per-term residuals).
+    function: function(x, element) -> (values, jacobian), where x: (d,) float64 is the element's
+        local vector (its items' scalars concatenated in order), element: int its index;
+        values: (rows,) and jacobian: (rows, d) (row-major) at x.
+    rows: rows per element.
+    items: (m, k) integer array of global item ids (see items()), one row per element.
+    role: "constraint" (must vanish), "soft" (regulariser, fades with soft_decay) or
+        "fairness" (weight omega_f^2 * weight, fades likewise).
+    weight: the rows' weight.
+An exception in the function stops the solve and is raised by solve().
+)";
+
+const char* const kSolveDoc = R"(solve(solver="gp", callback=None, ...) -> summary
+
+Solves in place (x holds the result afterwards).
+
+    solver: "gp" (guided projection) or "ceres" (Levenberg-Marquardt on the same rows,
+        weights fixed: soft and fairness rows times soft_scale).
+    callback: None or callback(record: dict) with the keys of a report's history entries;
+        returning False stops the solve. Ctrl-C stops it and raises KeyboardInterrupt.
+    max_iterations, fairness (omega_f), epsilon, soft_decay, soft_floor, linear_solver,
+        threads: as for planarize (SolverOptions).
+    residual_tolerance: gp converges when every constraint row has |phi| <= this.
+    step_tolerance: gp converges when the step's max norm <= this.
+    soft_scale: ceres only, factor on the soft and fairness weights.
+
+Returns the summary as a dict: "solver", "termination", "message", "converged", "usable",
+"iterations" (records), "objective" (1/2 sum w phi^2 + 1/2 omega_f^2 |P x|^2 at the result, fixed
+weights) and the solver's own fields ("full_report", counts, times).
+)";
+
+}  // namespace
+
+void BindGenericProblem(py::module_& m) {
+  const SolverOptions d;
+  py::class_<PyProblem>(m, "Problem", kProblemDoc)
+      .def(py::init<>())
+      .def("add_block", &AddBlock, py::arg("name"), py::arg("items"), py::arg("dim"),
+           py::arg("eliminable") = false,
+           "add_block(name, items, dim, eliminable=False) -> block id\n\nAppends `items` "
+           "items of `dim` scalars to x (zeros). eliminable: per-element auxiliaries, no row "
+           "touches two of them (the solver may eliminate them first).")
+      .def("values", &BlockValues, py::arg("block"), "values(block) -> (items, dim) float64 copy")
+      .def("set_values", &SetBlockValues, py::arg("block"), py::arg("values"),
+           "set_values(block, values): values (items, dim)")
+      .def("items", &Items, py::arg("block"),
+           "items(block) -> (items,) int32 global item ids, for add_term's items")
+      .def_property(
+          "x",
+          [](const PyProblem& p) {
+            return py::array_t<double>(p.problem.x().size(), p.problem.x().data());
+          },
+          [](PyProblem& p, const py::array_t<double, py::array::forcecast>& x) {
+            if (x.size() != p.problem.x().size())
+              throw InputError("x needs " + std::to_string(p.problem.x().size()) + " values");
+            std::copy_n(x.data(), x.size(), p.problem.x().data());
+          },
+          "All unknowns, (n,) float64 (a copy; assign to set).")
+      .def_property_readonly(
+          "terms",
+          [](const PyProblem& p) {
+            std::vector<std::string> names;
+            for (int i = 0; i < p.problem.num_families(); ++i)
+              names.push_back(p.problem.family(i).name());
+            return names;
+          },
+          "Names of the terms, in order.")
+      .def("add_planarity", &AddPlanarity, py::arg("block"), py::arg("faces"),
+           py::arg("weight") = 1.0, py::arg("name") = "planarity",
+           "add_planarity(block, faces, weight=1.0, name='planarity') -> normal block\n\n"
+           "Quad planarity (004 §3.2): faces (m, 4) indices into `block` (3D points); adds the "
+           "eliminable block '<name>_normals' of unit normals, initialised from the diagonals.")
+      .def("add_closeness", &AddCloseness, py::arg("block"), py::arg("weight") = 1.0,
+           py::arg("name") = "closeness", py::arg("role") = "soft", py::arg("targets") = py::none(),
+           "add_closeness(block, weight=1.0, name='closeness', role='soft', targets=None)\n\n"
+           "Every item of the block near its target: targets (items, dim), default the values "
+           "now. role 'constraint' holds them exactly.")
+      .def("add_fairness", &AddFairness, py::arg("block"), py::arg("stencils"),
+           py::arg("weight") = 1.0, py::arg("name") = "fairness",
+           "add_fairness(block, stencils, weight=1.0, name='fairness')\n\nPolyline fairness: "
+           "stencils (k, 3) item indices (second differences a - 2b + c) or (k, 4) (third).")
+      .def("add_term", &AddPythonTerm, py::arg("name"), py::arg("function"), py::arg("rows"),
+           py::arg("items"), py::arg("role") = "constraint", py::arg("weight") = 1.0, kAddTermDoc)
+      .def("solve", &Solve, kSolveDoc, py::arg("solver") = "gp", py::kw_only(),
+           py::arg("callback") = py::none(), py::arg("max_iterations") = d.max_iterations,
+           py::arg("fairness") = d.fairness_weight, py::arg("epsilon") = d.epsilon,
+           py::arg("soft_decay") = d.soft_weight_decay, py::arg("soft_floor") = d.soft_weight_floor,
+           py::arg("residual_tolerance") = d.residual_tolerance,
+           py::arg("step_tolerance") = d.step_tolerance,
+           py::arg("linear_solver") = std::string(LinearSolverTypeName(d.linear_solver)),
+           py::arg("threads") = d.num_threads, py::arg("soft_scale") = CeresOptions().soft_scale);
+}
+
+}  // namespace gproj::python

@@ -1,0 +1,116 @@
+"""combescure, invert, canal, weingarten, marionette_lift/_fit against the command line."""
+import json
+
+import numpy as np
+import pytest
+
+import gproj
+from conftest import ROOT, assert_close, assert_reports_equal
+
+DATA = ROOT / "examples" / "data"
+
+
+def test_combescure_equals_the_command_line(cli):
+    V, F = gproj.read_mesh(str(DATA / "revolution_13x17.obj"))
+    for method in ("propagation", "gp"):
+        cli.run("combescure", DATA / "revolution_13x17.obj", "-o", cli.path("c.obj"),
+                "--column-scale", 0.8, "--method", method, "--report", cli.path("r.json"))
+        V_out, report = gproj.combescure(V, F, column_scale=0.8, method=method)
+        assert_reports_equal(report, cli.read_report("r.json"))
+        assert_close(V_out, gproj.read_mesh(cli.path("c.obj"))[0])
+
+
+def test_combescure_refuses_a_non_grid():
+    V, F = gproj.grid(nu=4, nv=4)
+    with pytest.raises(ValueError):
+        gproj.combescure(V, F[::-1].copy())
+
+
+def test_invert_equals_the_command_line(cli):
+    V, F = gproj.read_mesh(str(DATA / "revolution_13x17.obj"))
+    cli.run("invert", DATA / "revolution_13x17.obj", "-o", cli.path("i.obj"), "--centre",
+            "0.5,0.2,3", "--ratio", 2, "--report", cli.path("r.json"))
+    V_out, report = gproj.invert(V, F, centre=[0.5, 0.2, 3], ratio=2.0)
+    assert_reports_equal(report, cli.read_report("r.json"))
+    assert_close(V_out, gproj.read_mesh(cli.path("i.obj"))[0])
+    with pytest.raises(ValueError, match="centre"):
+        gproj.invert(V, F, centre=[0, 0])
+
+
+def test_canal_equals_the_command_line(cli):
+    curve = np.loadtxt(DATA / "canal_curve.txt")
+    cli.run("canal", DATA / "canal_curve.txt", "--first-point", "-0.5,0.5,2", "--length", 2,
+            "--smooth", "-o", cli.path("c.obj"), "--report", cli.path("r.json"))
+    records = []
+    (V, F), report = gproj.canal(curve, [-0.5, 0.5, 2], length=2.0, smooth=True,
+                                 callback=records.append)
+    expected = cli.read_report("r.json")
+    expected["curve"] = None
+    assert_reports_equal(report, expected)
+    Vc, Fc = gproj.read_mesh(cli.path("c.obj"))
+    assert_close(V, Vc)
+    assert (F == Fc).all()
+    assert len(records) == len(report["history"])
+    with pytest.raises(ValueError, match="lengths"):
+        gproj.canal(curve, [-0.5, 0.5, 2])
+
+
+def test_weingarten_equals_the_command_line(cli):
+    source = DATA / "freeform_10x10.json"
+    cli.run("weingarten", source, "-o", cli.path("w.json"), "--max-iterations", 2,
+            "--report", cli.path("r.json"))
+    with open(source) as f:
+        surface = json.load(f)
+    surface["control_points"] = np.array(surface["control_points"])  # arrays are accepted
+    result, report = gproj.weingarten(surface, max_iterations=2)
+    expected = cli.read_report("r.json")
+    assert_reports_equal(report, expected)
+    with open(cli.path("w.json")) as f:
+        assert_reports_equal(result, json.load(f))
+    with pytest.raises(ValueError, match="preset"):
+        gproj.weingarten(surface, preset="fig99")
+    with pytest.raises(ValueError):
+        gproj.weingarten({"degree": [3, 3]})
+
+
+def marionette_guides():
+    row = [0.4 * np.sin(j / 4.0) for j in range(21)]
+    column = [0.3 * (1 - np.cos(i / 5.0)) for i in range(21)]
+    return row, column
+
+
+def test_marionette_lift_equals_the_command_line(cli):
+    plan = DATA / "marionette_plan_21x21.obj"
+    V, F = gproj.read_mesh(str(plan))
+    row, column = marionette_guides()
+    for solver in ("direct", "gp"):
+        cli.run("marionette", plan, "-o", cli.path("m.obj"), "--row", ",".join(map(repr, row)),
+                "--column", ",".join(map(repr, column)), "--solver", solver,
+                "--report", cli.path("r.json"))
+        V_out, report = gproj.marionette_lift(V, F, row=row, column=column, solver=solver)
+        assert_reports_equal(report, cli.read_report("r.json"))
+        assert_close(V_out, gproj.read_mesh(cli.path("m.obj"))[0])
+
+
+def test_marionette_guides_and_fit(cli):
+    plan = DATA / "marionette_plan_valence6.obj"
+    guides = (DATA / "marionette_valence6_guides.txt").read_text()
+    cli.run("marionette", plan, "--guides", DATA / "marionette_valence6_guides.txt",
+            "-o", cli.path("m.obj"), "--report", cli.path("r.json"))
+    V, F = gproj.read_mesh(str(plan))
+    V_out, report = gproj.marionette_lift(V, F, guides=guides)
+    assert_close(V_out, gproj.read_mesh(cli.path("m.obj"))[0])
+    assert report["converged"]
+    with pytest.raises(ValueError, match="^guides:"):
+        gproj.marionette_lift(V, F, guides="guide 0 1 nonsense\n")
+    Vp, Fp = gproj.read_mesh(str(DATA / "marionette_plan_21x21.obj"))
+    target = Vp.copy()
+    target[:, 2] = 0.1 * Vp[:, 0] ** 2 - 0.05 * Vp[:, 1] ** 2
+    cli.write_mesh("target.obj", target, Fp)
+    cli.run("marionette", DATA / "marionette_plan_21x21.obj", "--fit", cli.path("target.obj"),
+            "-o", cli.path("f.obj"), "--report", cli.path("r.json"))
+    V_fit, report = gproj.marionette_fit(Vp, Fp, target)
+    expected = cli.read_report("r.json")
+    expected["fit"] = None
+    assert_reports_equal(report, expected)
+    assert_close(V_fit, gproj.read_mesh(cli.path("f.obj"))[0])

@@ -1,0 +1,143 @@
+"""planarize, anet and hnet: results and reports equal to the command line's; callbacks, stop,
+Ctrl-C."""
+import os
+import signal
+import threading
+
+import numpy as np
+import pytest
+
+import gproj
+from conftest import assert_close, assert_reports_equal
+
+
+def compare_with_command_line(cli, command, V, F, python_kwargs, args, output="out.obj"):
+    source = cli.write_mesh("in.obj", V, F)
+    cli.run(command, source, "-o", cli.path(output), "--report", cli.path("r.json"), *args)
+    result, report = getattr(gproj, command)(V, F, **python_kwargs)
+    assert_reports_equal(report, cli.read_report("r.json"))
+    return result, report
+
+
+@pytest.mark.parametrize("variant", ["gp", "ceres", "circular", "options"])
+def test_planarize_equals_the_command_line(cli, variant):
+    V, F = gproj.grid(nu=7, nv=6, noise=0.05)
+    kwargs, args = {
+        "gp": ({}, []),
+        "ceres": ({"solver": "ceres"}, ["--solver", "ceres"]),
+        "circular": ({"circular": True, "tolerance": 1e-8}, ["--circular", "--tolerance", 1e-8]),
+        "options": ({"closeness": 0.5, "fairness": 0.3, "fairness_order": 3, "epsilon": 1e-2,
+                     "max_iterations": 7, "linear_solver": "eigen"},
+                    ["--closeness", 0.5, "--fairness", 0.3, "--fairness-order", 3, "--epsilon",
+                     1e-2, "--max-iterations", 7, "--linear-solver", "eigen"]),
+    }[variant]
+    V_out, report = compare_with_command_line(cli, "planarize", V, F, kwargs, args)
+    Vc, _ = gproj.read_mesh(cli.path("out.obj"))
+    assert_close(V_out, Vc)
+    assert V_out.shape == V.shape and V_out.dtype == np.float64
+    if variant in ("gp", "circular"):
+        assert report["converged"]
+
+
+def test_planarize_accepts_lists_and_int_vertices():
+    V, F = gproj.grid(nu=4, nv=4, noise=0.0)
+    V_out, report = gproj.planarize(np.round(V * 10).astype(int) / 10, F.tolist())
+    assert report["converged"]
+
+
+def test_callback_gets_history_records_and_can_stop():
+    V, F = gproj.grid(nu=9, nv=9, noise=0.05)
+    records = []
+
+    def callback(record):
+        records.append(record)
+        return len(records) < 3
+
+    _, report = gproj.planarize(V, F, callback=callback)
+    assert len(records) == 3
+    assert [r["iteration"] for r in records] == [0, 1, 2]
+    assert sorted(records[0]) == sorted(report["history"][0])
+    assert report["termination"].startswith("USER_ABORT")
+    assert not report["converged"] and not report["failed"]
+    assert report["iterations"] == 2
+
+
+def test_callback_returning_none_continues():
+    V, F = gproj.grid(nu=5, nv=5, noise=0.05)
+    _, report = gproj.planarize(V, F, callback=lambda record: None)
+    assert report["converged"]
+
+
+def test_ceres_callback_stops():
+    V, F = gproj.grid(nu=5, nv=5, noise=0.05)
+    _, report = gproj.planarize(V, F, solver="ceres", callback=lambda record: False)
+    assert len(report["history"]) == 1
+
+
+def test_callback_exception_propagates():
+    V, F = gproj.grid(nu=5, nv=5, noise=0.05)
+
+    def callback(record):
+        raise RuntimeError("stop here")
+
+    with pytest.raises(RuntimeError, match="stop here"):
+        gproj.planarize(V, F, callback=callback)
+
+
+def test_ctrl_c_stops_the_run():
+    V, F = gproj.grid(nu=121, nv=121, noise=0.05)
+    records = []
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            # Fixed soft weights and an unreachable tolerance: runs until interrupted.
+            gproj.planarize(V, F, tolerance=1e-300, soft_decay=1.0, max_iterations=100000,
+                            callback=records.append)
+    finally:
+        timer.cancel()
+    assert len(records) < 100000  # stopped (possibly at the very first record)
+
+
+def test_bad_options_raise_value_error():
+    V, F = gproj.grid(nu=3, nv=3)
+    for kwargs, match in [({"solver": "newton"}, "solver must be gp or ceres"),
+                          ({"linear_solver": "mkl"}, "linear_solver must be cholmod or eigen"),
+                          ({"tolerance": -1.0}, "invalid option"),
+                          ({"fairness_order": 4}, "invalid option"),
+                          ({"epsilon": 0.0}, "invalid option")]:
+        with pytest.raises(ValueError, match=match):
+            gproj.planarize(V, F, **kwargs)
+
+
+@pytest.mark.parametrize("star_form", ["normals", "quads"])
+def test_anet_equals_the_command_line(cli, star_form):
+    V, F = gproj.grid(nu=7, nv=7, surface="hypar", noise=0.05)
+    V_out, _ = compare_with_command_line(cli, "anet", V, F, {"star_form": star_form},
+                                         ["--star-form", star_form])
+    assert_close(V_out, gproj.read_mesh(cli.path("out.obj"))[0])
+
+
+def test_anet_with_a_reference(cli):
+    V, F = gproj.grid(nu=6, nv=6, surface="hypar", noise=0.05)
+    Vr, Fr = gproj.grid(nu=12, nv=12, surface="hypar", noise=0.0)
+    cli.write_mesh("ref.obj", Vr, Fr)
+    V_out, _ = compare_with_command_line(cli, "anet", V, F, {"reference": (Vr, Fr)},
+                                         ["--reference", cli.path("ref.obj")])
+    assert_close(V_out, gproj.read_mesh(cli.path("out.obj"))[0])
+
+
+def test_anet_refuses_odd_valence():
+    V = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [2, 0, 0], [2, 1, 0]], float)
+    with pytest.raises(ValueError):
+        gproj.anet(V, [[0, 1, 2, 3], [1, 4, 5, 2], [0, 1, 4, 5]])
+
+
+def test_hnet_equals_the_command_line(cli):
+    V, F = gproj.grid(nu=6, nv=6, surface="hypar", noise=0.02)
+    hnet, report = compare_with_command_line(cli, "hnet", V, F, {}, [], output="h.json")
+    import json
+    with open(cli.path("h.json")) as f:
+        expected = json.load(f)
+    assert_reports_equal(hnet, expected)
+    assert len(hnet["weights"]) == len(F)
