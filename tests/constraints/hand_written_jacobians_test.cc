@@ -61,9 +61,10 @@ void ExpectMatchesAutomatic(const ConstraintFamily& family, int e, const Local<N
       const double automatic = rows[r].v[l];
       EXPECT_NEAR(jac[r * N + l], automatic, 1e-12 * (1.0 + std::abs(automatic)))
           << family.name() << " row " << r << " local " << l;
-      if (!family.RowTouches(e, r, l))
+      if (!family.RowTouches(e, r, l)) {
         EXPECT_EQ(automatic, 0.0) << family.name() << " row " << r << " declared not to touch "
                                   << l;
+      }
     }
   }
 }
