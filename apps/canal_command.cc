@@ -23,36 +23,16 @@ struct CanalArgs {
   CanalSurfaceOptions options;
 };
 
-// The strip's input from the options (curve file, first point, lengths).
-CircularStripInput StripInputFromArgs(const CanalArgs& args) {
-  CircularStripInput input;
-  input.curve = ReadPoints(args.curve);
-  input.first_point = Vector3(args.first_point, "--first-point");
-  const size_t n = input.curve.size();
-  if (!args.lengths.empty()) {
-    if (args.length > 0.0) throw InputError("give either --lengths or --length, not both");
-    input.lengths = args.lengths;
-  } else if (args.length > 0.0) {
-    input.lengths.assign(n, args.length);
-  } else {
-    throw InputError(
-        "give the lengths across the strip (--lengths, one per curve point, or "
-        "--length for all)");
-  }
-  if (input.lengths.size() != n)
-    throw InputError("--lengths needs one value per curve point (" + std::to_string(n) + "), got " +
-                     std::to_string(input.lengths.size()));
-  return input;
-}
-
 // The canal surface of the options; its frame's normal is --normal or the default.
 std::unique_ptr<CanalSurface> CanalFromArgs(const CanalArgs& args) {
-  args.outputs.Check();
-  CheckMeshOutputPath("--strip", args.strip);
-  const CircularStripInput input = StripInputFromArgs(args);
-  FrameAngles angles =
-      AnglesFromNormal(args.normal.empty() ? DefaultCanalNormal(BuildCircularStrip(input))
-                                           : Vector3(args.normal, "--normal"));
+  args.outputs.Check({{"curve", args.curve}}, {{"--strip", args.strip, true}});
+  const CircularStripInput input =
+      MakeCircularStripInput(ReadPoints(args.curve), Vector3(args.first_point, "--first-point"),
+                             args.lengths, args.length);
+  const Eigen::Vector3d normal = args.normal.empty() ? DefaultCanalNormal(BuildCircularStrip(input))
+                                                     : Vector3(args.normal, "--normal");
+  if (normal.norm() == 0.0) throw InputError("--normal must not be zero");
+  FrameAngles angles = AnglesFromNormal(normal);
   angles.psi = args.psi;
   return std::make_unique<CanalSurface>(input, angles, args.options);
 }

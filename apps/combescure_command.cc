@@ -36,7 +36,7 @@ int RunCombescure(const CombescureArgs& args) {
   std::unique_ptr<Combescure> combescure;
   CombescureLengths lengths;
   try {
-    args.outputs.Check();
+    args.outputs.Check({{"input", args.input}});
     const PolyMesh reference = ReadMesh(args.input, MeshRequirements{true});
     const GridShape shape = DetectGridShape(reference, args.input);
     lengths = LengthsFromArgs(args, reference, shape);

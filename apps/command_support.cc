@@ -26,6 +26,34 @@ void CheckOutputPath(const std::string& option, const std::string& path) {
     throw InputError(where + "the directory " + directory.string() + " is not writable");
 }
 
+void CheckDistinctPaths(const std::vector<std::pair<std::string, std::string>>& inputs,
+                        const std::vector<std::pair<std::string, std::string>>& outputs) {
+  const auto same = [](const std::string& a, const std::string& b) {
+    std::error_code ec;
+    return fs::weakly_canonical(a, ec) == fs::weakly_canonical(b, ec);
+  };
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    const auto& [option, path] = outputs[i];
+    if (path.empty()) continue;
+    for (const auto& [input_option, input] : inputs)
+      if (!input.empty() && same(path, input))
+        throw InputError(option + " " + path + " is the " + input_option + " file");
+    for (size_t j = 0; j < i; ++j)
+      if (!outputs[j].second.empty() && same(path, outputs[j].second))
+        throw InputError(outputs[j].first + " and " + option + " are the same file " + path);
+  }
+}
+
+void CheckOutputPaths(const std::vector<std::pair<std::string, std::string>>& inputs,
+                      const std::vector<OutputPath>& outputs) {
+  std::vector<std::pair<std::string, std::string>> paths;
+  for (const OutputPath& o : outputs) {
+    (o.mesh ? CheckMeshOutputPath : CheckOutputPath)(o.option, o.path);
+    paths.emplace_back(o.option, o.path);
+  }
+  CheckDistinctPaths(inputs, paths);
+}
+
 void CheckMeshOutputPath(const std::string& option, const std::string& path) {
   if (path.empty()) return;
   CheckOutputPath(option, path);

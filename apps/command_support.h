@@ -35,6 +35,23 @@ CLI::Validator Positive();                      // finite and > 0
 CLI::Validator NonNegative();                   // finite and ≥ 0
 CLI::Validator Within(double min, double max);  // finite and in [min, max]
 
+// Throws InputError when two of the named paths are one file: an output over an input ("--output
+// in.obj is the input file"), or two outputs ("--report and --output are the same file
+// out.obj"). Each entry is (option, path); inputs are named "input" (or their option); empty
+// paths are skipped.
+void CheckDistinctPaths(const std::vector<std::pair<std::string, std::string>>& inputs,
+                        const std::vector<std::pair<std::string, std::string>>& outputs);
+
+// An output of a command: its option, its path (empty: not asked) and whether it is a mesh.
+struct OutputPath {
+  std::string option, path;
+  bool mesh = false;
+};
+// Every output checked (CheckOutputPath, CheckMeshOutputPath for meshes), then all of them and
+// the inputs checked to be distinct files (CheckDistinctPaths).
+void CheckOutputPaths(const std::vector<std::pair<std::string, std::string>>& inputs,
+                      const std::vector<OutputPath>& outputs);
+
 // Throws InputError "<what> needs about N GB, more than the machine's M GB of memory" when
 // `bytes` (an estimate made before allocating) exceeds the physical memory.
 void CheckMemory(const std::string& what, double bytes);

@@ -59,7 +59,7 @@ int RunInvert(const InvertArgs& args) {
   PolyMesh mesh, out;
   nlohmann::json extra = {{"input", args.input}, {"ratio", args.ratio}};
   try {
-    args.outputs.Check();
+    args.outputs.Check({{"input", args.input}});
     mesh = ReadMesh(args.input);
     nlohmann::json m_revolution;
     const Eigen::Vector3d centre = args.m_revolution.empty()

@@ -35,8 +35,12 @@ bool WriteOutputs(const MarionetteArgs& args, const MarionetteRun& run, const Ru
 int RunMarionette(const MarionetteArgs& args) {
   std::unique_ptr<MarionetteRun> run;
   try {
-    CheckMeshOutputPath("--output", args.output);
-    CheckOutputPath("--report", args.report);
+    const MarionetteRunOptions& o = args.options;
+    CheckOutputPaths({{"plan", o.plan},
+                      {"--guides", o.guides},
+                      {"--fit", o.fit},
+                      {"--closed-strip", o.closed_strip}},
+                     {{"--output", args.output, true}, {"--report", args.report}});
     run = MakeMarionetteRun(args.options);
   } catch (const InputError& e) {
     std::cerr << "gproj marionette: " << e.what() << "\n";

@@ -68,13 +68,11 @@ bool Prepare(const char* name, NetArgs* args, PolyMesh* mesh,
       args->star_form == "quads" ? StarPlanarityForm::kQuads : StarPlanarityForm::kNormals;
   try {
     ApplyLinearSolver(args->linear_solver, &args->options.anet.solver);
-    for (const auto& [option, path] :
-         {std::pair<const char*, const std::string&>{"--output", args->output},
-          {"--report", args->report},
-          {"--picture", args->picture}})
-      CheckOutputPath(option, path);
-    if (std::string(name) == "anet") CheckMeshOutputPath("--output", args->output);
-    CheckMeshOutputPath("--surface-mesh", args->surface_mesh);
+    CheckOutputPaths({{"input", args->input}, {"--reference", args->reference}},
+                     {{"--output", args->output, std::string(name) == "anet"},
+                      {"--report", args->report},
+                      {"--picture", args->picture},
+                      {"--surface-mesh", args->surface_mesh, true}});
     *mesh = ReadMesh(args->input, MeshRequirements{true});
     CheckANetTopology(*mesh, args->input);
     if (!args->reference.empty()) reference->reset(new PolyMesh(ReadMesh(args->reference)));

@@ -39,9 +39,9 @@ int RunPlanarize(PlanarizeArgs args) {
     ApplyLinearSolver(args.linear_solver, &options.solver);
     std::string why;
     if (!options.IsValid(&why)) throw InputError("invalid option: " + why);
-    CheckMeshOutputPath("--output", args.output);
-    CheckOutputPath("--report", args.report);
-    CheckOutputPath("--picture", args.picture);
+    CheckOutputPaths(
+        {{"input", args.input}},
+        {{"--output", args.output, true}, {"--report", args.report}, {"--picture", args.picture}});
     input = ReadMesh(args.input, MeshRequirements{true});
     pq = std::make_unique<PQPlanarization>(input, options);
   } catch (const InputError& e) {

@@ -18,10 +18,12 @@ Eigen::Vector3d Vector3(const std::vector<double>& values, const std::string& op
   return p;
 }
 
-void MeshOutputs::Check() const {
-  CheckMeshOutputPath("--output", mesh);
-  CheckOutputPath("--report", report);
-  CheckOutputPath("--picture", picture);
+void MeshOutputs::Check(const std::vector<std::pair<std::string, std::string>>& inputs,
+                        const std::vector<OutputPath>& more) const {
+  std::vector<OutputPath> outputs = {
+      {"--output", mesh, true}, {"--report", report}, {"--picture", picture}};
+  outputs.insert(outputs.end(), more.begin(), more.end());
+  CheckOutputPaths(inputs, outputs);
 }
 
 void PrintMeasures(const char* label, const NamedValues& measures) {

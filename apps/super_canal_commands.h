@@ -26,7 +26,10 @@ Eigen::Vector3d Vector3(const std::vector<double>& values, const std::string& op
 struct MeshOutputs {
   std::string mesh, report, picture;
   // Throws InputError for a path that cannot be written, before any work.
-  void Check() const;
+  // Checks every path, and that none is an input (named in `inputs`) or another output
+  // (`more` lists the command's other outputs).
+  void Check(const std::vector<std::pair<std::string, std::string>>& inputs,
+             const std::vector<OutputPath>& more = {}) const;
 };
 
 // "<label>: max planarity …, max concyclicity …" from MeasureCircularMesh's values.

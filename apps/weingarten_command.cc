@@ -35,10 +35,10 @@ std::vector<Output> Outputs(WeingartenArgs* a) {
 // The options from the preset and the overrides; the input; every output path checked.
 WeingartenOptions Prepare(WeingartenArgs* args, BSplineSurface* input) {
   const WeingartenOptions options = args->settings.ToOptions();
-  CheckOutputPath("--output", args->files.output);
+  std::vector<OutputPath> outputs = {{"--output", args->files.output}};
   for (const Output& o : Outputs(args))
-    (o.path == &args->files.surface_mesh ? CheckMeshOutputPath : CheckOutputPath)(o.option,
-                                                                                  *o.path);
+    outputs.push_back({o.option, *o.path, o.path == &args->files.surface_mesh});
+  CheckOutputPaths({{"input", args->input}}, outputs);
   *input = ReadBSplineJson(args->input);
   return options;
 }

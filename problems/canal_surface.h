@@ -41,6 +41,13 @@ struct CircularStripInput {
   std::vector<double> lengths;                            // L_0..L_n (> 0)
 };
 
+// The input from a curve, a first point and the lengths: `lengths` (one per curve point) or one
+// `length` (> 0) for all, not both. Throws InputError "give either lengths or length, not
+// both", "give the lengths ...", "lengths needs one value per curve point (N), got M".
+CircularStripInput MakeCircularStripInput(std::vector<Eigen::Vector3d> curve,
+                                          const Eigen::Vector3d& first_point,
+                                          const std::vector<double>& lengths, double length);
+
 struct CircularStrip {
   std::vector<Eigen::Vector3d> p, q;  // n + 1 each
 };

@@ -66,24 +66,10 @@ py::tuple RunInvert(const py::object& vertices, const py::object& faces, const p
 
 CircularStripInput StripInput(const py::object& curve, const py::object& first_point,
                               const std::optional<std::vector<double>>& lengths, double length) {
-  CircularStripInput input;
-  input.curve = PointsFromArray(curve, "curve");
-  input.first_point = Vector3FromPython(first_point, "first_point");
-  const std::size_t n = input.curve.size();
-  if (lengths && length > 0.0) throw InputError("give either lengths or length, not both");
-  if (lengths) {
-    input.lengths = *lengths;
-  } else if (length > 0.0) {
-    input.lengths.assign(n, length);
-  } else {
-    throw InputError(
-        "give the lengths across the strip (lengths, one per curve point, or "
-        "length for all)");
-  }
-  if (input.lengths.size() != n)
-    throw InputError("lengths needs one value per curve point (" + std::to_string(n) + "), got " +
-                     std::to_string(input.lengths.size()));
-  return input;
+  if (lengths && lengths->empty()) throw InputError("lengths needs one value per curve point");
+  return MakeCircularStripInput(PointsFromArray(curve, "curve"),
+                                Vector3FromPython(first_point, "first_point"),
+                                lengths ? *lengths : std::vector<double>{}, length);
 }
 
 nlohmann::json CanalExtra(const CanalSurface& canal, int segments) {

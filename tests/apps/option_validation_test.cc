@@ -3,6 +3,7 @@
 // that cannot fit are refused up front instead of aborting later.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -61,6 +62,37 @@ TEST_F(OptionValidationTest, NonFiniteAndOutOfRangeValuesAreRefusedNamingTheOpti
   }
   EXPECT_FALSE(Exists("out.obj"));
   EXPECT_FALSE(Exists("out.json"));
+}
+
+// An output over an input or over another output is refused before any work, naming both.
+TEST_F(OptionValidationTest, OutputsMustBeDistinctFilesAndNotInputs) {
+  const std::string input = Path("in.obj");
+  std::filesystem::copy_file(Data("noisy_grid_21x21.obj"), input);
+  const std::string before = Slurp(input);
+  const std::vector<BadOption> cases = {
+      {"planarize " + input + " -o " + Path("p.obj") + " --report " + Path("p.obj"), "--report",
+       "--output and --report are the same file"},
+      {"planarize " + input + " -o " + input, "--output", "is the input file"},
+      {"anet " + input + " -o " + Path("a.obj") + " --reference " + Path("a.obj"), "--output",
+       "is the --reference file"},
+      {"weingarten " + Data("freeform_10x10.json") + " -o " + Path("w.json") + " --diagram " +
+           Path("w.json"),
+       "--diagram", "--output and --diagram are the same file"},
+      {"canal " + Data("canal_curve.txt") + " --first-point -0.5,0.5,2 --length 2 -o " +
+           Path("c.obj") + " --strip " + Path("c.obj"),
+       "--strip", "--output and --strip are the same file"},
+      {"canal " + Data("canal_curve.txt") + " --first-point -0.5,0.5,2 --length 2 -o " +
+           Path("c.obj") + " --normal 0,0,0",
+       "--normal", "--normal must not be zero"},
+  };
+  for (const BadOption& c : cases) {
+    const CommandRun r = Gproj(c.args);
+    EXPECT_EQ(r.exit_code, 1) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.rule), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.option), std::string::npos) << c.args << "\n" << r.err;
+  }
+  EXPECT_EQ(Slurp(input), before);
+  for (const char* name : {"p.obj", "a.obj", "w.json", "c.obj"}) EXPECT_FALSE(Exists(name)) << name;
 }
 
 TEST_F(OptionValidationTest, SizesThatCannotFitAreRefusedBeforeAllocating) {
