@@ -464,15 +464,15 @@ TEST(BSplineSurfaceTest, HugeDegreeIsRefusedWithoutOverflow) {
 TEST(BSplineSurfaceTest, MillionControlPointsAreRefusedWhileParsing) {
   EXPECT_EQ(ParseBSplineJson(GridJson(6, 7)).num_control_points(), 42);
   EXPECT_EQ(MessageOf([] { ParseBSplineJson(GridJson(1000, 1000), "m.json"); }),
-            "m.json: control_points has more than 250000 points; gproj reads B-spline surfaces "
+            "m.json: control_points has more than 40000 points; gproj reads B-spline surfaces "
             "of at most that many");
   // Values other than control points are bounded too.
   std::string padded = "{\"pad\": [";
-  for (int i = 0; i < 2000001; ++i) padded += "0,";
+  for (int i = 0; i < 320001; ++i) padded += "0,";
   padded += "0]}";
   EXPECT_EQ(MessageOf([&] { ParseBSplineJson(padded, "p.json"); }),
-            "p.json: the file has more than 2000000 JSON values; a B-spline surface of at most "
-            "250000 control points has fewer");
+            "p.json: the file has more than 320000 JSON values; a B-spline surface of at most "
+            "40000 control points has fewer");
 }
 
 TEST(BSplineSurfaceTest, ByteOrderMarkAndCrlfAreAccepted) {
