@@ -116,7 +116,7 @@ class TokenReader {
   void SkipRestOfLine(int line);
   // Bytes not yet read.
   std::size_t remaining() const { return text_.size() - pos_; }
-  // Line of the last token read (1 before the first).
+  // The line the reader is on (1-based).
   int line() const { return line_; }
 
  private:
