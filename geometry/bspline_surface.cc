@@ -3,6 +3,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -132,15 +134,15 @@ std::vector<double> UniformInsertions(const std::vector<double>& knots, int per_
 
 void ValidateKnots(const std::vector<double>& knots, const std::string& name, int degree, int count,
                    const std::string& where) {
-  const int needed = count + degree + 1;
-  if (static_cast<int>(knots.size()) != needed)
+  const long long needed = count + degree + 1LL;  // count > degree: validated before
+  if (static_cast<long long>(knots.size()) != needed)
     throw InputError(Prefix(where) + name + " has " + std::to_string(knots.size()) + " values; " +
                      std::to_string(count) + " control points of degree " + std::to_string(degree) +
                      " need " + std::to_string(needed) + " (count + degree + 1)");
-  for (int k = 0; k < needed; ++k)
+  for (long long k = 0; k < needed; ++k)
     if (!std::isfinite(knots[k]))
       throw InputError(Prefix(where) + name + "[" + std::to_string(k) + "] is not finite");
-  for (int k = 1; k < needed; ++k)
+  for (long long k = 1; k < needed; ++k)
     if (knots[k] < knots[k - 1])
       throw InputError(Prefix(where) + name + " decreases at index " + std::to_string(k) + " (" +
                        Num(knots[k]) + " after " + Num(knots[k - 1]) + ")");
@@ -188,6 +190,90 @@ std::vector<double> ParseNumbers(const Json& value, const std::string& name,
 
 std::string JsonNumber(double x) { return Json(x).dump(); }
 
+// Limits of the B-spline JSON reader, so that a file gproj cannot solve is refused before it
+// takes the memory. `gproj weingarten` (default samples) was measured at about 200 KB per
+// control point, growing faster than linearly (310 MB at 40 × 40, 1.4 GB at 80 × 80), so 40000
+// control points (200 × 200) need about 8 GB or more. Degrees above 32 have no use and make the
+// basis evaluation quadratic in the degree; the file size bounds the text held at once.
+constexpr long long kMaxBSplineControlPoints = 40000;
+constexpr int kMaxBSplineDegree = 32;
+constexpr std::uintmax_t kMaxBSplineJsonBytes = 64u << 20;
+// Every number and array of the file: control points take four each, knots one.
+constexpr long long kMaxBSplineJsonValues = 8 * kMaxBSplineControlPoints;
+
+// Parses, refusing more control points or JSON values than the limits while parsing (before
+// the whole document is held in memory).
+Json ParseBoundedJson(const std::string& text, const std::string& pre) {
+  long long values = 0, points = 0;
+  std::string key;
+  const auto bound = [&](int depth, Json::parse_event_t event, Json& parsed) {
+    if (event == Json::parse_event_t::key && depth == 1) key = parsed.get<std::string>();
+    if (event == Json::parse_event_t::array_end && depth == 3 && key == "control_points" &&
+        ++points > kMaxBSplineControlPoints)
+      throw InputError(pre + "control_points has more than " +
+                       std::to_string(kMaxBSplineControlPoints) +
+                       " points; gproj reads B-spline surfaces of at most that many");
+    if ((event == Json::parse_event_t::value || event == Json::parse_event_t::array_start) &&
+        ++values > kMaxBSplineJsonValues)
+      throw InputError(pre + "the file has more than " + std::to_string(kMaxBSplineJsonValues) +
+                       " JSON values; a B-spline surface of at most " +
+                       std::to_string(kMaxBSplineControlPoints) + " control points has fewer");
+    return true;
+  };
+  try {
+    return Json::parse(text, bound);
+  } catch (const Json::exception& e) {  // parse_error, or out_of_range for number overflow
+    throw InputError(pre + "invalid JSON: " + e.what());
+  }
+}
+
+void ParseDegrees(const Json& degree, const std::string& pre, BSplineSurface* s) {
+  if (!degree.is_array() || degree.size() != 2 || !degree[0].is_number_integer() ||
+      !degree[1].is_number_integer())
+    throw InputError(pre + "degree must be an array of two integers [du, dv]");
+  // JSON keeps non-negative integers unsigned and negative ones signed, at 64 bits.
+  const auto to_degree = [&](const Json& d, const char* name) {
+    if (!d.is_number_unsigned() || d.get<std::uint64_t>() < 1)
+      throw InputError(pre + name + " must be ≥ 1 (got " + d.dump() + ")");
+    if (d.get<std::uint64_t>() > kMaxBSplineDegree)
+      throw InputError(pre + name + " must be ≤ " + std::to_string(kMaxBSplineDegree) + " (got " +
+                       d.dump() + ")");
+    return static_cast<int>(d.get<std::uint64_t>());
+  };
+  s->degree_u = to_degree(degree[0], "degree_u");
+  s->degree_v = to_degree(degree[1], "degree_v");
+}
+
+void ParseControlPoints(const Json& points, const std::string& pre, BSplineSurface* s) {
+  if (!points.is_array())
+    throw InputError(pre + "control_points must be an array of nu rows of nv points");
+  s->nu = static_cast<int>(points.size());
+  for (int i = 0; i < s->nu; ++i)
+    if (!points[i].is_array())
+      throw InputError(pre + "control_points[" + std::to_string(i) +
+                       "] must be an array of points [x, y, z]");
+  s->nv = s->nu > 0 ? static_cast<int>(points[0].size()) : 0;
+  for (int i = 1; i < s->nu; ++i)
+    if (static_cast<int>(points[i].size()) != s->nv)
+      throw InputError(pre + "control_points[" + std::to_string(i) + "] has " +
+                       std::to_string(points[i].size()) + " points, control_points[0] has " +
+                       std::to_string(s->nv));
+  s->control.resize(static_cast<Eigen::Index>(s->nu) * s->nv, 3);
+  for (int i = 0; i < s->nu; ++i)
+    for (int j = 0; j < s->nv; ++j) {
+      const Json& p = points[i][j];
+      const std::string name =
+          "control_points[" + std::to_string(i) + "][" + std::to_string(j) + "]";
+      if (!p.is_array() || p.size() != 3)
+        throw InputError(pre + name + " must be an array of three numbers [x, y, z]");
+      for (int c = 0; c < 3; ++c) {
+        if (!p[c].is_number())
+          throw InputError(pre + name + "[" + std::to_string(c) + "] is not a number");
+        s->control(s->Index(i, j), c) = p[c].get<double>();
+      }
+    }
+}
+
 }  // namespace
 
 Eigen::Vector3d BSplineSurface::Point(double u, double v) const {
@@ -231,14 +317,15 @@ void ValidateBSpline(const BSplineSurface& s, const std::string& where) {
     throw InputError(pre + "degree_u must be ≥ 1 (got " + std::to_string(s.degree_u) + ")");
   if (s.degree_v < 1)
     throw InputError(pre + "degree_v must be ≥ 1 (got " + std::to_string(s.degree_v) + ")");
-  if (s.nu < s.degree_u + 1)
+  // In long long: degree + 1 overflows int for the largest degrees.
+  if (s.nu < s.degree_u + 1LL)
     throw InputError(pre + "nu = " + std::to_string(s.nu) + " control points along u; degree " +
                      std::to_string(s.degree_u) + " needs at least " +
-                     std::to_string(s.degree_u + 1) + " (degree + 1)");
-  if (s.nv < s.degree_v + 1)
+                     std::to_string(s.degree_u + 1LL) + " (degree + 1)");
+  if (s.nv < s.degree_v + 1LL)
     throw InputError(pre + "nv = " + std::to_string(s.nv) + " control points along v; degree " +
                      std::to_string(s.degree_v) + " needs at least " +
-                     std::to_string(s.degree_v + 1) + " (degree + 1)");
+                     std::to_string(s.degree_v + 1LL) + " (degree + 1)");
   ValidateKnots(s.knots_u, "knots_u", s.degree_u, s.nu, where);
   ValidateKnots(s.knots_v, "knots_v", s.degree_v, s.nv, where);
   if (s.control.rows() != static_cast<Eigen::Index>(s.nu) * s.nv)
@@ -254,61 +341,25 @@ void ValidateBSpline(const BSplineSurface& s, const std::string& where) {
 
 BSplineSurface ParseBSplineJson(const std::string& text, const std::string& path) {
   const std::string pre = Prefix(path);
-  Json root;
-  try {
-    root = Json::parse(text);
-  } catch (const Json::exception& e) {  // parse_error, or out_of_range for number overflow
-    throw InputError(pre + "invalid JSON: " + e.what());
-  }
+  const Json root = ParseBoundedJson(text, pre);
   if (!root.is_object()) throw InputError(pre + "the top level must be a JSON object");
   BSplineSurface s;
-  const Json& degree = Field(root, "degree", pre);
-  if (!degree.is_array() || degree.size() != 2 || !degree[0].is_number_integer() ||
-      !degree[1].is_number_integer())
-    throw InputError(pre + "degree must be an array of two integers [du, dv]");
-  const auto to_int = [&](const Json& d) {
-    const auto value = d.get<long long>();
-    if (value < std::numeric_limits<int>::min() || value > std::numeric_limits<int>::max())
-      throw InputError(pre + "degree is out of range");
-    return static_cast<int>(value);
-  };
-  s.degree_u = to_int(degree[0]);
-  s.degree_v = to_int(degree[1]);
+  ParseDegrees(Field(root, "degree", pre), pre, &s);
   s.knots_u = ParseNumbers(Field(root, "knots_u", pre), "knots_u", pre);
   s.knots_v = ParseNumbers(Field(root, "knots_v", pre), "knots_v", pre);
-  const Json& points = Field(root, "control_points", pre);
-  if (!points.is_array())
-    throw InputError(pre + "control_points must be an array of nu rows of nv points");
-  s.nu = static_cast<int>(points.size());
-  for (int i = 0; i < s.nu; ++i)
-    if (!points[i].is_array())
-      throw InputError(pre + "control_points[" + std::to_string(i) +
-                       "] must be an array of points [x, y, z]");
-  s.nv = s.nu > 0 ? static_cast<int>(points[0].size()) : 0;
-  for (int i = 1; i < s.nu; ++i)
-    if (static_cast<int>(points[i].size()) != s.nv)
-      throw InputError(pre + "control_points[" + std::to_string(i) + "] has " +
-                       std::to_string(points[i].size()) + " points, control_points[0] has " +
-                       std::to_string(s.nv));
-  s.control.resize(static_cast<Eigen::Index>(s.nu) * s.nv, 3);
-  for (int i = 0; i < s.nu; ++i)
-    for (int j = 0; j < s.nv; ++j) {
-      const Json& p = points[i][j];
-      const std::string name =
-          "control_points[" + std::to_string(i) + "][" + std::to_string(j) + "]";
-      if (!p.is_array() || p.size() != 3)
-        throw InputError(pre + name + " must be an array of three numbers [x, y, z]");
-      for (int c = 0; c < 3; ++c) {
-        if (!p[c].is_number())
-          throw InputError(pre + name + "[" + std::to_string(c) + "] is not a number");
-        s.control(s.Index(i, j), c) = p[c].get<double>();
-      }
-    }
+  ParseControlPoints(Field(root, "control_points", pre), pre, &s);
   ValidateBSpline(s, path);
   return s;
 }
 
 BSplineSurface ReadBSplineJson(const std::string& path) {
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec && size > kMaxBSplineJsonBytes)
+    throw InputError(path + ": the file has " + std::to_string(size) +
+                     " bytes; a B-spline JSON file may have at most " +
+                     std::to_string(kMaxBSplineJsonBytes) + " (" +
+                     std::to_string(kMaxBSplineControlPoints) + " control points at most)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open file");
   std::ostringstream text;

@@ -67,6 +67,19 @@ bool IsDegenerate(const PolygonSoup& soup, const std::vector<int>& face) {
   return 0.5 * twice_area.norm() <= kRelativeArea * max_edge_squared;
 }
 
+// The first vertex, in face order, that the face uses more than once; -1 if none. Sorts a copy,
+// so that a face of many thousand vertices takes no quadratic time.
+int FirstRepeatedVertex(const std::vector<int>& face) {
+  std::vector<int> sorted = face;
+  std::sort(sorted.begin(), sorted.end());
+  if (std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end()) return -1;
+  for (int v : face) {
+    const auto range = std::equal_range(sorted.begin(), sorted.end(), v);
+    if (range.second - range.first > 1) return v;
+  }
+  return -1;
+}
+
 struct EdgeUse {
   int count = 0;
   int faces[2] = {-1, -1};
@@ -103,14 +116,11 @@ void Validate(const PolygonSoup& soup, const std::string& path,
            face_name + " has " + std::to_string(n) + (n == 1 ? " vertex" : " vertices") +
                "; at least 3 are required");
     }
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t j = i + 1; j < n; ++j) {
-        if (face[i] == face[j]) {
-          Fail(path, line,
-               face_name + " uses vertex " + std::to_string(face[i]) +
-                   " more than once (degenerate face)");
-        }
-      }
+    const int repeated = FirstRepeatedVertex(face);
+    if (repeated >= 0) {
+      Fail(path, line,
+           face_name + " uses vertex " + std::to_string(repeated) +
+               " more than once (degenerate face)");
     }
     if (requirements.quads_only && n != 4) {
       Fail(path, line,
@@ -282,13 +292,16 @@ std::string MeshText(const PolyMesh& mesh, Format format) {
 }  // namespace
 
 PolygonSoup ReadPolygonSoup(const std::string& path) {
-  switch (FormatOf(path)) {
+  const Format format = FormatOf(path);
+  const std::string data = ReadWholeFile(path);
+  const std::string_view text = WithoutByteOrderMark(data);
+  switch (format) {
     case Format::kObj:
-      return ReadObj(path, ReadWholeFile(path));
+      return ReadObj(path, text);
     case Format::kOff:
-      return ReadOff(path, ReadWholeFile(path));
+      return ReadOff(path, text);
     case Format::kPly:
-      return ReadPly(path);
+      return ReadPly(path, text);
   }
   Fail(path, 0, "unknown mesh format");
 }

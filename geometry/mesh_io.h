@@ -32,9 +32,12 @@ struct MeshRequirements {
   bool quads_only = false;  // every face must have exactly four vertices
 };
 
-// Reads OBJ / OFF (own text reader, to report line numbers) or PLY (through OpenMesh).
-// Throws InputError for: unreadable file, unknown extension, empty file / no faces,
-// malformed numbers, NaN or infinite coordinates, face index out of range.
+// Reads OBJ / OFF / PLY (ASCII or binary) with gproj's own readers, which name the line (or,
+// in binary PLY, the element) of every problem. Text may start with a UTF-8 byte-order mark
+// and use CRLF line ends. Throws InputError for: unreadable file, unknown extension, empty
+// file / no faces, malformed numbers or headers, NaN or infinite coordinates, face index out
+// of range, a face of fewer than 3 vertices (OFF, PLY), counts that the file size or the
+// machine's memory cannot hold (checked before allocating).
 PolygonSoup ReadPolygonSoup(const std::string& path);
 
 // Validates and builds the mesh. Throws InputError for: no faces, a face with fewer than 3

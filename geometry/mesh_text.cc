@@ -5,12 +5,17 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <limits>
 #include <system_error>
+
+#ifndef _WIN32
+#include <unistd.h>
+#endif
 
 namespace gproj {
 namespace mesh_io_internal {
@@ -61,6 +66,9 @@ std::ifstream OpenForReading(const std::string& path) {
 
 std::string ReadWholeFile(const std::string& path) {
   std::ifstream in = OpenForReading(path);
+  std::error_code ec;
+  const auto size = fs::file_size(path, ec);
+  if (!ec) CheckMemory(path, 0, "reading the file", static_cast<double>(size));
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) Fail(path, 0, "cannot read the file: " + ErrnoText());
   return text;
@@ -69,6 +77,106 @@ std::string ReadWholeFile(const std::string& path) {
 bool IsBlank(std::string_view text) {
   return std::all_of(text.begin(), text.end(),
                      [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; });
+}
+
+std::string_view WithoutByteOrderMark(std::string_view text) {
+  constexpr std::string_view kMark = "\xEF\xBB\xBF";
+  if (text.substr(0, kMark.size()) == kMark) text.remove_prefix(kMark.size());
+  return text;
+}
+
+std::string ByteCount(double bytes) {
+  if (bytes < 1e9) return std::to_string(static_cast<long long>(bytes)) + " bytes";
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%.3g GB", bytes / 1e9);
+  return buffer;
+}
+
+void CheckTokensFit(const std::string& path, int line, const std::string& what, double tokens,
+                    std::size_t available, const std::string& after) {
+  const double needed = 2.0 * tokens - 1.0;
+  if (needed > static_cast<double>(available)) {
+    Fail(path, line,
+         what + ", which need at least " + ByteCount(needed) + ", but the file has only " +
+             ByteCount(static_cast<double>(available)) + " " + after);
+  }
+}
+
+namespace {
+
+// Physical memory in bytes; 0 when unknown.
+double PhysicalMemory() {
+#if defined(_SC_PHYS_PAGES) && defined(_SC_PAGE_SIZE)
+  const long pages = sysconf(_SC_PHYS_PAGES);
+  const long page_size = sysconf(_SC_PAGE_SIZE);
+  if (pages > 0 && page_size > 0) return static_cast<double>(pages) * page_size;
+#endif
+  return 0.0;
+}
+
+}  // namespace
+
+void CheckMemory(const std::string& path, int line, const std::string& what, double bytes) {
+  const double available = PhysicalMemory();
+  if (available > 0.0 && bytes > available) {
+    char buffer[160];
+    std::snprintf(buffer, sizeof(buffer),
+                  " needs about %.3g GB of memory, more than the %.3g GB this machine has",
+                  bytes / 1e9, available / 1e9);
+    Fail(path, line, what + buffer);
+  }
+}
+
+double MeshMemoryEstimate(double vertices, double faces, double corners) {
+  // Soup: a point and a line number per vertex, a vector and a line per face, an int per
+  // corner. Mesh: a point, a handle and status per vertex, two halfedges per corner, a handle
+  // per face. Validation: about one edge map entry per corner.
+  constexpr double kPerVertex = 28 + 48, kPerFace = 28 + 16 + 8, kPerCorner = 4 + 48 + 64;
+  return kPerVertex * vertices + kPerFace * faces + kPerCorner * corners;
+}
+
+void TokenReader::SkipSpaceAndComments() {
+  while (pos_ < text_.size()) {
+    const char c = text_[pos_];
+    if (c == '\n') {
+      ++line_;
+      ++pos_;
+    } else if (std::isspace(static_cast<unsigned char>(c))) {
+      ++pos_;
+    } else if (c == '#' && hash_comments_) {
+      while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
+    } else {
+      return;
+    }
+  }
+}
+
+bool TokenReader::Next(Token* token) {
+  SkipSpaceAndComments();
+  if (pos_ >= text_.size()) return false;
+  const std::size_t begin = pos_;
+  while (pos_ < text_.size() && !std::isspace(static_cast<unsigned char>(text_[pos_])) &&
+         !(hash_comments_ && text_[pos_] == '#')) {
+    ++pos_;
+  }
+  token->text = text_.substr(begin, pos_ - begin);
+  token->line = line_;
+  return true;
+}
+
+bool TokenReader::NextOnLine(int line, Token* token) {
+  const std::size_t pos = pos_;
+  const int current = line_;
+  if (Next(token) && token->line == line) return true;
+  pos_ = pos;
+  line_ = current;
+  return false;
+}
+
+void TokenReader::SkipRestOfLine(int line) {
+  Token ignored;
+  while (NextOnLine(line, &ignored)) {
+  }
 }
 
 std::vector<std::string_view> Tokens(std::string_view line) {

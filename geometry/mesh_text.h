@@ -51,8 +51,25 @@ class QuietOpenMesh {
 
 // The file opened in binary mode; fails naming it when it is a directory or cannot be opened.
 std::ifstream OpenForReading(const std::string& path);
+// The whole file; fails up front when holding it would need more memory than the machine has.
 std::string ReadWholeFile(const std::string& path);
 bool IsBlank(std::string_view text);
+// `text` without a leading UTF-8 byte-order mark (EF BB BF).
+std::string_view WithoutByteOrderMark(std::string_view text);
+
+// Size checks before allocating. Tokens need a byte each and a separator between them, so
+// `tokens` tokens cannot fit in fewer than 2 × tokens − 1 bytes; "<where><what>, which need at
+// least N bytes, but the file has only B bytes <after>" otherwise.
+void CheckTokensFit(const std::string& path, int line, const std::string& what, double tokens,
+                    std::size_t available, const std::string& after);
+// Fails with "<what> needs about N GB of memory, more than the M GB this machine has" when
+// `bytes` exceeds the physical memory (no check where that cannot be queried).
+void CheckMemory(const std::string& path, int line, const std::string& what, double bytes);
+// Bytes to read and build a mesh: the polygon soup, the OpenMesh mesh and the edge map of the
+// validation, per vertex, face and face corner (rounded up; an estimate for CheckMemory).
+double MeshMemoryEstimate(double vertices, double faces, double corners);
+// `bytes` for messages: "123 bytes", "4.2 GB".
+std::string ByteCount(double bytes);
 
 // Yields the lines of a text without their '#' comments, with 1-based line numbers (a '\r'
 // before the '\n' is left to the tokenizer as whitespace).
@@ -80,6 +97,37 @@ class LineReader {
   int line_number_ = 0;
 };
 
+// The whitespace-separated tokens of a text with their 1-based line numbers, read one at a time,
+// so that a record may span lines. '\r' is whitespace (CRLF files read as LF ones); with
+// `hash_comments`, '#' starts a comment that runs to the end of its line.
+struct Token {
+  std::string_view text;
+  int line = 0;
+};
+class TokenReader {
+ public:
+  TokenReader(std::string_view text, bool hash_comments)
+      : text_(text), hash_comments_(hash_comments) {}
+  // The next token; false at the end of the text.
+  bool Next(Token* token);
+  // The next token only when it is on `line`; false (consuming nothing) otherwise.
+  bool NextOnLine(int line, Token* token);
+  // Drops the tokens left on `line` (colours and normals after a record).
+  void SkipRestOfLine(int line);
+  // Bytes not yet read.
+  std::size_t remaining() const { return text_.size() - pos_; }
+  // The line the reader is on (1-based).
+  int line() const { return line_; }
+
+ private:
+  void SkipSpaceAndComments();
+
+  std::string_view text_;
+  bool hash_comments_;
+  std::size_t pos_ = 0;
+  int line_ = 1;
+};
+
 std::vector<std::string_view> Tokens(std::string_view line);
 // Next line with at least one token; false at the end of the text.
 bool NextTokens(LineReader* reader, std::vector<std::string_view>* tokens, int* line_number);
@@ -95,7 +143,7 @@ int ParseCount(const std::string& path, int line, std::string_view token, const 
 // The readers (obj_reader.cc, off_reader.cc, ply_reader.cc).
 PolygonSoup ReadObj(const std::string& path, std::string_view text);
 PolygonSoup ReadOff(const std::string& path, std::string_view text);
-PolygonSoup ReadPly(const std::string& path);
+PolygonSoup ReadPly(const std::string& path, std::string_view data);
 
 }  // namespace mesh_io_internal
 }  // namespace gproj

@@ -1,28 +1,50 @@
 #include "geometry/text_input.h"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 namespace gproj {
 
-std::vector<TextLine> ReadTextLines(const std::string& path, bool commas_separate) {
-  std::ifstream in(path);
+namespace {
+
+// The whole file, without a leading UTF-8 byte-order mark.
+std::string ReadTextFile(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(path + ": cannot read the file: it is a directory");
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open the file");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(path + ": read error");
+  if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);
+  return text;
+}
+
+}  // namespace
+
+std::vector<TextLine> ReadTextLines(const std::string& path, bool commas_separate) {
+  const std::string text = ReadTextFile(path);
   std::vector<TextLine> lines;
   int number = 0;
-  for (std::string line; std::getline(in, line);) {
+  for (std::size_t pos = 0; pos < text.size();) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    // '\r' (of CRLF line ends) is whitespace for the split below.
+    std::string line = text.substr(pos, end - pos);
+    pos = end + 1;
     ++number;
     line = line.substr(0, line.find('#'));
     if (commas_separate)
       for (char& c : line)
         if (c == ',') c = ' ';
     std::istringstream words(line);
-    TextLine text{number, {}};
-    for (std::string word; words >> word;) text.words.push_back(word);
-    if (!text.words.empty()) lines.push_back(std::move(text));
+    TextLine text_line{number, {}};
+    for (std::string word; words >> word;) text_line.words.push_back(word);
+    if (!text_line.words.empty()) lines.push_back(std::move(text_line));
   }
-  if (in.bad()) throw InputError(path + ": read error");
   if (lines.empty()) throw InputError(path + ": the file is empty");
   return lines;
 }

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <functional>
 #include <iomanip>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
@@ -416,6 +417,75 @@ TEST(BSplineSurfaceTest, JsonErrorsNameTheField) {
   EXPECT_MESSAGE_HAS(overflow, "1e999");
   EXPECT_MESSAGE_HAS(MessageOf([] { ReadBSplineJson("/nonexistent/dir/b.json"); }),
                      "/nonexistent/dir/b.json");
+}
+
+// A surface's JSON with `nu` × `nv` control points of degree 3, uniform knots.
+std::string GridJson(int nu, int nv) {
+  std::ostringstream out;
+  const auto knots = [&](int n) {
+    out << '[';
+    const std::vector<double> k = UniformClampedKnots(n, 3);
+    for (size_t i = 0; i < k.size(); ++i) out << (i ? "," : "") << k[i];
+    out << ']';
+  };
+  out << "{\"degree\": [3, 3], \"knots_u\": ";
+  knots(nu);
+  out << ", \"knots_v\": ";
+  knots(nv);
+  out << ", \"control_points\": [";
+  for (int i = 0; i < nu; ++i) {
+    out << (i ? ",[" : "[");
+    for (int j = 0; j < nv; ++j) out << (j ? "," : "") << '[' << i << ',' << j << ",0]";
+    out << ']';
+  }
+  out << "]}";
+  return out.str();
+}
+
+TEST(BSplineSurfaceTest, HugeDegreeIsRefusedWithoutOverflow) {
+  std::string text = GridJson(5, 5);
+  text.replace(text.find("[3, 3]"), 6, "[2147483647, 4]");
+  EXPECT_EQ(MessageOf([&] { ParseBSplineJson(text, "d.json"); }),
+            "d.json: degree_u must be ≤ 32 (got 2147483647)");
+  text.replace(text.find("2147483647"), 10, "18446744073709551615");
+  EXPECT_EQ(MessageOf([&] { ParseBSplineJson(text, "d.json"); }),
+            "d.json: degree_u must be ≤ 32 (got 18446744073709551615)");
+  text.replace(text.find("18446744073709551615"), 20, "-9223372036854775808");
+  EXPECT_EQ(MessageOf([&] { ParseBSplineJson(text, "d.json"); }),
+            "d.json: degree_u must be ≥ 1 (got -9223372036854775808)");
+  // Through the validation of a surface built in code, degree + 1 does not overflow either.
+  BSplineSurface s = MakeWavyBSpline(4, 4, 3);
+  s.degree_v = std::numeric_limits<int>::max();
+  EXPECT_EQ(MessageOf([&] { ValidateBSpline(s); }),
+            "nv = 4 control points along v; degree 2147483647 needs at least 2147483648 "
+            "(degree + 1)");
+}
+
+TEST(BSplineSurfaceTest, MillionControlPointsAreRefusedWhileParsing) {
+  EXPECT_EQ(ParseBSplineJson(GridJson(6, 7)).num_control_points(), 42);
+  EXPECT_EQ(MessageOf([] { ParseBSplineJson(GridJson(1000, 1000), "m.json"); }),
+            "m.json: control_points has more than 40000 points; gproj reads B-spline surfaces "
+            "of at most that many");
+  // Values other than control points are bounded too.
+  std::string padded = "{\"pad\": [";
+  for (int i = 0; i < 320001; ++i) padded += "0,";
+  padded += "0]}";
+  EXPECT_EQ(MessageOf([&] { ParseBSplineJson(padded, "p.json"); }),
+            "p.json: the file has more than 320000 JSON values; a B-spline surface of at most "
+            "40000 control points has fewer");
+}
+
+TEST(BSplineSurfaceTest, ByteOrderMarkAndCrlfAreAccepted) {
+  std::string text = GridJson(4, 5);
+  for (size_t i = text.find(','); i != std::string::npos; i = text.find(',', i + 3)) {
+    text.insert(i + 1, "\r\n");
+  }
+  const std::filesystem::path path =
+      std::filesystem::temp_directory_path() / "gproj_bspline_bom.json";
+  std::ofstream(path, std::ios::binary) << "\xEF\xBB\xBF" << text;
+  const BSplineSurface s = ReadBSplineJson(path.string());
+  EXPECT_EQ(s.nu, 4);
+  EXPECT_EQ(s.control(s.Index(3, 4), 1), 4.0);
 }
 
 TEST(BSplineSurfaceTest, RefitOntoANestedNetIsExact) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Core>
 #include <filesystem>
 #include <fstream>
 
@@ -33,6 +34,28 @@ TEST(TextInputTest, LinesKeepTheirNumbersAndDropComments) {
   EXPECT_EQ(lines[0].words, (std::vector<std::string>{"a", "b"}));
   EXPECT_EQ(lines[1].words, (std::vector<std::string>{"c,d"}));
   EXPECT_EQ(ReadTextLines(path, true)[1].words, (std::vector<std::string>{"c", "d"}));
+}
+
+TEST(TextInputTest, ByteOrderMarkAndCrlfAreAccepted) {
+  const std::string path = WriteTemp("bom.txt",
+                                     "\xEF\xBB\xBF"
+                                     "0 0 0\r\n# comment\r\n1,2,3\r\n\r\n4 5 6");
+  const std::vector<Eigen::Vector3d> points = ReadPoints(path);
+  ASSERT_EQ(points.size(), 3u);
+  EXPECT_EQ(points[0], Eigen::Vector3d(0, 0, 0));
+  EXPECT_EQ(points[2], Eigen::Vector3d(4, 5, 6));
+  const std::vector<TextLine> lines =
+      ReadTextLines(WriteTemp("bom_guide.txt", "\xEF\xBB\xBFguide 0 1 2 3\r\nvertex 4 5\r\n"));
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_EQ(lines[0].words, (std::vector<std::string>{"guide", "0", "1", "2", "3"}));
+  EXPECT_EQ(lines[1].number, 2);
+  EXPECT_EQ(lines[1].words.back(), "5");
+}
+
+TEST(TextInputTest, DirectoryIsRefusedByName) {
+  const std::string dir = fs::temp_directory_path().string();
+  EXPECT_EQ(MessageOf([&] { ReadTextLines(dir); }),
+            dir + ": cannot read the file: it is a directory");
 }
 
 TEST(TextInputTest, NumbersAndIndicesAreCheckedWhole) {
