@@ -17,20 +17,6 @@ struct PlanarizeArgs {
   PQPlanarizationOptions options;
 };
 
-nlohmann::json OptionsJson(const PQPlanarizationOptions& o) {
-  return {{"tolerance", o.tolerance},
-          {"max_iterations", o.solver.max_iterations},
-          {"planarity_weight", o.planarity_weight},
-          {"closeness_weight", o.closeness_weight},
-          {"fairness_weight", o.solver.fairness_weight},
-          {"fairness_order", o.fairness_order},
-          {"soft_weight_decay", o.solver.soft_weight_decay},
-          {"soft_weight_floor", o.solver.soft_weight_floor},
-          {"epsilon", o.solver.epsilon},
-          {"circular", o.circular},
-          {"ceres_soft_scale", o.ceres_soft_scale}};
-}
-
 int RunPlanarize(PlanarizeArgs args) {
   PQPlanarizationOptions& options = args.options;
   std::unique_ptr<PQPlanarization> pq;

@@ -206,13 +206,9 @@ StarPlanarityMeasures ANet::MeasuresAt(const Eigen::VectorXd& x) const {
 }
 
 CeresOptions ANet::ceres_options(int max_iterations) const {
-  CeresOptions options;
-  options.max_iterations = max_iterations;
-  options.fairness_weight = options_.solver.fairness_weight;
-  options.soft_scale =
-      options_.ceres_soft_scale > 0.0 ? options_.ceres_soft_scale : options_.tolerance / 100.0;
-  options.num_threads = std::max(1, options_.solver.num_threads);
-  return options;
+  return CeresOptionsFor(
+      options_.solver, max_iterations,
+      options_.ceres_soft_scale > 0.0 ? options_.ceres_soft_scale : options_.tolerance / 100.0);
 }
 
 PolyMesh ANet::Result() const {

@@ -217,11 +217,7 @@ Combescure::Combescure(const PolyMesh& reference, const GridShape& shape,
 }
 
 CeresOptions Combescure::ceres_options(int max_iterations) const {
-  CeresOptions ceres;
-  ceres.max_iterations = max_iterations;
-  ceres.fairness_weight = options_.solver.fairness_weight;
-  ceres.num_threads = std::max(1, options_.solver.num_threads);
-  return ceres;
+  return CeresOptionsFor(options_.solver, max_iterations);
 }
 
 int Combescure::VertexOffset(int v) const {

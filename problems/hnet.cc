@@ -422,12 +422,9 @@ VertexUpdateResult SolveVertexUpdate(const SolverOptions& options, bool use_cere
     const SolverSummary s = gproj::Solve(options, &update->problem);
     return {s.termination == TerminationType::kFailure, s.converged(), s.num_steps(), s.message};
   }
-  CeresOptions c;
-  c.max_iterations = options.max_iterations;
-  c.fairness_weight = options.fairness_weight;
-  c.soft_scale = options.initial_soft_scale;
-  c.num_threads = std::max(1, options.num_threads);
-  const CeresSummary s = SolveWithCeres(c, &update->problem);
+  const CeresSummary s =
+      SolveWithCeres(CeresOptionsFor(options, options.max_iterations, options.initial_soft_scale),
+                     &update->problem);
   return {s.termination == TerminationType::kFailure,
           s.termination == TerminationType::kConvergence, s.num_steps(), s.message};
 }

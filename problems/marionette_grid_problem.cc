@@ -56,11 +56,7 @@ MarionetteGridProblem::MarionetteGridProblem(const PolyMesh& mesh, const std::st
 }
 
 CeresOptions MarionetteGridProblem::ceres_options(int max_iterations) const {
-  CeresOptions ceres;
-  ceres.max_iterations = max_iterations;
-  ceres.fairness_weight = options_.solver.fairness_weight;
-  ceres.num_threads = std::max(1, options_.solver.num_threads);
-  return ceres;
+  return CeresOptionsFor(options_.solver, max_iterations);
 }
 
 NamedValues MarionetteGridProblem::MeasureAt(const Eigen::VectorXd& z) const {

@@ -33,10 +33,7 @@ SolverOptions MarionetteMeshProblem::solver_options() const {
 }
 
 CeresOptions MarionetteMeshProblem::ceres_options(int max_iterations) const {
-  CeresOptions ceres;
-  ceres.max_iterations = max_iterations;
-  ceres.num_threads = std::max(1, options_.solver.num_threads);
-  return ceres;
+  return CeresOptionsFor(options_.solver, max_iterations);
 }
 
 NamedValues MarionetteMeshProblem::MeasureAt(const Eigen::VectorXd& x) const {

@@ -23,6 +23,20 @@ SolverOptions PQPlanarizationSolverDefaults() {
   return s;
 }
 
+nlohmann::json OptionsJson(const PQPlanarizationOptions& o) {
+  return {{"tolerance", o.tolerance},
+          {"max_iterations", o.solver.max_iterations},
+          {"planarity_weight", o.planarity_weight},
+          {"closeness_weight", o.closeness_weight},
+          {"fairness_weight", o.solver.fairness_weight},
+          {"fairness_order", o.fairness_order},
+          {"soft_weight_decay", o.solver.soft_weight_decay},
+          {"soft_weight_floor", o.solver.soft_weight_floor},
+          {"epsilon", o.solver.epsilon},
+          {"circular", o.circular},
+          {"ceres_soft_scale", o.ceres_soft_scale}};
+}
+
 bool PQPlanarizationOptions::IsValid(std::string* why) const {
   auto fail = [why](const std::string& text) {
     *why = text;
@@ -151,14 +165,10 @@ bool PQPlanarization::MeetsTolerance(const NamedValues& m) const {
 }
 
 CeresOptions PQPlanarization::ceres_options(int max_iterations) const {
-  CeresOptions ceres_options;
-  ceres_options.max_iterations = max_iterations;
-  ceres_options.fairness_weight = options_.solver.fairness_weight;
-  ceres_options.soft_scale = options_.ceres_soft_scale > 0.0
-                                 ? options_.ceres_soft_scale
-                                 : std::min(1.0, options_.tolerance * 1e-2);
-  ceres_options.num_threads = std::max(1, options_.solver.num_threads);
-  return ceres_options;
+  return CeresOptionsFor(options_.solver, max_iterations,
+                         options_.ceres_soft_scale > 0.0
+                             ? options_.ceres_soft_scale
+                             : std::min(1.0, options_.tolerance * 1e-2));
 }
 
 PolyMesh PQPlanarization::Result() const {

@@ -9,6 +9,7 @@
 #include "geometry/mesh_io.h"
 #include "problems/guided_problem.h"
 #include "problems/mesh_variables.h"
+#include "problems/report_json.h"
 #include "solver/ceres_adapter.h"
 #include "solver/guided_projection.h"
 #include "solver/problem.h"
@@ -54,6 +55,10 @@ struct PlanarityMeasures {
 };
 
 NamedValues ToNamedValues(const PlanarityMeasures& m);
+
+// The options as the report's "options" object (tolerance, max_iterations, weights, schedule,
+// circular, ceres_soft_scale).
+nlohmann::json OptionsJson(const PQPlanarizationOptions& o);
 
 // Distance between the two diagonal lines of a quad.
 double DiagonalDistance(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,

@@ -645,11 +645,7 @@ SolverOptions WeingartenProblem::solver_options() const {
 
 CeresOptions WeingartenProblem::ceres_options(int max_iterations) const {
   const SolverOptions s = solver_options();
-  CeresOptions c;
-  c.max_iterations = max_iterations;
-  c.fairness_weight = s.fairness_weight;
-  c.soft_scale = options_.soft_start > 1.0 ? s.soft_weight_floor : 1.0;
-  return c;
+  return CeresOptionsFor(s, max_iterations, options_.soft_start > 1.0 ? s.soft_weight_floor : 1.0);
 }
 
 NamedValues WeingartenProblem::MeasureAt(const Eigen::VectorXd& x) const {

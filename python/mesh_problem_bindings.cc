@@ -14,21 +14,6 @@
 namespace gproj::python {
 namespace {
 
-// The report's "options" (as `gproj planarize` writes them).
-nlohmann::json PlanarizeOptionsJson(const PQPlanarizationOptions& o) {
-  return {{"tolerance", o.tolerance},
-          {"max_iterations", o.solver.max_iterations},
-          {"planarity_weight", o.planarity_weight},
-          {"closeness_weight", o.closeness_weight},
-          {"fairness_weight", o.solver.fairness_weight},
-          {"fairness_order", o.fairness_order},
-          {"soft_weight_decay", o.solver.soft_weight_decay},
-          {"soft_weight_floor", o.solver.soft_weight_floor},
-          {"epsilon", o.solver.epsilon},
-          {"circular", o.circular},
-          {"ceres_soft_scale", o.ceres_soft_scale}};
-}
-
 void CheckSolverName(const std::string& solver) {
   if (solver != "gp" && solver != "ceres")
     throw InputError("solver must be gp or ceres, not '" + solver + "'");
@@ -63,7 +48,7 @@ py::tuple Planarize(const py::object& vertices, const py::object& faces, double 
       {"linear_solver", LinearSolverTypeName(options.solver.linear_solver)},
       {"vertices", input.n_vertices()},
       {"faces", input.n_faces()},
-      {"options", PlanarizeOptionsJson(options)}};
+      {"options", OptionsJson(options)}};
   return py::make_tuple(VerticesToArray(pq.Result()), ReportToPython("planarize", report, extra));
 }
 

@@ -1,5 +1,6 @@
 #include "solver/ceres_adapter.h"
 
+#include <algorithm>
 #include <ceres/ceres.h>
 
 #include <cmath>
@@ -117,6 +118,15 @@ CeresSummary FromCeres(const ceres::Solver::Summary& s) {
 }
 
 }  // namespace
+
+CeresOptions CeresOptionsFor(const SolverOptions& solver, int max_iterations, double soft_scale) {
+  CeresOptions options;
+  options.max_iterations = max_iterations;
+  options.fairness_weight = solver.fairness_weight;
+  options.soft_scale = soft_scale;
+  options.num_threads = std::max(1, solver.num_threads);
+  return options;
+}
 
 bool CeresOptions::IsValid(std::string* why) const {
   if (max_iterations < 0) {

@@ -26,6 +26,11 @@ struct CeresOptions {
   bool IsValid(std::string* why) const;
 };
 
+// Ceres' options for the same objective guided projection minimises with `solver`: its ω_f and
+// threads, at most `max_iterations`, soft terms × `soft_scale`.
+CeresOptions CeresOptionsFor(const SolverOptions& solver, int max_iterations,
+                             double soft_scale = 1.0);
+
 // One Ceres iteration (field names as in ceres::IterationSummary).
 struct CeresIterationRecord {
   int iteration = 0;                       // 0: the start
