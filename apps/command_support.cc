@@ -154,12 +154,76 @@ void AddSolverOptions(CLI::App* command, SolverOptions* solver, std::string* lin
   command->add_option("--threads", solver->num_threads, "Threads for BLAS / Ceres (0: default)")
       ->check(Within(0, 256))
       ->capture_default_str();
+  command->add_flag("--monotone,!--plain-steps", solver->monotone,
+                    "Monotone steps: keep a step only if it lowers the energy, else damp it "
+                    "(--plain-steps: take every Gauss-Newton step)");
+}
+
+void AddPanelBoundsOptions(CLI::App* command, PanelBoundsOptions* panels) {
+  command
+      ->add_option("--min-angle", panels->min_angle_deg,
+                   "Every quad corner angle stays within [DEG, 180 - DEG] (a corner already "
+                   "outside in the input is kept from getting worse); 0 only keeps quads convex")
+      ->check(Within(0.0, 59.9))
+      ->capture_default_str();
+  command
+      ->add_option_function<std::vector<double>>(
+          "--edge-length",
+          [panels](const std::vector<double>& v) {
+            panels->min_edge_length = v[0];
+            panels->max_edge_length = v[1];
+          },
+          "MIN,MAX: every edge length stays within these, in the input's units (an edge outside "
+          "in the input is kept from getting worse); without it no edge shrinks below 10% of its "
+          "input length")
+      ->delimiter(',')
+      ->expected(2)
+      ->check(NonNegative());
+  command->add_flag_callback(
+      "--allow-folds",
+      [panels]() {
+        panels->corners = false;
+        panels->min_edge_fraction = 0.0;
+      },
+      "No corner-angle or default edge bounds: quads may turn non-convex or fold");
+}
+
+void PrintPanelSummary(const NamedValues& initial, const NamedValues& final) {
+  std::printf(
+      "panels: non-convex quads %.0f -> %.0f, smallest corner angle %.1f -> %.1f deg, max kink "
+      "%.2e -> %.2e deg, max planarity %.2e -> %.2e (diagonal distance, input units)\n",
+      ValueOf(initial, "non_convex_quads"), ValueOf(final, "non_convex_quads"),
+      ValueOf(initial, "min_corner_angle_deg"), ValueOf(final, "min_corner_angle_deg"),
+      ValueOf(initial, "max_kink_deg"), ValueOf(final, "max_kink_deg"),
+      ValueOf(initial, "max_planarity_abs"), ValueOf(final, "max_planarity_abs"));
+}
+
+ShapeChange WarnIfFarFromInput(const std::string& command, const std::string& target,
+                               const PolyMesh& input, const PolyMesh& result,
+                               double max_displacement) {
+  const ShapeChange change = CompareCornerAngles(input, result);
+  std::fflush(stdout);
+  if (change.share_changed > 0.05 || max_displacement > 0.02)
+    std::fprintf(stderr,
+                 "gproj %s: warning: the input is far from %s: %.1f%% of the quads changed a "
+                 "corner angle by more than 10 deg (at most %.1f deg), max displacement %.2f%% of "
+                 "the bbox diagonal\n",
+                 command.c_str(), target.c_str(), 100.0 * change.share_changed,
+                 change.max_corner_change_deg, 100.0 * max_displacement);
+  return change;
 }
 
 void ApplyLinearSolver(const std::string& name, SolverOptions* solver) {
   if (!ParseLinearSolverType(name, &solver->linear_solver))
     throw InputError("--linear-solver must be cholmod or eigen, not '" + name + "'");
 }
+
+namespace {
+bool EndsWith(const std::string& text, const std::string& tail) {
+  return text.size() >= tail.size() &&
+         text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
+}
+}  // namespace
 
 void IterationLog::PrintHeader() const {
   std::printf("%5s %13s", "iter", "energy");
@@ -171,9 +235,16 @@ void IterationLog::PrintHeader() const {
 
 void IterationLog::Print(const RunRecord& r) const {
   std::printf("%5d %13.6e", r.iteration, r.energy);
-  for (const std::string& m : measures_)
-    std::printf(" %*.3e", std::max(15, static_cast<int>(m.size())),
-                m == "max_constraint" ? r.max_constraint : ValueOf(r.measures, m));
+  for (const std::string& m : measures_) {
+    const int width = std::max(15, static_cast<int>(m.size()));
+    const double value = m == "max_constraint" ? r.max_constraint : ValueOf(r.measures, m);
+    if (EndsWith(m, "_quads"))
+      std::printf(" %*.0f", width, value);
+    else if (EndsWith(m, "_deg"))
+      std::printf(" %*.2f", width, value);
+    else
+      std::printf(" %*.3e", width, value);
+  }
   std::printf(" %11.3e %10.4f\n", r.step, r.seconds);
   std::fflush(stdout);
 }

@@ -8,7 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "geometry/quad_shape.h"
 #include "problems/guided_problem.h"
+#include "problems/panel_bounds.h"
 #include "problems/report_json.h"
 
 namespace gproj {
@@ -62,6 +64,18 @@ void CheckMemory(const std::string& what, double bytes);
 // turns it into the option.
 void AddSolverOptions(CLI::App* command, SolverOptions* solver, std::string* linear_solver);
 void ApplyLinearSolver(const std::string& name, SolverOptions* solver);
+
+// --min-angle DEG, --edge-length MIN,MAX and --allow-folds for a problem's panel bounds.
+void AddPanelBoundsOptions(CLI::App* command, PanelBoundsOptions* panels);
+// "panels: non-convex quads 0 -> 0, smallest corner angle …" from the ShapeValues of the initial
+// and final measures.
+void PrintPanelSummary(const NamedValues& initial, const NamedValues& final);
+// Warns on stderr when the result is far from the input (a corner angle changed by more than 10°
+// in over 5% of the quads, or a vertex moved more than 2% of the bbox diagonal): the input was
+// far from the asked net type. Returns the change for the report.
+ShapeChange WarnIfFarFromInput(const std::string& command, const std::string& target,
+                               const PolyMesh& input, const PolyMesh& result,
+                               double max_displacement);
 
 // The live log: a header line, then one line per record with the iteration, the energy, the
 // given measures ("max_constraint": the record's max |φ| over constraint rows), the step and

@@ -18,13 +18,14 @@ void RegisterGridCommand(CLI::App* app, int* exit_code) {
   };
   auto args = std::make_shared<Args>();
   args->grid.noise = 0.05;
-  CLI::App* cmd = app->add_subcommand(
-      "grid",
-      "Write a quad grid over [-1,1]^2 on z = a x^2 + b y^2 + c x y with every vertex moved "
-      "by uniform noise (a test input for planarize)");
+  CLI::App* cmd = app->add_subcommand("grid",
+                                      "Write a quad grid over [-1,1]^2 on z = a x^2 + b y^2 + c x "
+                                      "y + wave sin(pi x) sin(pi y) with every vertex moved "
+                                      "by uniform noise (a test input for planarize)");
   cmd->add_option("-o,--output", args->output, "Mesh to write (.obj, .off or .ply)")->required();
   cmd->add_option("--surface", args->surface,
-                  "paraboloid (z = a x^2 + b y^2 + c x y), an asymptotic net: hypar, hyperboloid, "
+                  "paraboloid (z = a x^2 + b y^2 + c x y + wave sin(pi x) sin(pi y)), an "
+                  "asymptotic net: hypar, hyperboloid, "
                   "enneper, or a circular net: revolution (meridians and parallels of a surface of "
                   "revolution; parameters over [-1,1]^2)")
       ->check(CLI::IsMember({"paraboloid", "hypar", "hyperboloid", "enneper", "revolution"}))
@@ -42,6 +43,9 @@ void RegisterGridCommand(CLI::App* app, int* exit_code) {
       ->check(Finite())
       ->capture_default_str();
   cmd->add_option("--c", args->grid.c, "Coefficient of x y")
+      ->check(Finite())
+      ->capture_default_str();
+  cmd->add_option("--wave", args->grid.wave, "Coefficient of sin(pi x) sin(pi y) (paraboloid)")
       ->check(Finite())
       ->capture_default_str();
   cmd->add_option(

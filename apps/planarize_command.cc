@@ -41,19 +41,15 @@ int RunPlanarize(PlanarizeArgs args) {
               args.solver == "gp" ? LinearSolverTypeName(options.solver.linear_solver) : "ceres");
   std::printf("start: max planarity %.3e, mean %.3e (diagonal distance / mean edge)\n",
               initial.max_planarity, initial.mean_planarity);
-  IterationLog log({"max_planarity", "mean_planarity"});
+  IterationLog log({"max_planarity", "mean_planarity", "non_convex_quads", "min_corner_angle_deg"});
   log.PrintHeader();
   const auto print = [&log](const RunRecord& r) { return log.Print(r), true; };
   const RunReport report =
       args.solver == "gp" ? pq->Run(print) : pq->RunCeres(options.solver.max_iterations, print);
   const PlanarityMeasures final_measures = pq->Measures();
-  const nlohmann::json extra = {
-      {"input", args.input},
-      {"output", report.failed ? "" : args.output},
-      {"linear_solver", LinearSolverTypeName(options.solver.linear_solver)},
-      {"vertices", input.n_vertices()},
-      {"faces", input.n_faces()},
-      {"options", OptionsJson(options)}};
+  nlohmann::json extra = PlanarizationFacts(input, pq->Result(), options);
+  extra["input"] = args.input;
+  extra["output"] = report.failed ? "" : args.output;
   try {
     if (!report.failed) {
       WriteMeshAtomically(pq->Result(), args.output);
@@ -80,9 +76,25 @@ int RunPlanarize(PlanarizeArgs args) {
     if (final_measures.max_concyclicity >= 0.0)
       std::printf("       max concyclicity %.3e (distance to the fitted circle / mean edge)\n",
                   final_measures.max_concyclicity);
+    PrintPanelSummary(report.initial, report.final);
+    WarnIfFarFromInput("planarize", options.circular ? "a circular mesh" : "a PQ (conjugate) mesh",
+                       input, pq->Result(), final_measures.max_displacement);
   }
-  return ConcludeRun("planarize", report, "max_planarity", options.tolerance,
-                     {args.output, args.picture, args.report});
+  const int code = ConcludeRun("planarize", report, "max_planarity", options.tolerance,
+                               {args.output, args.picture, args.report});
+  if (code == kExitNotConverged) {
+    const std::vector<int> above = pq->FacesAboveTolerance();
+    const std::vector<int> held = pq->FacesAtAngleBound();
+    if (!above.empty())
+      std::fprintf(stderr, "gproj planarize: %zu quads above the tolerance, worst first: %s\n",
+                   above.size(), FaceList(above).c_str());
+    if (!held.empty())
+      std::fprintf(stderr,
+                   "gproj planarize: %zu quads sit on their corner-angle bound (--min-angle %g): "
+                   "%s\n",
+                   held.size(), options.panels.min_angle_deg, FaceList(held).c_str());
+  }
+  return code;
 }
 
 }  // namespace
@@ -129,6 +141,7 @@ void RegisterPlanarizeCommand(CLI::App* app, int* exit_code) {
       ->check(NonNegative())
       ->capture_default_str();
   AddSolverOptions(cmd, &args->options.solver, &args->linear_solver);
+  AddPanelBoundsOptions(cmd, &args->options.panels);
   cmd->callback([args, exit_code]() { *exit_code = RunPlanarize(*args); });
 }
 

@@ -18,7 +18,9 @@ PolyMesh MakeQuadGrid(const QuadGridOptions& o) {
     for (int j = 0; j < o.nv; ++j) {
       const double x = -1.0 + 2.0 * i / (o.nu - 1);
       const double y = -1.0 + 2.0 * j / (o.nv - 1);
-      PolyMesh::Point p(x, y, o.a * x * x + o.b * y * y + o.c * x * y);
+      PolyMesh::Point p(x, y,
+                        o.a * x * x + o.b * y * y + o.c * x * y +
+                            o.wave * std::sin(M_PI * x) * std::sin(M_PI * y));
       for (int c = 0; c < 3; ++c) p[c] += o.noise * h * jitter(rng);
       v.push_back(mesh.add_vertex(p));
     }

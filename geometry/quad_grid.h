@@ -11,8 +11,9 @@ namespace gproj {
 struct QuadGridOptions {
   int nu = 21;  // vertices along u (≥ 2)
   int nv = 21;  // vertices along v (≥ 2)
-  // Height field over [−1, 1]²: z = a x² + b y² + c x y (doubly curved for a·b ≠ 0).
-  double a = 0.3, b = 0.2, c = 0.0;
+  // Height field over [−1, 1]²: z = a x² + b y² + c x y + wave sin(πx) sin(πy) (doubly curved
+  // for a·b ≠ 0; the grid lines are conjugate only for c = wave = 0).
+  double a = 0.3, b = 0.2, c = 0.0, wave = 0.0;
   // Each vertex is moved by a uniform random vector in [−noise·h, noise·h]³, h the grid spacing.
   double noise = 0.0;
   uint32_t seed = 1;

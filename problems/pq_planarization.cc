@@ -1,7 +1,9 @@
 #include "problems/pq_planarization.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "constraints/circular_quad.h"
@@ -20,6 +22,7 @@ SolverOptions PQPlanarizationSolverDefaults() {
   s.fairness_weight = 1.0;
   s.soft_weight_decay = 0.1;
   s.soft_weight_floor = 1e-12;
+  s.monotone = true;
   return s;
 }
 
@@ -33,8 +36,22 @@ nlohmann::json OptionsJson(const PQPlanarizationOptions& o) {
           {"soft_weight_decay", o.solver.soft_weight_decay},
           {"soft_weight_floor", o.solver.soft_weight_floor},
           {"epsilon", o.solver.epsilon},
+          {"monotone", o.solver.monotone},
+          {"min_angle_deg", o.panels.corners ? o.panels.min_angle_deg : -1.0},
+          {"min_edge_length", o.panels.min_edge_length},
+          {"max_edge_length", o.panels.max_edge_length},
+          {"min_edge_fraction", o.panels.min_edge_fraction},
           {"circular", o.circular},
           {"ceres_soft_scale", o.ceres_soft_scale}};
+}
+
+nlohmann::json PlanarizationFacts(const PolyMesh& input, const PolyMesh& result,
+                                  const PQPlanarizationOptions& options) {
+  return {{"linear_solver", LinearSolverTypeName(options.solver.linear_solver)},
+          {"vertices", input.n_vertices()},
+          {"faces", input.n_faces()},
+          {"options", OptionsJson(options)},
+          {"shape_change", ShapeChangeJson(CompareCornerAngles(input, result))}};
 }
 
 bool PQPlanarizationOptions::IsValid(std::string* why) const {
@@ -51,7 +68,7 @@ bool PQPlanarizationOptions::IsValid(std::string* why) const {
   if (fairness_order != 2 && fairness_order != 3) return fail("fairness order must be 2 or 3");
   if (!(tolerance > 0.0) || !std::isfinite(tolerance))
     return fail("tolerance must be finite and > 0");
-  return solver.IsValid(why);
+  return panels.IsValid(why) && solver.IsValid(why);
 }
 
 NamedValues ToNamedValues(const PlanarityMeasures& m) {
@@ -60,6 +77,7 @@ NamedValues ToNamedValues(const PlanarityMeasures& m) {
                         {"max_displacement", m.max_displacement},
                         {"mean_edge_length", m.mean_edge_length}};
   if (m.max_concyclicity >= 0.0) values.push_back({"max_concyclicity", m.max_concyclicity});
+  for (NamedValue& v : ShapeValues(m.shape)) values.push_back(std::move(v));
   return values;
 }
 
@@ -91,6 +109,7 @@ PlanarityMeasures MeasurePlanarity(const PolyMesh& mesh, const PolyMesh& referen
   }
   m.mean_planarity = mesh.n_faces() > 0 ? sum / mesh.n_faces() : 0.0;
   m.max_displacement = MaxDisplacement(mesh, reference);
+  m.shape = Summarize(MeasureQuadShapes(mesh));
   return m;
 }
 
@@ -150,6 +169,27 @@ PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOpti
   }
   if (options.solver.fairness_weight > 0.0)
     AddMeshFairness(mesh, options.fairness_order, vertex_block_, &problem_);
+  bounds_ = AddPanelBounds(mesh, norm_, vertex_block_, options.panels, &problem_);
+}
+
+std::vector<int> PQPlanarization::FacesAboveTolerance() const {
+  StoreVertices(problem_, vertex_block_, norm_, &current_);
+  const double mean_edge = MeanEdgeLength(current_);
+  const std::vector<QuadShape> shapes = MeasureQuadShapes(current_);
+  std::vector<std::pair<double, int>> above;
+  for (size_t f = 0; f < shapes.size(); ++f) {
+    const double planarity = shapes[f].diagonal_distance / mean_edge;
+    if (planarity > options_.tolerance) above.emplace_back(-planarity, static_cast<int>(f));
+  }
+  std::sort(above.begin(), above.end());
+  std::vector<int> faces;
+  for (const auto& entry : above) faces.push_back(entry.second);
+  return faces;
+}
+
+std::vector<int> PQPlanarization::FacesAtAngleBound() const {
+  StoreVertices(problem_, vertex_block_, norm_, &current_);
+  return FacesAtCornerBound(current_, bounds_);
 }
 
 PlanarityMeasures PQPlanarization::MeasuresAt(const Eigen::VectorXd& x) const {

@@ -9,6 +9,7 @@
 #include "geometry/mesh_io.h"
 #include "problems/guided_problem.h"
 #include "problems/mesh_variables.h"
+#include "problems/panel_bounds.h"
 #include "problems/report_json.h"
 #include "solver/ceres_adapter.h"
 #include "solver/guided_projection.h"
@@ -17,20 +18,25 @@
 namespace gproj {
 
 // Guided projection's defaults for planarisation: 30 iterations, ω_f = 1, soft weights fading
-// by 0.1 per iteration down to 1e-12; the planarity measure (not a row residual) decides
-// convergence.
+// by 0.1 per iteration down to 1e-12, monotone steps (an under-determined Gauss–Newton step
+// would otherwise jump once the soft weights have faded); the planarity measure (not a row
+// residual) decides convergence.
 SolverOptions PQPlanarizationSolverDefaults();
 
 struct PQPlanarizationOptions {
   // Guided projection (ω_f = solver.fairness_weight weighs the second-difference fairness).
   SolverOptions solver = PQPlanarizationSolverDefaults();
   double planarity_weight = 1.0;  // weight of the planarity rows
-  double closeness_weight = 1.0;  // closeness to the input vertices (scaled mesh units)
-  int fairness_order = 2;         // 2: second differences, 3: third differences
+  // Closeness to the input vertices (scaled mesh units). Strong at the start, it fades with the
+  // soft schedule; the planar mesh then moves no more than a closeness-dominated solve needs.
+  double closeness_weight = 100.0;
+  int fairness_order = 2;  // 2: second differences, 3: third differences
   // Circular quads instead of planar ones (000 §2): every face planar and concyclic, with an
   // auxiliary (normal, centre, squared radius) per face; the tolerance then also bounds the
   // concyclicity measure.
   bool circular = false;
+  // Valid panels: corner-angle and edge-length bounds (on by default).
+  PanelBoundsOptions panels;
   // Stop when the max planarity measure (diagonal distance / mean edge) is ≤ this.
   double tolerance = 1e-9;
   // Ceres path: one fixed-weight problem, closeness and fairness × this scale (0: tolerance /
@@ -42,7 +48,8 @@ struct PQPlanarizationOptions {
 };
 
 // PQ planarisation's measures; as named values (the report's keys): max_planarity,
-// mean_planarity, max_displacement, mean_edge_length and, for circular problems,
+// mean_planarity, max_displacement, mean_edge_length, the ShapeValues (non_convex_quads,
+// min_corner_angle_deg, max_kink_deg, max_planarity_abs) and, for circular problems,
 // max_concyclicity.
 struct PlanarityMeasures {
   double max_planarity = 0.0;     // max over faces of (diagonal distance) / (mean edge length)
@@ -52,6 +59,8 @@ struct PlanarityMeasures {
   // Max over faces of the vertices' distance to their fitted circle / mean edge length; only
   // measured for circular problems (−1 otherwise).
   double max_concyclicity = -1.0;
+  // Convexity, corner angles, kinks and the planarity in input units.
+  QuadShapeSummary shape;
 };
 
 NamedValues ToNamedValues(const PlanarityMeasures& m);
@@ -59,6 +68,11 @@ NamedValues ToNamedValues(const PlanarityMeasures& m);
 // The options as the report's "options" object (tolerance, max_iterations, weights, schedule,
 // circular, ceres_soft_scale).
 nlohmann::json OptionsJson(const PQPlanarizationOptions& o);
+
+// The report's facts about a run besides the solver's: linear_solver, vertices, faces, options
+// and shape_change (input against result).
+nlohmann::json PlanarizationFacts(const PolyMesh& input, const PolyMesh& result,
+                                  const PQPlanarizationOptions& options);
 
 // Distance between the two diagonal lines of a quad.
 double DiagonalDistance(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
@@ -88,6 +102,10 @@ class PQPlanarization : public GuidedProblem {
   PolyMesh Result() const;
   PlanarityMeasures Measures() const { return MeasuresAt(problem_.x()); }
   const PQPlanarizationOptions& options() const { return options_; }
+  // The faces whose corners sit on their angle bound in the current iterate.
+  std::vector<int> FacesAtAngleBound() const;
+  // The faces whose planarity measure exceeds the tolerance, worst first.
+  std::vector<int> FacesAboveTolerance() const;
 
  private:
   PlanarityMeasures MeasuresAt(const Eigen::VectorXd& x) const;
@@ -99,6 +117,7 @@ class PQPlanarization : public GuidedProblem {
   Problem problem_;
   int vertex_block_ = -1;
   int normal_block_ = -1;
+  PanelBounds bounds_;
 };
 
 }  // namespace gproj

@@ -28,11 +28,22 @@ void WriteMeshArrays(const std::string& path, const py::object& vertices, const 
 
 // `gproj grid`: the paraboloid grid, or a parametric surface's.
 py::tuple Grid(int nu, int nv, const std::string& surface, double a, double b, double c,
-               double noise, std::uint32_t seed) {
+               double wave, double noise, std::uint32_t seed) {
   if (nu < 2 || nv < 2 || nu > 100000 || nv > 100000)
     throw InputError("nu and nv must be in [2, 100000]");
   if (!(noise >= 0.0)) throw InputError("noise must be >= 0");
-  if (surface == "paraboloid") return MeshToPython(MakeQuadGrid({nu, nv, a, b, c, noise, seed}));
+  if (surface == "paraboloid") {
+    QuadGridOptions o;
+    o.nu = nu;
+    o.nv = nv;
+    o.a = a;
+    o.b = b;
+    o.c = c;
+    o.wave = wave;
+    o.noise = noise;
+    o.seed = seed;
+    return MeshToPython(MakeQuadGrid(o));
+  }
   if (surface != "revolution" && surface != "hypar" && surface != "hyperboloid" &&
       surface != "enneper")
     throw InputError(
@@ -77,15 +88,17 @@ non-manifold face) or a path that cannot be written.
   const QuadGridOptions g;
   m.def("grid", &Grid, py::kw_only(), py::arg("nu") = g.nu, py::arg("nv") = g.nv,
         py::arg("surface") = "paraboloid", py::arg("a") = g.a, py::arg("b") = g.b,
-        py::arg("c") = g.c, py::arg("noise") = 0.05, py::arg("seed") = g.seed,
+        py::arg("c") = g.c, py::arg("wave") = g.wave, py::arg("noise") = 0.05,
+        py::arg("seed") = g.seed,
         R"(grid(nu=21, nv=21, ...) -> (V, F)
 
 A noisy quad grid (`gproj grid`), the test input of the problems.
 
     nu, nv: vertices along u and v (>= 2); vertex (i, j) is i * nv + j.
-    surface: "paraboloid" (z = a x^2 + b y^2 + c x y over [-1, 1]^2), an asymptotic net
+    surface: "paraboloid" (z = a x^2 + b y^2 + c x y + wave sin(pi x) sin(pi y) over
+        [-1, 1]^2), an asymptotic net
         "hypar", "hyperboloid", "enneper", or a circular net "revolution".
-    a, b, c: the paraboloid's coefficients.
+    a, b, c, wave: the paraboloid's coefficients.
     noise: noise amplitude as a fraction of the grid spacing (mean edge for the nets).
     seed: random seed.
 

@@ -1,5 +1,7 @@
 // gproj.planarize, gproj.anet, gproj.hnet: the commands `gproj planarize`, `gproj anet` and
 // `gproj hnet` as calls on numpy arrays, with the same reports.
+#include <pybind11/stl.h>
+
 #include <memory>
 #include <string>
 
@@ -21,6 +23,7 @@ void CheckSolverName(const std::string& solver) {
 
 py::tuple Planarize(const py::object& vertices, const py::object& faces, double tolerance,
                     bool circular, double closeness, int fairness_order, double ceres_soft_scale,
+                    double min_angle, const py::object& edge_length, bool allow_folds,
                     const std::string& solver, const py::object& callback, int max_iterations,
                     double fairness, double epsilon, double soft_decay, double soft_floor,
                     const std::string& linear_solver, int threads) {
@@ -30,6 +33,16 @@ py::tuple Planarize(const py::object& vertices, const py::object& faces, double 
   options.closeness_weight = closeness;
   options.fairness_order = fairness_order;
   options.ceres_soft_scale = ceres_soft_scale;
+  options.panels.min_angle_deg = min_angle;
+  if (!edge_length.is_none()) {
+    const auto bounds = edge_length.cast<std::pair<double, double>>();
+    options.panels.min_edge_length = bounds.first;
+    options.panels.max_edge_length = bounds.second;
+  }
+  if (allow_folds) {
+    options.panels.corners = false;
+    options.panels.min_edge_fraction = 0.0;
+  }
   SolverArgs{max_iterations, fairness, epsilon, soft_decay, soft_floor, linear_solver, threads}
       .ApplyTo(&options.solver);
   CheckSolverName(solver);
@@ -42,13 +55,9 @@ py::tuple Planarize(const py::object& vertices, const py::object& faces, double 
     return solver == "gp" ? pq.Run(bridge.callback())
                           : pq.RunCeres(options.solver.max_iterations, bridge.callback());
   });
-  const nlohmann::json extra = {
-      {"input", nullptr},
-      {"output", nullptr},
-      {"linear_solver", LinearSolverTypeName(options.solver.linear_solver)},
-      {"vertices", input.n_vertices()},
-      {"faces", input.n_faces()},
-      {"options", OptionsJson(options)}};
+  nlohmann::json extra = PlanarizationFacts(input, pq.Result(), options);
+  extra["input"] = nullptr;
+  extra["output"] = nullptr;
   return py::make_tuple(VerticesToArray(pq.Result()), ReportToPython("planarize", report, extra));
 }
 
@@ -66,6 +75,11 @@ circular=True.
     fairness_order: 2 (second differences) or 3 (third differences).
     ceres_soft_scale: with solver="ceres", fixed factor on the closeness and fairness weights
         (0: tolerance / 100).
+    min_angle: every quad corner angle stays within [min_angle, 180 - min_angle] degrees (a
+        corner already outside in the input is kept from getting worse); 0 keeps quads convex.
+    edge_length: None or (min, max) edge lengths in the input's units; without it no edge
+        shrinks below 10% of its input length.
+    allow_folds: no corner-angle or default edge bounds (quads may fold).
     solver: "gp" (guided projection) or "ceres" (Levenberg-Marquardt on the same rows).
     callback: None or callback(record: dict) called at the start and after every iteration
         with the keys of report["history"] entries; returning False stops the run (the result
@@ -186,6 +200,8 @@ void BindMeshProblems(py::module_& m) {
                           py::arg("closeness") = pq.closeness_weight,
                           py::arg("fairness_order") = pq.fairness_order,
                           py::arg("ceres_soft_scale") = pq.ceres_soft_scale,
+                          py::arg("min_angle") = pq.panels.min_angle_deg,
+                          py::arg("edge_length") = py::none(), py::arg("allow_folds") = false,
                           py::arg("solver") = "gp", py::arg("callback") = py::none()),
           SolverArgList(pq.solver)));
   const ANetOptions an;

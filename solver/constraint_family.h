@@ -61,6 +61,11 @@ class ConstraintFamily {
   // Refreshes coefficients frozen at x^k (called once per iteration before evaluation).
   virtual void Update(const VariableLayout& layout, const Eigen::VectorXd& x) {}
 
+  // Sets unknowns the family owns outright to their exact values at the others (an
+  // inequality's slacks s = √max(g, 0)). Guided projection calls it on the start and on every
+  // trial point, so such unknowns never lag behind the ones they are made from.
+  virtual void Project(const VariableLayout& layout, Eigen::VectorXd* x) const {}
+
   const std::string& name() const { return name_; }
   FamilyRole role() const { return role_; }
   double weight() const { return weight_; }

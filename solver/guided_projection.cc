@@ -140,6 +140,11 @@ class Minimizer {
     return false;
   }
 
+  void ProjectOwnedUnknowns(Eigen::VectorXd* x) const {
+    for (int f = 0; f < problem_->num_families(); ++f)
+      problem_->family(f).Project(problem_->layout(), x);
+  }
+
   // Checks the options and the start, builds the system, analyses its pattern.
   bool Start() {
     if (!options_.IsValid(&why_))
@@ -148,6 +153,7 @@ class Minimizer {
       return Finish(TerminationType::kFailure, "x does not match the variable layout");
     if (!x_.allFinite()) return Finish(TerminationType::kFailure, "the start x is not finite");
     summary_.usable = true;
+    ProjectOwnedUnknowns(&x_);
     system_ = std::make_unique<LinearizedSystem>(problem_);
     summary_.num_rows = system_->num_rows();
     summary_.jacobian_nonzeros = system_->a().nnz();
@@ -195,6 +201,7 @@ class Minimizer {
                        &record_.solve_seconds, &why_))
       return false;
     trial_ = x_ + step_;
+    ProjectOwnedUnknowns(&trial_);
     if (options_.project_trial) options_.project_trial(&trial_);
     if (!trial_.allFinite()) {
       why_ = "the step is not finite";

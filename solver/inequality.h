@@ -1,10 +1,13 @@
 #pragma once
 // Inequalities g(x) ≥ 0 for any term (SPEC §3, Tang et al. 2014): each row becomes the equality
 //   g(x) − s² = 0
-// with one slack unknown s per row, initialised to √max(g(x⁰), 0). The slacks of an element
-// form one item of an eliminable block ("<name>_slack"), so guided projection removes them
-// with the other per-element auxiliaries before factorising, and the Ceres cross-check sees
-// the same rows.
+// with one slack unknown s per row. Guided projection sets every slack to √max(g(x), 0) at the
+// start and at each trial point (Project): the row's residual is then min(g, 0), it pulls only
+// on a violated bound, and a slack that reached 0 cannot hold a satisfied bound at equality (the
+// trap of free slacks, whose derivative 2s vanishes there). The slacks of an element form one
+// item of an eliminable block ("<name>_slack"), so guided projection removes them with the
+// other per-element auxiliaries before factorising; the Ceres cross-check sees the same rows
+// with the slacks as free unknowns.
 //
 //   auto* bounds = AddInequalities<1, 2>(&problem, "above_line",
 //       [](const auto* p, auto* r) { r[0] = p[0] - 1.0; },       // g(p) = p_x − 1 ≥ 0
@@ -44,7 +47,30 @@ struct SlackResidual {
 };
 
 template <typename Data, typename Residual, int kRows, int... kDims>
-using InequalityTerm = Term<Data, SlackResidual<Residual, kRows>, kRows, kDims..., kRows>;
+class InequalityTerm : public Term<Data, SlackResidual<Residual, kRows>, kRows, kDims..., kRows> {
+  using Base = Term<Data, SlackResidual<Residual, kRows>, kRows, kDims..., kRows>;
+
+ public:
+  using Base::Base;
+
+  // Slack s = √max(g, 0) of every row, g evaluated at x with the slack set to 0.
+  void Project(const VariableLayout& layout, Eigen::VectorXd* x) const override {
+    constexpr int kLocalDim = (kDims + ...) + kRows;
+    double x_local[kLocalDim], r[kRows];
+    for (int e = 0; e < this->num_elements(); ++e) {
+      const int* items = this->element_items(e);
+      const int slack = items[sizeof...(kDims)];
+      int l = 0;
+      for (size_t k = 0; k <= sizeof...(kDims); ++k)
+        for (int c = 0; c < layout.ItemDim(items[k]); ++c)
+          x_local[l++] = items[k] == slack ? 0.0 : (*x)[layout.ItemOffset(items[k]) + c];
+      this->Residuals(e, x_local, r);
+      for (int i = 0; i < kRows; ++i)
+        (*x)[layout.ItemOffset(slack) + i] =
+            std::isfinite(r[i]) && r[i] > 0.0 ? std::sqrt(r[i]) : 0.0;
+    }
+  }
+};
 
 namespace internal {
 
@@ -69,24 +95,13 @@ InequalityTerm<Data, Residual, kRows, kDims...>* AddInequalities(Problem* proble
   auto* term = problem->AddFamily<InequalityTerm<Data, Residual, kRows, kDims...>>(
       std::move(name), SlackResidual<Residual, kRows>{std::move(g)}, FamilyRole::kConstraint,
       weight);
-  constexpr int kLocalDim = (kDims + ...) + kRows;
-  double x_local[kLocalDim], r[kRows];
   for (size_t e = 0; e < elements.size(); ++e) {
-    const int slack = layout.Item(slack_block, static_cast<int>(e));
     std::array<int, sizeof...(kDims) + 1> items;
     for (size_t k = 0; k < sizeof...(kDims); ++k) items[k] = elements[e].first[k];
-    items.back() = slack;
+    items.back() = layout.Item(slack_block, static_cast<int>(e));
     term->Add(items, std::move(elements[e].second));
-    // g at x⁰ with zero slacks, then s = √max(g, 0).
-    int l = 0;
-    for (int item : items)
-      for (int c = 0; c < layout.ItemDim(item); ++c)
-        x_local[l++] = item == slack ? 0.0 : problem->x()[layout.ItemOffset(item) + c];
-    term->Residuals(static_cast<int>(e), x_local, r);
-    for (int i = 0; i < kRows; ++i)
-      problem->x()[layout.ItemOffset(slack) + i] =
-          std::isfinite(r[i]) && r[i] > 0.0 ? std::sqrt(r[i]) : 0.0;
   }
+  term->Project(layout, &problem->x());
   return term;
 }
 

@@ -36,6 +36,7 @@ const char* kQuad2x1 =
     "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0.1\nv 2 1 0\n"
     "f 1 2 5 4\nf 2 3 6 5\n";
 
+// 39 variables: 6 vertices and 2 face normals (24), 8 corner-angle and 7 edge-length slacks.
 TEST_F(PlanarizeCommandTest, PlanarizesAValidMeshAndWritesReport) {
   const std::string in = Write("in.obj", kQuad2x1);
   const CommandRun r = Gproj("planarize " + in + " -o " + (dir_ / "out.obj").string() +
@@ -44,9 +45,12 @@ TEST_F(PlanarizeCommandTest, PlanarizesAValidMeshAndWritesReport) {
   EXPECT_TRUE(fs::exists(dir_ / "out.obj"));
   const std::string report = Slurp(dir_ / "r.json");
   for (const char* key : {"\"converged\": true", "\"iterations\"", "\"seconds\"",
-                          "\"variables\": 24", "\"history\"", "\"max_planarity\""})
+                          "\"variables\": 39", "\"history\"", "\"max_planarity\""})
     EXPECT_NE(report.find(key), std::string::npos) << key;
   EXPECT_NE(r.out.find("max planarity"), std::string::npos);
+  EXPECT_NE(r.out.find("panels: non-convex quads 0 -> 0"), std::string::npos) << r.out;
+  EXPECT_NE(report.find("\"non_convex_quads\""), std::string::npos);
+  EXPECT_NE(report.find("\"shape_change\""), std::string::npos);
   EXPECT_NE(r.out.find("wrote"), std::string::npos);
 }
 

@@ -1,0 +1,99 @@
+#include "geometry/quad_shape.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+
+namespace gproj {
+namespace {
+
+double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / M_PI;
+}
+
+Eigen::Vector3d Point(const PolyMesh& mesh, PolyMesh::VertexHandle v) {
+  const auto& q = mesh.point(v);
+  return {q[0], q[1], q[2]};
+}
+
+// The four corners of face f, or false when it is not a quad.
+bool QuadPoints(const PolyMesh& mesh, PolyMesh::FaceHandle f, Eigen::Vector3d* p) {
+  if (mesh.valence(f) != 4) return false;
+  int k = 0;
+  for (auto v : mesh.fv_range(f)) p[k++] = Point(mesh, v);
+  return true;
+}
+
+}  // namespace
+
+std::array<double, 4> QuadCornerAngles(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
+                                       const Eigen::Vector3d& v2, const Eigen::Vector3d& v3) {
+  const Eigen::Vector3d v[4] = {v0, v1, v2, v3};
+  double sines[4];
+  QuadCornerSines(v0.data(), v1.data(), v2.data(), v3.data(), sines);
+  std::array<double, 4> angles{};
+  for (int i = 0; i < 4; ++i) {
+    const double angle = AngleDeg(v[(i + 1) % 4] - v[i], v[(i + 3) % 4] - v[i]);
+    angles[i] = sines[i] > 0.0 ? angle : 360.0 - angle;
+  }
+  return angles;
+}
+
+QuadShape MeasureQuadShape(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
+                           const Eigen::Vector3d& v2, const Eigen::Vector3d& v3) {
+  QuadShape s;
+  double sines[4];
+  QuadCornerSines(v0.data(), v1.data(), v2.data(), v3.data(), sines);
+  const std::array<double, 4> angles = QuadCornerAngles(v0, v1, v2, v3);
+  s.min_angle_deg = *std::min_element(angles.begin(), angles.end());
+  for (double sine : sines) s.convex = s.convex && sine > 0.0;
+  const Eigen::Vector3d d0 = v2 - v0, d1 = v3 - v1;
+  // Split along v0–v2: triangles (v0, v1, v2) and (v0, v2, v3); along v1–v3 likewise.
+  const double kink02 = AngleDeg((v1 - v0).cross(v2 - v0), (v2 - v0).cross(v3 - v0));
+  const double kink13 = AngleDeg((v2 - v1).cross(v3 - v1), (v3 - v1).cross(v0 - v1));
+  s.kink_deg = std::max(kink02, kink13);
+  const Eigen::Vector3d n = d0.cross(d1);
+  s.diagonal_distance = n.norm() > 1e-300
+                            ? std::abs((v1 - v0).dot(n)) / n.norm()
+                            : (v1 - v0).cross(d0).norm() / std::max(d0.norm(), 1e-300);
+  return s;
+}
+
+std::vector<QuadShape> MeasureQuadShapes(const PolyMesh& mesh) {
+  std::vector<QuadShape> shapes(mesh.n_faces());
+  Eigen::Vector3d p[4];
+  for (auto f : mesh.faces())
+    if (QuadPoints(mesh, f, p)) shapes[f.idx()] = MeasureQuadShape(p[0], p[1], p[2], p[3]);
+  return shapes;
+}
+
+QuadShapeSummary Summarize(const std::vector<QuadShape>& shapes) {
+  QuadShapeSummary s;
+  for (const QuadShape& q : shapes) {
+    s.non_convex += q.convex ? 0 : 1;
+    s.min_angle_deg = std::min(s.min_angle_deg, q.min_angle_deg);
+    s.max_kink_deg = std::max(s.max_kink_deg, q.kink_deg);
+    s.max_diagonal_distance = std::max(s.max_diagonal_distance, q.diagonal_distance);
+  }
+  return s;
+}
+
+ShapeChange CompareCornerAngles(const PolyMesh& before, const PolyMesh& after,
+                                double threshold_deg) {
+  ShapeChange change;
+  int quads = 0;
+  Eigen::Vector3d p[4], q[4];
+  for (auto f : before.faces()) {
+    if (!QuadPoints(before, f, p) || !QuadPoints(after, f, q)) continue;
+    ++quads;
+    const std::array<double, 4> a = QuadCornerAngles(p[0], p[1], p[2], p[3]);
+    const std::array<double, 4> b = QuadCornerAngles(q[0], q[1], q[2], q[3]);
+    double worst = 0.0;
+    for (int i = 0; i < 4; ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
+    change.max_corner_change_deg = std::max(change.max_corner_change_deg, worst);
+    change.quads_changed += worst > threshold_deg ? 1 : 0;
+  }
+  change.share_changed = quads > 0 ? static_cast<double>(change.quads_changed) / quads : 0.0;
+  return change;
+}
+
+}  // namespace gproj

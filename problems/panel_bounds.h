@@ -1,0 +1,61 @@
+#pragma once
+// Valid panels for every quad-mesh problem (planarisation, circular meshes, A-nets, H-nets):
+// inequality rows (constraints/panel_validity.h) that keep each corner angle within
+// [θ, 180° − θ] and each edge within [ℓ_min, ℓ_max] while the other rows act. A bound the input
+// already breaks is relaxed to the input's value, so such a quad or edge is only kept from
+// getting worse.
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "constraints/panel_validity.h"
+#include "geometry/mesh_io.h"
+#include "geometry/quad_shape.h"
+#include "problems/guided_problem.h"
+#include "problems/mesh_variables.h"
+
+namespace gproj {
+
+struct PanelBoundsOptions {
+  // Corner rows on every quad (off: panels may fold, as without bounds).
+  bool corners = true;
+  // θ in degrees, in [0, 60): every corner angle stays in [θ, 180° − θ]; 0 keeps quads convex.
+  double min_angle_deg = 5.0;
+  // Edge lengths in the input's units (0: no such bound). Without ℓ_min, every edge keeps at
+  // least min_edge_fraction of its input length (0 disables), so no edge collapses.
+  double min_edge_length = 0.0;
+  double max_edge_length = 0.0;
+  double min_edge_fraction = 0.1;
+
+  bool IsValid(std::string* why) const;
+};
+
+// The rows added to a problem; null where a bound is off.
+struct PanelBounds {
+  QuadCornerTerm* corners = nullptr;
+  EdgeLengthTerm* min_edges = nullptr;
+  EdgeLengthTerm* max_edges = nullptr;
+  std::vector<QuadCornerBounds> corner_bounds;  // per face (quads only)
+};
+
+// Adds the bounds over the quads and edges of `mesh`, whose vertices are the items of
+// `vertex_block` in the normalisation `norm`; problem->x() must hold the start.
+PanelBounds AddPanelBounds(const PolyMesh& mesh, const MeshNormalization& norm, int vertex_block,
+                           const PanelBoundsOptions& options, Problem* problem);
+
+// The faces of `mesh` whose corners sit on their bound (within `margin` of the sine).
+std::vector<int> FacesAtCornerBound(const PolyMesh& mesh, const PanelBounds& bounds,
+                                    double margin = 1e-6);
+
+// The shape measures a designer reads, as named values: non_convex_quads, min_corner_angle_deg,
+// max_kink_deg, max_planarity_abs (diagonal distance in the mesh's units).
+NamedValues ShapeValues(const QuadShapeSummary& summary);
+
+// The report's "shape_change" object.
+nlohmann::json ShapeChangeJson(const ShapeChange& change);
+
+// "faces 3, 17, 40 (and 12 more)" for messages.
+std::string FaceList(const std::vector<int>& faces, int shown = 10);
+
+}  // namespace gproj
