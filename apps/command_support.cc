@@ -188,6 +188,20 @@ void AddPanelBoundsOptions(CLI::App* command, PanelBoundsOptions* panels) {
       "No corner-angle or default edge bounds: quads may turn non-convex or fold");
 }
 
+void AddVertexControlOptions(CLI::App* command, std::string* fixed_path,
+                             VertexControlOptions* options) {
+  command->add_option("--fixed", *fixed_path,
+                      "Vertices that do not move at all: a text file of 0-based vertex ids "
+                      "separated by spaces or newlines, '#' comments");
+  auto* fix = command->add_flag("--fix-boundary", options->fix_boundary,
+                                "Every boundary vertex stays where it is");
+  command
+      ->add_flag("--glide-boundary", options->glide_boundary,
+                 "Boundary vertices slide along the input's boundary (they stay on it to "
+                 "rounding)")
+      ->excludes(fix);
+}
+
 void PrintPanelSummary(const NamedValues& initial, const NamedValues& final) {
   std::printf(
       "panels: non-convex quads %.0f -> %.0f, smallest corner angle %.1f -> %.1f deg, max kink "

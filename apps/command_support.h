@@ -12,6 +12,7 @@
 #include "problems/guided_problem.h"
 #include "problems/panel_bounds.h"
 #include "problems/report_json.h"
+#include "problems/vertex_control.h"
 
 namespace gproj {
 
@@ -67,6 +68,11 @@ void ApplyLinearSolver(const std::string& name, SolverOptions* solver);
 
 // --min-angle DEG, --edge-length MIN,MAX and --allow-folds for a problem's panel bounds.
 void AddPanelBoundsOptions(CLI::App* command, PanelBoundsOptions* panels);
+// --fixed FILE, --fix-boundary and --glide-boundary; the file's path goes to *fixed_path (read
+// with ReadVertexIds once the mesh is known).
+void AddVertexControlOptions(CLI::App* command, std::string* fixed_path,
+                             VertexControlOptions* options);
+
 // "panels: non-convex quads 0 -> 0, smallest corner angle …" from the ShapeValues of the initial
 // and final measures.
 void PrintPanelSummary(const NamedValues& initial, const NamedValues& final);

@@ -14,6 +14,7 @@ namespace {
 
 struct PlanarizeArgs {
   std::string input, output, report, picture, solver = "gp", linear_solver = "cholmod";
+  std::string reference, fixed;
   PQPlanarizationOptions options;
 };
 
@@ -26,10 +27,14 @@ int RunPlanarize(PlanarizeArgs args) {
     std::string why;
     if (!options.IsValid(&why)) throw InputError("invalid option: " + why);
     CheckOutputPaths(
-        {{"input", args.input}},
+        {{"input", args.input}, {"--reference", args.reference}, {"--fixed", args.fixed}},
         {{"--output", args.output, true}, {"--report", args.report}, {"--picture", args.picture}});
     input = ReadMesh(args.input, MeshRequirements{true});
-    pq = std::make_unique<PQPlanarization>(input, options);
+    if (!args.fixed.empty())
+      options.vertices.fixed = ReadVertexIds(args.fixed, static_cast<int>(input.n_vertices()));
+    std::unique_ptr<PolyMesh> reference;
+    if (!args.reference.empty()) reference = std::make_unique<PolyMesh>(ReadMesh(args.reference));
+    pq = std::make_unique<PQPlanarization>(input, options, reference.get());
   } catch (const InputError& e) {
     std::cerr << "gproj planarize: " << e.what() << "\n";
     return kExitInputError;
@@ -76,6 +81,11 @@ int RunPlanarize(PlanarizeArgs args) {
     if (final_measures.max_concyclicity >= 0.0)
       std::printf("       max concyclicity %.3e (distance to the fitted circle / mean edge)\n",
                   final_measures.max_concyclicity);
+    if (final_measures.max_glide_distance >= 0.0)
+      std::printf(
+          "       boundary vertices glided; max distance from the input boundary %.2e of "
+          "the bbox diagonal\n",
+          final_measures.max_glide_distance);
     PrintPanelSummary(report.initial, report.final);
     WarnIfFarFromInput("planarize", options.circular ? "a circular mesh" : "a PQ (conjugate) mesh",
                        input, pq->Result(), final_measures.max_displacement);
@@ -142,6 +152,11 @@ void RegisterPlanarizeCommand(CLI::App* app, int* exit_code) {
       ->capture_default_str();
   AddSolverOptions(cmd, &args->options.solver, &args->linear_solver);
   AddPanelBoundsOptions(cmd, &args->options.panels);
+  AddVertexControlOptions(cmd, &args->fixed, &args->options.vertices);
+  cmd->add_option("--reference", args->reference,
+                  "Reference surface (triangle or polygon mesh): vertices keep close to it through "
+                  "the tangent plane of their closest point (sliding along it) instead of to "
+                  "their start");
   cmd->callback([args, exit_code]() { *exit_code = RunPlanarize(*args); });
 }
 

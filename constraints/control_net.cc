@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <limits>
+#include <utility>
 
 namespace gproj {
 
@@ -24,9 +25,14 @@ void EdgeLengthPreservation::EvaluateElement(int e, const double* x, double* phi
   phi[0] = (d2 - l0 * l0) / (2.0 * l0);
 }
 
-int PolylineGliding::AddPoint(int item, const std::vector<Eigen::Vector3d>& polyline) {
-  polylines_.push_back(polyline);
-  foot_.push_back(polyline.front());
+int PolylineGliding::AddPolyline(std::vector<Eigen::Vector3d> polyline) {
+  polylines_.push_back(std::move(polyline));
+  return static_cast<int>(polylines_.size()) - 1;
+}
+
+int PolylineGliding::AddPoint(int item, int polyline_id) {
+  polyline_of_.push_back(polyline_id);
+  foot_.push_back(polylines_[polyline_id].front());
   e1_.emplace_back(1, 0, 0);
   e2_.emplace_back(0, 1, 0);
   return AddElement({item});
@@ -46,15 +52,49 @@ void PolylineGliding::Update(const VariableLayout& layout, const Eigen::VectorXd
   for (int e = 0; e < num_elements(); ++e) {
     const Eigen::Vector3d p = x.segment<3>(layout.ItemOffset(element_items(e)[0]));
     Eigen::Vector3d direction;
-    Project(polylines_[e], p, &foot_[e], &direction);
+    const std::vector<Eigen::Vector3d>& polyline = polylines_[polyline_of_[e]];
+    ClosestPoint(polyline, p, &foot_[e], &direction);
+    if (retraction_) {
+      // At a corner of the polyline the tangent is that of neither segment: glide along the
+      // bisecting direction (from the previous to the next corner), so a step can cross it.
+      for (size_t i = 0; i < polyline.size(); ++i) {
+        if ((polyline[i] - foot_[e]).squaredNorm() > 1e-24 * (1.0 + foot_[e].squaredNorm()))
+          continue;
+        const bool closed = polyline.size() > 2 && polyline.front() == polyline.back();
+        const size_t last = polyline.size() - 1;
+        size_t prev = i > 0 ? i - 1 : (closed ? last - 1 : i);
+        size_t next = i < last ? i + 1 : (closed ? 1 : i);
+        const Eigen::Vector3d chord = polyline[next] - polyline[prev];
+        if (chord.squaredNorm() > 0.0) direction = chord.normalized();
+        break;
+      }
+    }
     e1_[e] = direction.unitOrthogonal();
     e2_[e] = direction.cross(e1_[e]);
   }
 }
 
-void PolylineGliding::Project(const std::vector<Eigen::Vector3d>& polyline,
-                              const Eigen::Vector3d& p, Eigen::Vector3d* foot,
-                              Eigen::Vector3d* direction) {
+void PolylineGliding::Project(const VariableLayout& layout, Eigen::VectorXd* x) const {
+  if (!retraction_) return;
+  for (int e = 0; e < num_elements(); ++e) {
+    auto p = x->segment<3>(layout.ItemOffset(element_items(e)[0]));
+    Eigen::Vector3d foot, direction;
+    ClosestPoint(polylines_[polyline_of_[e]], p, &foot, &direction);
+    p = foot;
+  }
+}
+
+double PolylineGliding::DistanceToPolyline(int e, const VariableLayout& layout,
+                                           const Eigen::VectorXd& x) const {
+  const Eigen::Vector3d p = x.segment<3>(layout.ItemOffset(element_items(e)[0]));
+  Eigen::Vector3d foot, direction;
+  ClosestPoint(polylines_[polyline_of_[e]], p, &foot, &direction);
+  return (p - foot).norm();
+}
+
+void PolylineGliding::ClosestPoint(const std::vector<Eigen::Vector3d>& polyline,
+                                   const Eigen::Vector3d& p, Eigen::Vector3d* foot,
+                                   Eigen::Vector3d* direction) {
   double best = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i + 1 < polyline.size(); ++i) {
     const Eigen::Vector3d a = polyline[i], ab = polyline[i + 1] - a;

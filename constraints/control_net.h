@@ -5,6 +5,8 @@
 //   PolylineGliding: a point glides along a fixed polyline β: with q the closest point of β to
 //     the point at x^k and t the polyline's direction there, (c − q)·e1 = 0 and (c − q)·e2 = 0
 //     with e1, e2 ⟂ t (frozen at x^k, refreshed by Update). Items {c}. Role kConstraint.
+//     With SetRetraction(true) every trial point is also moved onto its polyline (Project), so
+//     the points stay on it to rounding while the rows keep the steps tangent.
 
 #include <Eigen/Core>
 #include <vector>
@@ -28,18 +30,33 @@ class PolylineGliding : public ConstraintFamily {
  public:
   explicit PolylineGliding(double weight, std::string name = "boundary gliding")
       : ConstraintFamily(std::move(name), 2, FamilyRole::kConstraint, weight) {}
-  // `polyline`: at least two points; the point `item` glides along it.
-  int AddPoint(int item, const std::vector<Eigen::Vector3d>& polyline);
+  // Adds a polyline (at least two points; a closed one repeats its first point at the end)
+  // shared by the points that glide along it; returns its id.
+  int AddPolyline(std::vector<Eigen::Vector3d> polyline);
+  // The point `item` glides along polyline `polyline_id`.
+  int AddPoint(int item, int polyline_id);
+  // Adds `polyline` for this point alone.
+  int AddPoint(int item, const std::vector<Eigen::Vector3d>& polyline) {
+    return AddPoint(item, AddPolyline(polyline));
+  }
+  void SetRetraction(bool on) { retraction_ = on; }
+
   void EvaluateElement(int e, const double* x, double* phi, double* jac) const override;
   void Update(const VariableLayout& layout, const Eigen::VectorXd& x) override;
+  void Project(const VariableLayout& layout, Eigen::VectorXd* x) const override;
+
+  // Distance from the point of element e (at x) to its polyline.
+  double DistanceToPolyline(int e, const VariableLayout& layout, const Eigen::VectorXd& x) const;
 
   // Closest point of a polyline to p and the unit direction of its segment.
-  static void Project(const std::vector<Eigen::Vector3d>& polyline, const Eigen::Vector3d& p,
-                      Eigen::Vector3d* foot, Eigen::Vector3d* direction);
+  static void ClosestPoint(const std::vector<Eigen::Vector3d>& polyline, const Eigen::Vector3d& p,
+                           Eigen::Vector3d* foot, Eigen::Vector3d* direction);
 
  private:
   std::vector<std::vector<Eigen::Vector3d>> polylines_;
+  std::vector<int> polyline_of_;  // per element
   std::vector<Eigen::Vector3d> foot_, e1_, e2_;
+  bool retraction_ = false;
 };
 
 }  // namespace gproj

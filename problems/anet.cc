@@ -7,7 +7,7 @@
 #include "constraints/closeness.h"
 #include "constraints/normal_orthogonality.h"
 #include "constraints/quad_diagonal_planarity.h"
-#include "constraints/surface_closeness.h"
+#include "problems/vertex_control.h"
 #include "solver/ceres_adapter.h"
 
 namespace gproj {
@@ -141,22 +141,9 @@ void AddANetFamilies(const PolyMesh& mesh, const ANetOptions& options, int verte
       quads->AddElement({item(r[0]), item(r[1]), item(r[2]), item(v)});
     }
   }
-  if (reference != nullptr) {
-    SurfaceProjector projector = [reference, norm](const Eigen::Vector3d& q, Eigen::Vector3d* p,
-                                                   Eigen::Vector3d* n) {
-      reference->Project(norm.FromProblem(q), p, n);
-      *p = norm.ToProblem(*p);
-    };
-    if (options.tangent_weight > 0.0) {
-      auto* tangent =
-          problem->AddFamily<SurfaceTangentCloseness>(projector, options.tangent_weight);
-      for (auto v : mesh.vertices()) tangent->AddElement({item(v.idx())});
-    }
-    if (options.point_weight > 0.0) {
-      auto* point = problem->AddFamily<SurfacePointCloseness>(projector, options.point_weight);
-      for (auto v : mesh.vertices()) point->AddElement({item(v.idx())});
-    }
-  }
+  if (reference != nullptr)
+    AddReferenceCloseness(*reference, norm, vertex_block, static_cast<int>(mesh.n_vertices()),
+                          options.tangent_weight, options.point_weight, problem);
   if (options.anchor_weight > 0.0) {
     auto* anchor = problem->AddFamily<Closeness>(3, options.anchor_weight, "anchor");
     for (auto v : mesh.vertices()) {

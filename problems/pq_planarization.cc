@@ -42,6 +42,9 @@ nlohmann::json OptionsJson(const PQPlanarizationOptions& o) {
           {"max_edge_length", o.panels.max_edge_length},
           {"min_edge_fraction", o.panels.min_edge_fraction},
           {"circular", o.circular},
+          {"fixed_vertices", o.vertices.fixed.size()},
+          {"fix_boundary", o.vertices.fix_boundary},
+          {"glide_boundary", o.vertices.glide_boundary},
           {"ceres_soft_scale", o.ceres_soft_scale}};
 }
 
@@ -68,7 +71,10 @@ bool PQPlanarizationOptions::IsValid(std::string* why) const {
   if (fairness_order != 2 && fairness_order != 3) return fail("fairness order must be 2 or 3");
   if (!(tolerance > 0.0) || !std::isfinite(tolerance))
     return fail("tolerance must be finite and > 0");
-  return panels.IsValid(why) && solver.IsValid(why);
+  if (!(reference_tangent_weight >= 0.0) || !std::isfinite(reference_tangent_weight) ||
+      !(reference_point_weight >= 0.0) || !std::isfinite(reference_point_weight))
+    return fail("reference weights must be finite and ≥ 0");
+  return panels.IsValid(why) && vertices.IsValid(why) && solver.IsValid(why);
 }
 
 NamedValues ToNamedValues(const PlanarityMeasures& m) {
@@ -77,6 +83,7 @@ NamedValues ToNamedValues(const PlanarityMeasures& m) {
                         {"max_displacement", m.max_displacement},
                         {"mean_edge_length", m.mean_edge_length}};
   if (m.max_concyclicity >= 0.0) values.push_back({"max_concyclicity", m.max_concyclicity});
+  if (m.max_glide_distance >= 0.0) values.push_back({"max_glide_distance", m.max_glide_distance});
   for (NamedValue& v : ShapeValues(m.shape)) values.push_back(std::move(v));
   return values;
 }
@@ -113,7 +120,8 @@ PlanarityMeasures MeasurePlanarity(const PolyMesh& mesh, const PolyMesh& referen
   return m;
 }
 
-PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOptions& options)
+PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOptions& options,
+                                 const PolyMesh* reference)
     : options_(options), input_(mesh), current_(mesh) {
   std::string why;
   if (!options.IsValid(&why)) throw InputError("invalid planarisation options: " + why);
@@ -160,7 +168,12 @@ PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOpti
       planarity->AddQuad(aux, items[0], items[1], items[2], items[3]);
     }
   }
-  if (options.closeness_weight > 0.0) {
+  if (reference != nullptr) {
+    reference_ = std::make_unique<ClosestPointQuery>(*reference);
+    AddReferenceCloseness(*reference_, norm_, vertex_block_, static_cast<int>(mesh.n_vertices()),
+                          options.closeness_weight * options.reference_tangent_weight,
+                          options.closeness_weight * options.reference_point_weight, &problem_);
+  } else if (options.closeness_weight > 0.0) {
     auto* closeness = problem_.AddFamily<Closeness>(3, options.closeness_weight);
     for (auto v : mesh.vertices()) {
       const int index = layout.Index(vertex_block_, v.idx(), 0);
@@ -170,6 +183,7 @@ PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOpti
   if (options.solver.fairness_weight > 0.0)
     AddMeshFairness(mesh, options.fairness_order, vertex_block_, &problem_);
   bounds_ = AddPanelBounds(mesh, norm_, vertex_block_, options.panels, &problem_);
+  control_ = ApplyVertexControl(mesh, norm_, vertex_block_, options.vertices, &problem_);
 }
 
 std::vector<int> PQPlanarization::FacesAboveTolerance() const {
@@ -194,8 +208,11 @@ std::vector<int> PQPlanarization::FacesAtAngleBound() const {
 
 PlanarityMeasures PQPlanarization::MeasuresAt(const Eigen::VectorXd& x) const {
   StoreVertices(x, problem_.layout(), vertex_block_, norm_, &current_);
+  control_.RestoreHeld(input_, &current_);
   PlanarityMeasures m = MeasurePlanarity(current_, input_);
   if (options_.circular) m.max_concyclicity = MeasureCircularity(current_).max_concyclicity;
+  if (control_.glide != nullptr)
+    m.max_glide_distance = control_.MaxGlideDistance(problem_.layout(), x);
   return m;
 }
 
@@ -214,6 +231,7 @@ CeresOptions PQPlanarization::ceres_options(int max_iterations) const {
 PolyMesh PQPlanarization::Result() const {
   PolyMesh out = input_;
   StoreVertices(problem_, vertex_block_, norm_, &out);
+  control_.RestoreHeld(input_, &out);
   return out;
 }
 

@@ -4,6 +4,7 @@
 // scaled to mean edge length 1 inside the problem, so weights do not depend on units.
 
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "geometry/mesh_io.h"
@@ -11,6 +12,7 @@
 #include "problems/mesh_variables.h"
 #include "problems/panel_bounds.h"
 #include "problems/report_json.h"
+#include "problems/vertex_control.h"
 #include "solver/ceres_adapter.h"
 #include "solver/guided_projection.h"
 #include "solver/problem.h"
@@ -37,6 +39,13 @@ struct PQPlanarizationOptions {
   bool circular = false;
   // Valid panels: corner-angle and edge-length bounds (on by default).
   PanelBoundsOptions panels;
+  // Held and gliding vertices.
+  VertexControlOptions vertices;
+  // With a reference surface (constructor): weight of its tangent-plane closeness, which then
+  // replaces the closeness to the input vertices (× closeness_weight), and of the weaker point
+  // term (× closeness_weight).
+  double reference_tangent_weight = 1.0;
+  double reference_point_weight = 0.1;
   // Stop when the max planarity measure (diagonal distance / mean edge) is ≤ this.
   double tolerance = 1e-9;
   // Ceres path: one fixed-weight problem, closeness and fairness × this scale (0: tolerance /
@@ -61,6 +70,9 @@ struct PlanarityMeasures {
   double max_concyclicity = -1.0;
   // Convexity, corner angles, kinks and the planarity in input units.
   QuadShapeSummary shape;
+  // Max distance of a gliding boundary vertex from the input boundary / bbox diagonal (−1:
+  // no gliding).
+  double max_glide_distance = -1.0;
 };
 
 NamedValues ToNamedValues(const PlanarityMeasures& m);
@@ -87,7 +99,10 @@ PlanarityMeasures MeasurePlanarity(const PolyMesh& mesh, const PolyMesh& referen
 class PQPlanarization : public GuidedProblem {
  public:
   // `mesh` must be a valid quad mesh (ReadMesh with quads_only). Throws InputError otherwise.
-  PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOptions& options);
+  // With `reference` (a triangle or polygon mesh), vertices keep close to that surface through
+  // its tangent planes instead of to their start.
+  PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOptions& options,
+                  const PolyMesh* reference = nullptr);
 
   Problem& problem() override { return problem_; }
   SolverOptions solver_options() const override { return options_.solver; }
@@ -118,6 +133,8 @@ class PQPlanarization : public GuidedProblem {
   int vertex_block_ = -1;
   int normal_block_ = -1;
   PanelBounds bounds_;
+  VertexControl control_;
+  std::unique_ptr<ClosestPointQuery> reference_;
 };
 
 }  // namespace gproj

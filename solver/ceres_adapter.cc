@@ -1,8 +1,8 @@
 #include "solver/ceres_adapter.h"
 
-#include <algorithm>
 #include <ceres/ceres.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -175,6 +175,12 @@ CeresSummary SolveWithCeres(const CeresOptions& options, Problem* problem,
       }
       ceres_problem.AddResidualBlock(new ElementCost(&fam, e, dims, std::sqrt(w)), nullptr, blocks);
     }
+  }
+
+  for (int item = 0; item < layout.num_items(); ++item) {
+    double* block = x.data() + layout.ItemOffset(item);
+    if (problem->IsConstant(item) && ceres_problem.HasParameterBlock(block))
+      ceres_problem.SetParameterBlockConstant(block);
   }
 
   ceres::Solver::Options solver_options;

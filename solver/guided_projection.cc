@@ -161,6 +161,10 @@ class Minimizer {
     if (!steps_->Analyze(&summary_, &why_)) return Finish(TerminationType::kFailure, why_);
     step_.resize(summary_.num_variables);
     trial_.resize(summary_.num_variables);
+    const VariableLayout& layout = problem_->layout();
+    for (int item = 0; item < layout.num_items(); ++item)
+      if (problem_->IsConstant(item))
+        for (int c = 0; c < layout.ItemDim(item); ++c) held_.push_back(layout.ItemOffset(item) + c);
     soft_scale_ = options_.initial_soft_scale;
     damping_ = options_.epsilon;
     return true;
@@ -200,6 +204,7 @@ class Minimizer {
     if (!steps_->Solve(epsilon, &step_, &schur_seconds_, &record_.factorization_seconds,
                        &record_.solve_seconds, &why_))
       return false;
+    for (int i : held_) step_[i] = 0.0;
     trial_ = x_ + step_;
     ProjectOwnedUnknowns(&trial_);
     if (options_.project_trial) options_.project_trial(&trial_);
@@ -282,6 +287,7 @@ class Minimizer {
   std::unique_ptr<LinearizedSystem> system_;
   std::unique_ptr<StepSolver> steps_;
   Eigen::VectorXd step_, trial_;
+  std::vector<int> held_;  // indices of x in constant items
   IterationRecord record_;
   std::string why_;
   double soft_scale_ = 1.0;

@@ -22,6 +22,11 @@ LinearizedSystem::LinearizedSystem(Problem* problem) : problem_(problem) {
   std::vector<double> x_local;
   std::unique_ptr<bool[]> touches;
   size_t touches_capacity = 0;
+  // Scalars of held items get no derivative: their rows of A stay empty, so the step leaves them.
+  std::vector<bool> held(layout.num_variables(), false);
+  for (int item = 0; item < layout.num_items(); ++item)
+    if (problem->IsConstant(item))
+      for (int c = 0; c < layout.ItemDim(item); ++c) held[layout.ItemOffset(item) + c] = true;
   const Eigen::VectorXd& x = problem->x();
   for (int f = 0; f < num_families; ++f) {
     problem->family(f).Prepare();
@@ -52,7 +57,8 @@ LinearizedSystem::LinearizedSystem(Problem* problem) : problem_(problem) {
       for (int row = 0; row < fam.rows_per_element(); ++row) {
         used.clear();
         for (int l = 0; l < local_dim; ++l)
-          if (touches[row * local_dim + l]) used.emplace_back(index[begin[e] + l], l);
+          if (touches[row * local_dim + l] && !held[index[begin[e] + l]])
+            used.emplace_back(index[begin[e] + l], l);
         std::sort(used.begin(), used.end());
         const size_t row_scatter = scatter.size();
         scatter.resize(row_scatter + local_dim, -1);

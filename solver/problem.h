@@ -25,6 +25,23 @@ class Problem {
   Eigen::VectorXd& x() { return x_; }
   const Eigen::VectorXd& x() const { return x_; }
 
+  // Holds an item (e.g. a fixed vertex) at its value in x: no row gets a derivative for it,
+  // guided projection's steps leave it untouched bit for bit and the Ceres cross-check makes its
+  // parameter block constant. Items of eliminable blocks cannot be held.
+  void SetConstant(int item) {
+    if (static_cast<int>(constant_.size()) <= item) constant_.resize(layout_.num_items(), false);
+    constant_[item] = true;
+  }
+  bool IsConstant(int item) const {
+    return item < static_cast<int>(constant_.size()) && constant_[item];
+  }
+  // Whether any item is held.
+  bool HasConstantItems() const {
+    for (bool c : constant_)
+      if (c) return true;
+    return false;
+  }
+
   // Takes ownership; returns a pointer for adding elements.
   template <typename Family, typename... Args>
   Family* AddFamily(Args&&... args) {
@@ -64,6 +81,7 @@ class Problem {
  private:
   VariableLayout layout_;
   Eigen::VectorXd x_;
+  std::vector<bool> constant_;  // per item, sized lazily
   std::vector<std::unique_ptr<ConstraintFamily>> families_;
 };
 

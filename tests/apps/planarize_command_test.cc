@@ -9,6 +9,7 @@
 #include <string>
 
 #include "apps/command_test_util.h"
+#include "geometry/mesh_io.h"
 
 namespace gproj {
 namespace {
@@ -52,6 +53,27 @@ TEST_F(PlanarizeCommandTest, PlanarizesAValidMeshAndWritesReport) {
   EXPECT_NE(report.find("\"non_convex_quads\""), std::string::npos);
   EXPECT_NE(report.find("\"shape_change\""), std::string::npos);
   EXPECT_NE(r.out.find("wrote"), std::string::npos);
+}
+
+TEST_F(PlanarizeCommandTest, HoldsTheVerticesOfAFixedFileAndRefusesBadIds) {
+  const std::string in = Write("in.obj", kQuad2x1);
+  const std::string fixed = Write("fixed.txt", "# the left side\n0\n3 # top left\n");
+  const CommandRun r =
+      Gproj("planarize " + in + " -o " + (dir_ / "out.obj").string() + " --fixed " + fixed);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const PolyMesh out = ReadMesh((dir_ / "out.obj").string());
+  EXPECT_EQ(out.point(out.vertex_handle(0)), PolyMesh::Point(0, 0, 0));
+  EXPECT_EQ(out.point(out.vertex_handle(3)), PolyMesh::Point(0, 1, 0));
+  const std::string bad = Write("bad.txt", "0\n6\n");
+  const CommandRun refused =
+      Gproj("planarize " + in + " -o " + (dir_ / "out2.obj").string() + " --fixed " + bad);
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_NE(refused.err.find("bad.txt:2"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(dir_ / "out2.obj"));
+  const CommandRun both = Gproj("planarize " + in + " -o " + (dir_ / "out3.obj").string() +
+                                " --fix-boundary --glide-boundary");
+  EXPECT_EQ(both.exit_code, 1);
+  EXPECT_NE(both.err.find("excludes"), std::string::npos) << both.err;
 }
 
 TEST_F(PlanarizeCommandTest, ChecksEveryOutputPathBeforeWorking) {

@@ -159,7 +159,8 @@ TEST(ControlNetTest, EdgeLengthAndGliding) {
   EXPECT_NEAR(phi[0], 0.0, 1e-15);
 
   Eigen::Vector3d foot, direction;
-  PolylineGliding::Project({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}, {1.2, 0.4, 0.3}, &foot, &direction);
+  PolylineGliding::ClosestPoint({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}, {1.2, 0.4, 0.3}, &foot,
+                                &direction);
   EXPECT_LT((foot - Eigen::Vector3d(1, 0.4, 0)).norm(), 1e-15);
   EXPECT_LT((direction - Eigen::Vector3d(0, 1, 0)).norm(), 1e-15);
 }

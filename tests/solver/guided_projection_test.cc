@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 
+#include "solver/ceres_adapter.h"
 #include "solver/linearized_system.h"
 #include "test_problems.h"
 
@@ -289,6 +290,49 @@ TEST(LinearizedSystemTest, PatternHonoursRowTouches) {
   // smooth (keeps the default, every row touches all 6 locals): 3 elements × 2 rows × 6.
   EXPECT_EQ(system.a().nnz(), 5 * 2 + 10 * 1 + 3 * 2 * 6);
   EXPECT_EQ(system.num_rows(), 5 + 10 + 6);
+}
+
+}  // namespace
+}  // namespace gproj
+
+namespace gproj {
+namespace {
+
+// Held items: no derivative, no motion (bit for bit), in guided projection and in Ceres.
+TEST(ConstantItemTest, HeldPointsStayBitForBitWhileTheOthersConverge) {
+  for (bool ceres : {false, true}) {
+    Problem problem = MakeCircleProblem(20, 1.0);
+    const VariableLayout& layout = problem.layout();
+    const int held[] = {3, 11};
+    for (int i : held) {
+      auto p = problem.x().segment<2>(layout.Index(0, i, 0));
+      p.normalize();                                // on the circle, so every row can vanish
+      problem.x()[layout.Index(0, i, 0)] += 1e-17;  // a value a step would round away
+      problem.SetConstant(layout.Item(0, i));
+    }
+    EXPECT_TRUE(problem.IsConstant(layout.Item(0, 3)));
+    EXPECT_FALSE(problem.IsConstant(layout.Item(0, 4)));
+    const Eigen::VectorXd start = problem.x();
+    if (ceres) {
+      CeresOptions options;
+      options.soft_scale = 1e-6;
+      options.max_iterations = 100;
+      SolveWithCeres(options, &problem);
+    } else {
+      SolverOptions options;
+      options.soft_weight_decay = 0.1;
+      options.soft_weight_floor = 1e-14;
+      options.residual_tolerance = 1e-12;
+      ASSERT_TRUE(Solve(options, &problem).converged());
+    }
+    for (int i : held)
+      for (int c = 0; c < 2; ++c)
+        EXPECT_EQ(problem.x()[layout.Index(0, i, c)], start[layout.Index(0, i, c)]) << ceres;
+    for (int i = 0; i < 20; ++i)
+      EXPECT_NEAR(problem.x().segment<2>(layout.Index(0, i, 0)).norm(), 1.0, ceres ? 1e-4 : 1e-9)
+          << ceres;  // Ceres minimises one fixed-weight objective: the soft rows leave ~1e-5
+    EXPECT_GT((problem.x() - start).norm(), 0.1);
+  }
 }
 
 }  // namespace

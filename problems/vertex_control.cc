@@ -1,0 +1,115 @@
+#include "problems/vertex_control.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+
+#include "constraints/surface_closeness.h"
+#include "geometry/text_input.h"
+
+namespace gproj {
+
+bool VertexControlOptions::IsValid(std::string* why) const {
+  if (fix_boundary && glide_boundary) {
+    *why = "the boundary cannot be both fixed and gliding";
+    return false;
+  }
+  return true;
+}
+
+std::vector<int> ReadVertexIds(const std::string& path, int num_vertices) {
+  std::vector<int> ids;
+  for (const TextLine& line : ReadTextLines(path))
+    for (const std::string& word : line.words)
+      ids.push_back(ParseIndex(word, TextPlace(path, line.number), num_vertices, "vertex"));
+  return ids;
+}
+
+std::vector<std::vector<int>> BoundaryLoops(const PolyMesh& mesh) {
+  std::vector<std::vector<int>> loops;
+  std::vector<bool> seen(mesh.n_halfedges(), false);
+  for (auto h : mesh.halfedges()) {
+    if (!mesh.is_boundary(h) || seen[h.idx()]) continue;
+    std::vector<int> loop;
+    for (auto g = h; !seen[g.idx()]; g = mesh.next_halfedge_handle(g)) {
+      seen[g.idx()] = true;
+      loop.push_back(mesh.from_vertex_handle(g).idx());
+    }
+    loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+VertexControl ApplyVertexControl(const PolyMesh& mesh, const MeshNormalization& norm,
+                                 int vertex_block, const VertexControlOptions& options,
+                                 Problem* problem) {
+  VertexControl out;
+  out.scale = norm.scale;
+  Eigen::AlignedBox3d box;
+  for (auto v : mesh.vertices()) box.extend(ToEigen(mesh.point(v)));
+  out.bbox_diagonal = std::max(box.diagonal().norm(), 1e-300);
+  const int n = static_cast<int>(mesh.n_vertices());
+  std::vector<bool> held(n, false);
+  for (int v : options.fixed) {
+    if (v < 0 || v >= n)
+      throw InputError("fixed vertex " + std::to_string(v) + " is out of range (the mesh has " +
+                       std::to_string(n) + " vertices)");
+    held[v] = true;
+  }
+  if (options.fix_boundary)
+    for (auto v : mesh.vertices())
+      if (mesh.is_boundary(v)) held[v.idx()] = true;
+  const VariableLayout& layout = problem->layout();
+  for (int v = 0; v < n; ++v)
+    if (held[v]) {
+      out.held.push_back(v);
+      problem->SetConstant(layout.Item(vertex_block, v));
+    }
+  if (options.glide_boundary) {
+    out.glide = problem->AddFamily<PolylineGliding>(1.0, "boundary_gliding");
+    out.glide->SetRetraction(true);
+    for (const std::vector<int>& loop : BoundaryLoops(mesh)) {
+      std::vector<Eigen::Vector3d> points;
+      for (int v : loop)
+        points.push_back(norm.ToProblem(ToEigen(mesh.point(mesh.vertex_handle(v)))));
+      points.push_back(points.front());
+      const int id = out.glide->AddPolyline(std::move(points));
+      for (int v : loop)
+        if (!held[v]) out.glide->AddPoint(layout.Item(vertex_block, v), id);
+    }
+  }
+  return out;
+}
+
+void VertexControl::RestoreHeld(const PolyMesh& input, PolyMesh* mesh) const {
+  for (int v : held) mesh->set_point(mesh->vertex_handle(v), input.point(input.vertex_handle(v)));
+}
+
+double VertexControl::MaxGlideDistance(const VariableLayout& layout,
+                                       const Eigen::VectorXd& x) const {
+  if (glide == nullptr) return 0.0;
+  double worst = 0.0;
+  for (int e = 0; e < glide->num_elements(); ++e)
+    worst = std::max(worst, glide->DistanceToPolyline(e, layout, x));
+  return worst / scale / bbox_diagonal;
+}
+
+void AddReferenceCloseness(const ClosestPointQuery& reference, const MeshNormalization& norm,
+                           int vertex_block, int num_vertices, double tangent_weight,
+                           double point_weight, Problem* problem) {
+  const SurfaceProjector projector = [&reference, norm](const Eigen::Vector3d& q,
+                                                        Eigen::Vector3d* p, Eigen::Vector3d* n) {
+    reference.Project(norm.FromProblem(q), p, n);
+    *p = norm.ToProblem(*p);
+  };
+  const VariableLayout& layout = problem->layout();
+  if (tangent_weight > 0.0) {
+    auto* tangent = problem->AddFamily<SurfaceTangentCloseness>(projector, tangent_weight);
+    for (int v = 0; v < num_vertices; ++v) tangent->AddElement({layout.Item(vertex_block, v)});
+  }
+  if (point_weight > 0.0) {
+    auto* point = problem->AddFamily<SurfacePointCloseness>(projector, point_weight);
+    for (int v = 0; v < num_vertices; ++v) point->AddElement({layout.Item(vertex_block, v)});
+  }
+}
+
+}  // namespace gproj
