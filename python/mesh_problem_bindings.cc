@@ -21,12 +21,34 @@ void CheckSolverName(const std::string& solver) {
     throw InputError("solver must be gp or ceres, not '" + solver + "'");
 }
 
+std::unique_ptr<PolyMesh> ReferenceMesh(const py::object& reference) {
+  if (reference.is_none()) return nullptr;
+  const auto pair = reference.cast<py::tuple>();
+  if (pair.size() != 2) throw InputError("reference must be a pair (V, F)");
+  return std::make_unique<PolyMesh>(MeshFromArrays(pair[0], pair[1], false));
+}
+
+// 0-based vertex ids from a sequence or integer array (None: none).
+std::vector<int> VertexIds(const py::object& ids, int num_vertices) {
+  std::vector<int> out;
+  if (ids.is_none()) return out;
+  for (long long id : ids.cast<std::vector<long long>>()) {
+    if (id < 0 || id >= num_vertices)
+      throw InputError("fixed vertex " + std::to_string(id) + " is out of range (the mesh has " +
+                       std::to_string(num_vertices) + " vertices)");
+    out.push_back(static_cast<int>(id));
+  }
+  return out;
+}
+
 py::tuple Planarize(const py::object& vertices, const py::object& faces, double tolerance,
                     bool circular, double closeness, int fairness_order, double ceres_soft_scale,
                     double min_angle, const py::object& edge_length, bool allow_folds,
-                    const std::string& solver, const py::object& callback, int max_iterations,
-                    double fairness, double epsilon, double soft_decay, double soft_floor,
-                    const std::string& linear_solver, int threads) {
+                    const py::object& fixed, bool fix_boundary, bool glide_boundary,
+                    const py::object& reference, const std::string& solver,
+                    const py::object& callback, int max_iterations, double fairness, double epsilon,
+                    double soft_decay, double soft_floor, const std::string& linear_solver,
+                    int threads) {
   PQPlanarizationOptions options;
   options.tolerance = tolerance;
   options.circular = circular;
@@ -49,7 +71,12 @@ py::tuple Planarize(const py::object& vertices, const py::object& faces, double 
   std::string why;
   if (!options.IsValid(&why)) throw InputError("invalid option: " + why);
   const PolyMesh input = MeshFromArrays(vertices, faces, true);
-  PQPlanarization pq(input, options);
+  options.vertices.fixed = VertexIds(fixed, static_cast<int>(input.n_vertices()));
+  options.vertices.fix_boundary = fix_boundary;
+  options.vertices.glide_boundary = glide_boundary;
+  if (!options.vertices.IsValid(&why)) throw InputError("invalid option: " + why);
+  const std::unique_ptr<PolyMesh> ref = ReferenceMesh(reference);
+  PQPlanarization pq(input, options, ref.get());
   RunBridge bridge(callback);
   const RunReport report = bridge.Call([&] {
     return solver == "gp" ? pq.Run(bridge.callback())
@@ -80,6 +107,13 @@ circular=True.
     edge_length: None or (min, max) edge lengths in the input's units; without it no edge
         shrinks below 10% of its input length.
     allow_folds: no corner-angle or default edge bounds (quads may fold).
+    fixed: None or a sequence / integer array of 0-based vertex ids that do not move at all
+        (returned bit for bit).
+    fix_boundary: every boundary vertex stays where it is.
+    glide_boundary: boundary vertices slide along the input's boundary (they stay on it to
+        rounding); report["final"]["max_glide_distance"] measures it.
+    reference: None or a reference surface (Vr, Fr), any polygon mesh: vertices keep close to
+        it through the tangent plane of their closest point instead of to their start.
     solver: "gp" (guided projection) or "ceres" (Levenberg-Marquardt on the same rows).
     callback: None or callback(record: dict) called at the start and after every iteration
         with the keys of report["history"] entries; returning False stops the run (the result
@@ -114,13 +148,6 @@ ANetOptions NetOptions(const std::string& star_form, double tolerance, double ta
   std::string why;
   if (!o.IsValid(&why)) throw InputError("invalid option: " + why);
   return o;
-}
-
-std::unique_ptr<PolyMesh> ReferenceMesh(const py::object& reference) {
-  if (reference.is_none()) return nullptr;
-  const auto pair = reference.cast<py::tuple>();
-  if (pair.size() != 2) throw InputError("reference must be a pair (V, F)");
-  return std::make_unique<PolyMesh>(MeshFromArrays(pair[0], pair[1], false));
 }
 
 py::tuple RunANet(const py::object& vertices, const py::object& faces, const std::string& star_form,
@@ -202,6 +229,8 @@ void BindMeshProblems(py::module_& m) {
                           py::arg("ceres_soft_scale") = pq.ceres_soft_scale,
                           py::arg("min_angle") = pq.panels.min_angle_deg,
                           py::arg("edge_length") = py::none(), py::arg("allow_folds") = false,
+                          py::arg("fixed") = py::none(), py::arg("fix_boundary") = false,
+                          py::arg("glide_boundary") = false, py::arg("reference") = py::none(),
                           py::arg("solver") = "gp", py::arg("callback") = py::none()),
           SolverArgList(pq.solver)));
   const ANetOptions an;

@@ -35,6 +35,11 @@ class CommandLine:
         gproj.write_mesh(self.path(name), V, F)
         return self.path(name)
 
+    def write_text(self, name, text):
+        with open(self.path(name), "w") as f:
+            f.write(text)
+        return self.path(name)
+
     def read_report(self, name):
         with open(self.path(name)) as f:
             return json.load(f)

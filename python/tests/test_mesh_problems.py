@@ -19,7 +19,7 @@ def compare_with_command_line(cli, command, V, F, python_kwargs, args, output="o
     return result, report
 
 
-@pytest.mark.parametrize("variant", ["gp", "ceres", "circular", "options"])
+@pytest.mark.parametrize("variant", ["gp", "ceres", "circular", "options", "control"])
 def test_planarize_equals_the_command_line(cli, variant):
     V, F = gproj.grid(nu=7, nv=6, noise=0.05)
     kwargs, args = {
@@ -30,13 +30,30 @@ def test_planarize_equals_the_command_line(cli, variant):
                      "max_iterations": 7, "linear_solver": "eigen"},
                     ["--closeness", 0.5, "--fairness", 0.3, "--fairness-order", 3, "--epsilon",
                      1e-2, "--max-iterations", 7, "--linear-solver", "eigen"]),
+        "control": ({"fixed": np.array([0, 41]), "glide_boundary": True, "min_angle": 10.0,
+                     "edge_length": (0.01, 5.0), "reference": gproj.grid(nu=15, nv=15, noise=0.0)},
+                    ["--fixed", cli.write_text("fixed.txt", "0 41\n"), "--glide-boundary",
+                     "--min-angle", 10, "--edge-length", "0.01,5", "--reference",
+                     cli.write_mesh("ref.obj", *gproj.grid(nu=15, nv=15, noise=0.0))]),
     }[variant]
     V_out, report = compare_with_command_line(cli, "planarize", V, F, kwargs, args)
     Vc, _ = gproj.read_mesh(cli.path("out.obj"))
     assert_close(V_out, Vc)
     assert V_out.shape == V.shape and V_out.dtype == np.float64
-    if variant in ("gp", "circular"):
+    if variant in ("gp", "circular", "control"):
         assert report["converged"]
+    if variant == "control":
+        assert np.array_equal(V_out[[0, 41]], V[[0, 41]])  # held bit for bit
+        assert report["final"]["max_glide_distance"] <= 1e-9
+        assert report["final"]["non_convex_quads"] == 0
+
+
+def test_planarize_refuses_bad_vertex_control():
+    V, F = gproj.grid(nu=4, nv=4, noise=0.05)
+    with pytest.raises(ValueError, match="out of range"):
+        gproj.planarize(V, F, fixed=[0, 16])
+    with pytest.raises(ValueError, match="both fixed and gliding"):
+        gproj.planarize(V, F, fix_boundary=True, glide_boundary=True)
 
 
 def test_planarize_accepts_lists_and_int_vertices():
