@@ -214,15 +214,15 @@ void PrintPanelSummary(const NamedValues& initial, const NamedValues& final) {
 
 ShapeChange WarnIfFarFromInput(const std::string& command, const std::string& target,
                                const PolyMesh& input, const PolyMesh& result,
-                               double max_displacement) {
-  const ShapeChange change = CompareCornerAngles(input, result);
+                               double max_displacement, double threshold_deg) {
+  const ShapeChange change = CompareCornerAngles(input, result, threshold_deg);
   std::fflush(stdout);
   if (change.share_changed > 0.05 || max_displacement > 0.02)
     std::fprintf(stderr,
                  "gproj %s: warning: the input is far from %s: %.1f%% of the quads changed a "
-                 "corner angle by more than 10 deg (at most %.1f deg), max displacement %.2f%% of "
+                 "corner angle by more than %g deg (at most %.1f deg), max displacement %.2f%% of "
                  "the bbox diagonal\n",
-                 command.c_str(), target.c_str(), 100.0 * change.share_changed,
+                 command.c_str(), target.c_str(), 100.0 * change.share_changed, threshold_deg,
                  change.max_corner_change_deg, 100.0 * max_displacement);
   return change;
 }

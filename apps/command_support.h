@@ -76,12 +76,12 @@ void AddVertexControlOptions(CLI::App* command, std::string* fixed_path,
 // "panels: non-convex quads 0 -> 0, smallest corner angle …" from the ShapeValues of the initial
 // and final measures.
 void PrintPanelSummary(const NamedValues& initial, const NamedValues& final);
-// Warns on stderr when the result is far from the input (a corner angle changed by more than 10°
-// in over 5% of the quads, or a vertex moved more than 2% of the bbox diagonal): the input was
-// far from the asked net type. Returns the change for the report.
+// Warns on stderr when the result is far from the input (a corner angle changed by more than
+// `threshold_deg` in over 5% of the quads, or a vertex moved more than 2% of the bbox diagonal):
+// the input was far from the asked net type. Returns the change for the report.
 ShapeChange WarnIfFarFromInput(const std::string& command, const std::string& target,
                                const PolyMesh& input, const PolyMesh& result,
-                               double max_displacement);
+                               double max_displacement, double threshold_deg);
 
 // The live log: a header line, then one line per record with the iteration, the energy, the
 // given measures ("max_constraint": the record's max |φ| over constraint rows), the step and

@@ -17,7 +17,7 @@ namespace {
 struct NetArgs {
   std::string input, output, reference, report, star_form = "normals", linear_solver = "cholmod",
                                                 solver = "gp";
-  std::string surface_mesh, picture;
+  std::string surface_mesh, picture, fixed;
   int samples = 8;
   bool allow_not_simply_connected = false;
   HNetOptions options;
@@ -58,6 +58,8 @@ void AddSharedOptions(CLI::App* cmd, NetArgs* args) {
       ->check(CLI::IsMember({2, 3}))
       ->capture_default_str();
   AddSolverOptions(cmd, &o.solver, &args->linear_solver);
+  AddPanelBoundsOptions(cmd, &o.panels);
+  AddVertexControlOptions(cmd, &args->fixed, &o.vertices);
 }
 
 // Reads the inputs, checks the output paths and fills the options; returns false after printing
@@ -68,13 +70,17 @@ bool Prepare(const char* name, NetArgs* args, PolyMesh* mesh,
       args->star_form == "quads" ? StarPlanarityForm::kQuads : StarPlanarityForm::kNormals;
   try {
     ApplyLinearSolver(args->linear_solver, &args->options.anet.solver);
-    CheckOutputPaths({{"input", args->input}, {"--reference", args->reference}},
-                     {{"--output", args->output, std::string(name) == "anet"},
-                      {"--report", args->report},
-                      {"--picture", args->picture},
-                      {"--surface-mesh", args->surface_mesh, true}});
+    CheckOutputPaths(
+        {{"input", args->input}, {"--reference", args->reference}, {"--fixed", args->fixed}},
+        {{"--output", args->output, std::string(name) == "anet"},
+         {"--report", args->report},
+         {"--picture", args->picture},
+         {"--surface-mesh", args->surface_mesh, true}});
     *mesh = ReadMesh(args->input, MeshRequirements{true});
     CheckANetTopology(*mesh, args->input);
+    if (!args->fixed.empty())
+      args->options.anet.vertices.fixed =
+          ReadVertexIds(args->fixed, static_cast<int>(mesh->n_vertices()));
     if (!args->reference.empty()) reference->reset(new PolyMesh(ReadMesh(args->reference)));
   } catch (const InputError& e) {
     std::cerr << "gproj " << name << ": " << e.what() << "\n";
@@ -84,7 +90,8 @@ bool Prepare(const char* name, NetArgs* args, PolyMesh* mesh,
 }
 
 const IterationLog& StarLog() {
-  static const IterationLog log({"max_star_planarity", "mean_star_planarity"});
+  static const IterationLog log(
+      {"max_star_planarity", "mean_star_planarity", "non_convex_quads", "min_corner_angle_deg"});
   return log;
 }
 
@@ -106,10 +113,9 @@ int RunANet(NetArgs& args) {
   const RunReport report = args.solver == "gp"
                                ? anet->Run(print)
                                : anet->RunCeres(args.options.anet.solver.max_iterations, print);
-  const nlohmann::json extra = {{"input", args.input},
-                                {"output", report.failed ? "" : args.output},
-                                {"vertices", mesh.n_vertices()},
-                                {"faces", mesh.n_faces()}};
+  nlohmann::json extra = ANetFacts(mesh, anet->Result());
+  extra["input"] = args.input;
+  extra["output"] = report.failed ? "" : args.output;
   try {
     if (!report.failed) WriteMeshAtomically(anet->Result(), args.output);
     if (!args.report.empty())
@@ -124,6 +130,14 @@ int RunANet(NetArgs& args) {
         "final: max star planarity %.3e, mean %.3e, max displacement %.3e of the bbox "
         "diagonal\n",
         m.max_star_planarity, m.mean_star_planarity, m.max_displacement);
+    if (m.max_glide_distance >= 0.0)
+      std::printf(
+          "       boundary vertices glided; max distance from the input boundary %.2e of "
+          "the bbox diagonal\n",
+          m.max_glide_distance);
+    PrintPanelSummary(report.initial, report.final);
+    WarnIfFarFromInput("anet", "an A-net (asymptotic)", mesh, anet->Result(), m.max_displacement,
+                       30.0);
   }
   return ConcludeRun("anet", report, "max_star_planarity", args.options.anet.tolerance,
                      {args.output, args.report});

@@ -88,7 +88,7 @@ int RunPlanarize(PlanarizeArgs args) {
           final_measures.max_glide_distance);
     PrintPanelSummary(report.initial, report.final);
     WarnIfFarFromInput("planarize", options.circular ? "a circular mesh" : "a PQ (conjugate) mesh",
-                       input, pq->Result(), final_measures.max_displacement);
+                       input, pq->Result(), final_measures.max_displacement, 10.0);
   }
   const int code = ConcludeRun("planarize", report, "max_planarity", options.tolerance,
                                {args.output, args.picture, args.report});

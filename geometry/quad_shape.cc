@@ -80,6 +80,7 @@ QuadShapeSummary Summarize(const std::vector<QuadShape>& shapes) {
 ShapeChange CompareCornerAngles(const PolyMesh& before, const PolyMesh& after,
                                 double threshold_deg) {
   ShapeChange change;
+  change.threshold_deg = threshold_deg;
   int quads = 0;
   Eigen::Vector3d p[4], q[4];
   for (auto f : before.faces()) {

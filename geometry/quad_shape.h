@@ -72,6 +72,7 @@ QuadShapeSummary Summarize(const std::vector<QuadShape>& shapes);
 // How much the quads' corner angles changed between two meshes of one connectivity: a large
 // change means the input was far from the asked net type.
 struct ShapeChange {
+  double threshold_deg = 0.0;
   int quads_changed = 0;       // quads with a corner angle changed by > threshold
   double share_changed = 0.0;  // quads_changed / #quads
   double max_corner_change_deg = 0.0;

@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 #include "constraints/closeness.h"
@@ -41,7 +42,7 @@ bool ANetOptions::IsValid(std::string* why) const {
   if (fairness_order != 2 && fairness_order != 3) return fail("fairness order must be 2 or 3");
   if (!(tolerance > 0.0) || !std::isfinite(tolerance))
     return fail("tolerance must be finite and > 0");
-  return solver.IsValid(why);
+  return panels.IsValid(why) && vertices.IsValid(why) && solver.IsValid(why);
 }
 
 SolverOptions ANetSolverDefaults() {
@@ -50,16 +51,20 @@ SolverOptions ANetSolverDefaults() {
   s.residual_tolerance = 0.0;  // the star-planarity measure decides, through the callback
   s.step_tolerance = 1e-15;
   s.fairness_weight = 0.5;
-  s.soft_weight_decay = 0.3;
-  s.soft_weight_floor = 1e-10;
+  s.soft_weight_decay = 0.1;
+  s.soft_weight_floor = 1e-12;
+  s.monotone = true;
   return s;
 }
 
 NamedValues ToNamedValues(const StarPlanarityMeasures& m) {
-  return {{"max_star_planarity", m.max_star_planarity},
-          {"mean_star_planarity", m.mean_star_planarity},
-          {"worst_vertex", static_cast<double>(m.worst_vertex)},
-          {"max_displacement", m.max_displacement}};
+  NamedValues values = {{"max_star_planarity", m.max_star_planarity},
+                        {"mean_star_planarity", m.mean_star_planarity},
+                        {"worst_vertex", static_cast<double>(m.worst_vertex)},
+                        {"max_displacement", m.max_displacement}};
+  if (m.max_glide_distance >= 0.0) values.push_back({"max_glide_distance", m.max_glide_distance});
+  for (NamedValue& v : ShapeValues(m.shape)) values.push_back(std::move(v));
+  return values;
 }
 
 StarPlanarityMeasures MeasureStarPlanarity(const PolyMesh& mesh, const PolyMesh& reference) {
@@ -86,7 +91,14 @@ StarPlanarityMeasures MeasureStarPlanarity(const PolyMesh& mesh, const PolyMesh&
   }
   m.mean_star_planarity = count > 0 ? sum / count : 0.0;
   m.max_displacement = MaxDisplacement(mesh, reference);
+  m.shape = Summarize(MeasureQuadShapes(mesh));
   return m;
+}
+
+nlohmann::json ANetFacts(const PolyMesh& input, const PolyMesh& result) {
+  return {{"vertices", input.n_vertices()},
+          {"faces", input.n_faces()},
+          {"shape_change", ShapeChangeJson(CompareCornerAngles(input, result, 30.0))}};
 }
 
 void CheckANetTopology(const PolyMesh& mesh, const std::string& path) {
@@ -185,11 +197,24 @@ ANet::ANet(const PolyMesh& mesh, const PolyMesh* reference, const ANetOptions& o
   LoadVertices(mesh, norm_, vertex_block_, &problem_);
   LoadANetNormals(mesh, vertex_block_, families_, &problem_);
   AddANetFamilies(mesh, options, vertex_block_, families_, reference_.get(), norm_, &problem_);
+  bounds_ = AddPanelBounds(mesh, norm_, vertex_block_, options.panels, &problem_);
+  control_ = ApplyVertexControl(mesh, norm_, vertex_block_, options.vertices, &problem_);
+  start_planarity_ = MeasureStarPlanarity(mesh, mesh).max_star_planarity;
+}
+
+SolverOptions ANet::solver_options() const {
+  SolverOptions s = options_.solver;
+  s.fairness_weight *= std::sqrt(StartSoftScale(start_planarity_, s.soft_weight_floor));
+  return s;
 }
 
 StarPlanarityMeasures ANet::MeasuresAt(const Eigen::VectorXd& x) const {
   StoreVertices(x, problem_.layout(), vertex_block_, norm_, &current_);
-  return MeasureStarPlanarity(current_, input_);
+  control_.RestoreHeld(input_, &current_);
+  StarPlanarityMeasures m = MeasureStarPlanarity(current_, input_);
+  if (control_.glide != nullptr)
+    m.max_glide_distance = control_.MaxGlideDistance(problem_.layout(), x);
+  return m;
 }
 
 CeresOptions ANet::ceres_options(int max_iterations) const {
@@ -201,6 +226,7 @@ CeresOptions ANet::ceres_options(int max_iterations) const {
 PolyMesh ANet::Result() const {
   PolyMesh out = input_;
   StoreVertices(problem_, vertex_block_, norm_, &out);
+  control_.RestoreHeld(input_, &out);
   return out;
 }
 

@@ -12,6 +12,8 @@
 #include "geometry/mesh_io.h"
 #include "problems/guided_problem.h"
 #include "problems/mesh_variables.h"
+#include "problems/panel_bounds.h"
+#include "problems/vertex_control.h"
 #include "solver/ceres_adapter.h"
 #include "solver/guided_projection.h"
 #include "solver/problem.h"
@@ -23,8 +25,8 @@ enum class StarPlanarityForm {
   kQuads,    // planarity of n − 2 quads of the star (diagonal-distance approximation)
 };
 
-// Guided projection's defaults for A-nets: 50 iterations, ω_f = 0.5, soft weights fading by 0.3
-// per iteration down to 1e-10; the star-planarity measure decides convergence.
+// Guided projection's defaults for A-nets: 50 iterations, ω_f = 0.5, soft weights fading by 0.1
+// per iteration down to 1e-12, monotone steps; the star-planarity measure decides convergence.
 SolverOptions ANetSolverDefaults();
 
 struct ANetOptions {
@@ -32,9 +34,13 @@ struct ANetOptions {
   SolverOptions solver = ANetSolverDefaults();
   StarPlanarityForm star_form = StarPlanarityForm::kNormals;
   double planarity_weight = 1.0;
-  double tangent_weight = 1.0;  // distance to the reference's tangent plane at the closest point
-  double point_weight = 0.1;    // distance to the closest point itself (weaker)
-  double anchor_weight = 0.0;   // distance to the input positions (fixed points; 0: off)
+  // Distance to the reference's tangent plane at the closest point, and to the closest point
+  // itself (ten times weaker). Strong at the start, they fade with the soft schedule: weak ones
+  // let the mesh slide along its own tangent planes (boundary and corners drift off) before
+  // the stars are planar.
+  double tangent_weight = 100.0;
+  double point_weight = 10.0;
+  double anchor_weight = 0.0;  // distance to the input positions (fixed points; 0: off)
   int fairness_order = 2;
   // Stop when the max star planarity (neighbour distance from the star plane / mean edge) is
   // ≤ this.
@@ -43,6 +49,11 @@ struct ANetOptions {
   // tolerance / 100, as for planarisation: the planarity left at the fixed-weight optimum is
   // roughly proportional to the soft weights).
   double ceres_soft_scale = 0.0;
+  // Valid panels: corner-angle and edge-length bounds on the quads (on by default; the
+  // H-net's vertex step keeps its own rows).
+  PanelBoundsOptions panels;
+  // Held and gliding vertices.
+  VertexControlOptions vertices;
 
   bool IsValid(std::string* why) const;
 };
@@ -51,16 +62,24 @@ struct StarPlanarityMeasures {
   double max_star_planarity = 0.0;   // max over star vertices and their neighbours
   double mean_star_planarity = 0.0;  // mean over star vertices of their max
   int worst_vertex = -1;
-  double max_displacement = 0.0;  // / bbox diagonal of the reference positions
+  double max_displacement = 0.0;     // / bbox diagonal of the reference positions
+  QuadShapeSummary shape;            // convexity, corner angles, kinks of the quads
+  double max_glide_distance = -1.0;  // of gliding boundary vertices / bbox diagonal (−1: none)
 };
 
 // Star planarity of every vertex with at least three neighbours: the largest distance of a
 // neighbour from the least-squares plane through the vertex, divided by the mean edge length.
 // As named values (the report's keys): max_star_planarity, mean_star_planarity, worst_vertex,
-// max_displacement.
+// max_displacement, the ShapeValues (non_convex_quads, min_corner_angle_deg, max_kink_deg,
+// max_planarity_abs) and, with gliding, max_glide_distance.
 NamedValues ToNamedValues(const StarPlanarityMeasures& m);
 
 StarPlanarityMeasures MeasureStarPlanarity(const PolyMesh& mesh, const PolyMesh& reference);
+
+// The report's facts about a run besides the solver's: vertices, faces and shape_change (corner
+// angles changed by more than 30°: A-net quads are skew, their angles move more than planar
+// ones).
+nlohmann::json ANetFacts(const PolyMesh& input, const PolyMesh& result);
 
 // Refuses (InputError naming the vertex/face) what an A-net cannot be: non-quad faces, and
 // inner vertices of odd valence. `path` goes into the message.
@@ -92,7 +111,8 @@ class ANet : public GuidedProblem {
   ANet(const PolyMesh& mesh, const PolyMesh* reference, const ANetOptions& options);
 
   Problem& problem() override { return problem_; }
-  SolverOptions solver_options() const override { return options_.solver; }
+  // The options with ω_f² scaled by StartSoftScale of the start's star planarity.
+  SolverOptions solver_options() const override;
   CeresOptions ceres_options(int max_iterations) const override;
   NamedValues MeasureAt(const Eigen::VectorXd& x) const override {
     return ToNamedValues(MeasuresAt(x));
@@ -115,6 +135,9 @@ class ANet : public GuidedProblem {
   Problem problem_;
   int vertex_block_ = -1;
   ANetFamilies families_;
+  PanelBounds bounds_;
+  VertexControl control_;
+  double start_planarity_ = 0.0;
 };
 
 }  // namespace gproj

@@ -1,5 +1,6 @@
 #include "problems/guided_problem.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -54,6 +55,12 @@ double ValueOf(const NamedValues& values, const std::string& name) {
   for (const NamedValue& v : values)
     if (v.name == name) return v.value;
   return NAN;
+}
+
+double StartSoftScale(double start_residual, double floor) {
+  constexpr double kNear = 1e-2;
+  if (!(start_residual < kNear)) return 1.0;
+  return std::max(start_residual / kNear, floor);
 }
 
 RunReport GuidedProblem::Run(const RunCallback& callback) {

@@ -57,6 +57,13 @@ struct RunReport {
   SolverSummary summary;  // guided projection's own summary (empty for Ceres)
 };
 
+// The factor on the fairness rows' weight (ω_f²) for a start whose target measure (e.g. max
+// planarity, relative to the mean edge) is `start_residual`: 1 for a start far from the target,
+// and start_residual / 1e-2 (not below `floor`) for one within 1e-2 of it. Fairness is there to
+// guide a long way; against closeness it would smooth a mesh that is nearly there (an exact
+// A-net or PQ mesh) away from where it is.
+double StartSoftScale(double start_residual, double floor);
+
 // Called with every record (the start and each step); returning false stops the run.
 using RunCallback = std::function<bool(const RunRecord&)>;
 

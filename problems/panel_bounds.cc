@@ -123,7 +123,8 @@ NamedValues ShapeValues(const QuadShapeSummary& s) {
 }
 
 nlohmann::json ShapeChangeJson(const ShapeChange& change) {
-  return {{"quads_changed_over_10deg", change.quads_changed},
+  return {{"threshold_deg", change.threshold_deg},
+          {"quads_changed", change.quads_changed},
           {"share_changed", change.share_changed},
           {"max_corner_change_deg", change.max_corner_change_deg}};
 }

@@ -184,6 +184,15 @@ PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOpti
     AddMeshFairness(mesh, options.fairness_order, vertex_block_, &problem_);
   bounds_ = AddPanelBounds(mesh, norm_, vertex_block_, options.panels, &problem_);
   control_ = ApplyVertexControl(mesh, norm_, vertex_block_, options.vertices, &problem_);
+  start_planarity_ = MeasurePlanarity(mesh, mesh).max_planarity;
+  if (options.circular)
+    start_planarity_ = std::max(start_planarity_, MeasureCircularity(mesh).max_concyclicity);
+}
+
+SolverOptions PQPlanarization::solver_options() const {
+  SolverOptions s = options_.solver;
+  s.fairness_weight *= std::sqrt(StartSoftScale(start_planarity_, s.soft_weight_floor));
+  return s;
 }
 
 std::vector<int> PQPlanarization::FacesAboveTolerance() const {

@@ -105,7 +105,8 @@ class PQPlanarization : public GuidedProblem {
                   const PolyMesh* reference = nullptr);
 
   Problem& problem() override { return problem_; }
-  SolverOptions solver_options() const override { return options_.solver; }
+  // The options with ω_f² scaled by StartSoftScale of the start's planarity.
+  SolverOptions solver_options() const override;
   CeresOptions ceres_options(int max_iterations) const override;
   NamedValues MeasureAt(const Eigen::VectorXd& x) const override {
     return ToNamedValues(MeasuresAt(x));
@@ -135,6 +136,7 @@ class PQPlanarization : public GuidedProblem {
   PanelBounds bounds_;
   VertexControl control_;
   std::unique_ptr<ClosestPointQuery> reference_;
+  double start_planarity_ = 0.0;
 };
 
 }  // namespace gproj

@@ -164,10 +164,9 @@ py::tuple RunANet(const py::object& vertices, const py::object& faces, const std
   ANet anet(mesh, ref.get(), options);
   RunBridge bridge(callback);
   const RunReport report = bridge.Call([&] { return anet.Run(bridge.callback()); });
-  const nlohmann::json extra = {{"input", nullptr},
-                                {"output", nullptr},
-                                {"vertices", mesh.n_vertices()},
-                                {"faces", mesh.n_faces()}};
+  nlohmann::json extra = ANetFacts(mesh, anet.Result());
+  extra["input"] = nullptr;
+  extra["output"] = nullptr;
   return py::make_tuple(VerticesToArray(anet.Result()), ReportToPython("anet", report, extra));
 }
 
