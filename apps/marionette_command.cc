@@ -137,6 +137,9 @@ void RegisterMarionetteCommand(CLI::App* app, int* exit_code) {
                   "--closed-strip with a = 1: height of the first outer vertex (free)")
       ->check(Finite())
       ->capture_default_str();
+  cmd->add_flag("--allow-folded-plan", args->options.allow_folded_plan,
+                "Lift a plan view whose quads overlap or are not convex in x, y (refused by "
+                "default), with a warning naming the faces");
   cmd->add_option("--report", args->report, "Write a JSON report");
   cmd->callback([args, exit_code]() { *exit_code = RunMarionette(*args); });
 }

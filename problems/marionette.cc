@@ -6,6 +6,7 @@
 #include "constraints/marionette_planarity.h"
 #include "constraints/scalar_target.h"
 #include "geometry/quad_grid.h"
+#include "problems/panel_bounds.h"
 
 namespace gproj {
 
@@ -35,6 +36,48 @@ MarionettePlan MakeMarionettePlan(const PolyMesh& mesh, const std::string& path)
       plan.beta.push_back(beta);
     }
   return plan;
+}
+
+std::vector<int> FoldedPlanFaces(const PolyMesh& mesh) {
+  // Per quad: the signs of its four corners' xy cross products.
+  std::vector<int> orientation(mesh.n_faces(), 0);  // +1, −1, or 0 when mixed (not convex)
+  int positive = 0, negative = 0;
+  for (auto f : mesh.faces()) {
+    if (mesh.valence(f) != 4) continue;
+    Eigen::Vector2d p[4];
+    int k = 0;
+    for (auto v : mesh.fv_range(f)) p[k++] = Eigen::Vector2d(mesh.point(v)[0], mesh.point(v)[1]);
+    int plus = 0, minus = 0;
+    bool degenerate = false;  // collinear corners: refused with their own message
+    for (int i = 0; i < 4; ++i) {
+      const Eigen::Vector2d a = p[(i + 1) % 4] - p[i], b = p[(i + 3) % 4] - p[i];
+      const double cross = a.x() * b.y() - a.y() * b.x();
+      degenerate = degenerate || std::abs(cross) <= 1e-12 * a.norm() * b.norm();
+      plus += cross > 0.0 ? 1 : 0;
+      minus += cross < 0.0 ? 1 : 0;
+    }
+    orientation[f.idx()] = degenerate ? 2 : (plus == 4 ? 1 : (minus == 4 ? -1 : 0));
+    positive += plus == 4 ? 1 : 0;
+    negative += minus == 4 ? 1 : 0;
+  }
+  const int majority = positive >= negative ? 1 : -1;
+  std::vector<int> folded;
+  for (auto f : mesh.faces())
+    if (mesh.valence(f) == 4 && orientation[f.idx()] != majority && orientation[f.idx()] != 2)
+      folded.push_back(f.idx());
+  return folded;
+}
+
+std::string CheckPlanView(const PolyMesh& mesh, const std::string& path, bool allow) {
+  const std::vector<int> folded = FoldedPlanFaces(mesh);
+  if (folded.empty()) return "";
+  const std::string what =
+      std::to_string(folded.size()) +
+      " quads of the plan view overlap or are not convex in x, y: " + FaceList(folded);
+  if (!allow)
+    throw InputError((path.empty() ? "" : path + ": ") + what +
+                     " (a lift over them folds; --allow-folded-plan lifts it anyway)");
+  return "warning: " + what + "; the lift over them folds\n";
 }
 
 Eigen::VectorXd LiftMarionette(const MarionettePlan& plan, const Eigen::VectorXd& row,

@@ -32,6 +32,15 @@ struct MarionettePlan {
 // is degenerate (A, B, D collinear: no unique planar lift).
 MarionettePlan MakeMarionettePlan(const PolyMesh& mesh, const std::string& path = "");
 
+// The faces of a plan view (x, y of `mesh`'s quads) that are not convex or are turned over
+// against the orientation of the majority: a lift over them overlaps itself, and its heights
+// can blow up far beyond the guides'.
+std::vector<int> FoldedPlanFaces(const PolyMesh& mesh);
+
+// Refuses a plan view with FoldedPlanFaces (InputError naming `path` and the faces) unless
+// `allow`; then returns a warning line naming them (empty when there are none).
+std::string CheckPlanView(const PolyMesh& mesh, const std::string& path, bool allow);
+
 // Direct lift by propagation, linear time: `row` holds the heights of vertices (0, j), j = 0..M,
 // `column` those of (i, 0), i = 0..N; row[0] must equal column[0] (InputError otherwise).
 // Returns all heights.

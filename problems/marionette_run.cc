@@ -31,6 +31,7 @@ class GridRun : public MarionetteRun {
  public:
   explicit GridRun(const MarionetteRunOptions& options) : options_(options) {
     const PolyMesh mesh = ReadMesh(options.plan, MeshRequirements{true});
+    warning_ = CheckPlanView(mesh, options.plan, options.allow_folded_plan);
     Eigen::VectorXd target;
     if (!options.fit.empty()) {
       const PolyMesh fit = ReadMesh(options.fit);
@@ -55,7 +56,8 @@ class GridRun : public MarionetteRun {
     const MarionettePlan& plan = problem_->plan();
     return Format("gproj marionette: %s: %d x %d faces, %d heights, %s\n", options_.plan.c_str(),
                   plan.rows, plan.cols, plan.num_vertices(),
-                  problem_->fit() ? "least-squares fit to a target" : "lift from guide curves");
+                  problem_->fit() ? "least-squares fit to a target" : "lift from guide curves") +
+           warning_;
   }
   RunReport Run(const RunCallback& callback) override {
     if (options_.solver == "gp") return problem_->Run(callback);
@@ -75,6 +77,7 @@ class GridRun : public MarionetteRun {
  private:
   MarionetteRunOptions options_;
   std::unique_ptr<MarionetteGridProblem> problem_;
+  std::string warning_;  // a folded plan view lifted anyway
 };
 
 // The prescribed values of a mesh lift: from the guide file, or --row and --column on a grid.
@@ -104,6 +107,8 @@ class MeshRun : public MarionetteRun {
     std::string why;
     if (!options.lift.IsValid(&why)) throw InputError("invalid option: " + why);
     const PolyMesh mesh = ReadMesh(options.plan, MeshRequirements{true});
+    if (options.projection == "vertical")
+      warning_ = CheckPlanView(mesh, options.plan, options.allow_folded_plan);
     lines_ = MakeMarionetteLines(mesh, projection, options.plan);
     layout_ = DecomposeIntoPatches(mesh);
     prescribed_ = MeshGuideValues(options, mesh);
@@ -124,7 +129,7 @@ class MeshRun : public MarionetteRun {
       text +=
           Format("note: the guides over-determine %zu faces (patches %d...) but agree with them\n",
                  lift_.redundant_faces.size(), lift_.over_determined_patches.front());
-    return text;
+    return text + warning_;
   }
   RunReport Run(const RunCallback& callback) override {
     if (options_.solver == "gp") return problem_->Run(callback);
@@ -140,6 +145,7 @@ class MeshRun : public MarionetteRun {
  private:
   MarionetteRunOptions options_;
   MarionetteLines lines_;
+  std::string warning_;  // a folded plan view lifted anyway
   MarionettePatchLayout layout_;
   std::vector<MarionetteTarget> prescribed_;
   MarionetteMeshLift lift_;

@@ -37,6 +37,9 @@ struct MarionetteRunOptions {
   // direct, gp (guided projection) or ceres (Levenberg–Marquardt on the same rows)
   std::string solver = "direct";
   double outer_height = 0.0;  // closed strip with a = 1: height of outer vertex 0
+  // A vertical plan view whose quads overlap or are not convex is refused unless this is set;
+  // then it is lifted with a warning naming the faces.
+  bool allow_folded_plan = false;
   // The tolerance of every mode, and guided projection's options on non-vertical lines.
   MarionetteMeshOptions lift;
 };

@@ -31,6 +31,39 @@ TEST(MarionetteRunTest, RefusesMissingOrConflictingInputs) {
   EXPECT_EQ(ErrorOf(options), "give either --guides or --row/--column, not both");
 }
 
+TEST(MarionetteRunTest, FoldedPlanViewIsRefusedNamingTheFacesUnlessAllowed) {
+  // A 6 × 6 plan grid with vertex 14 = (2, 2) pushed across its neighbours to (3.6, 2.3).
+  const auto path = std::filesystem::temp_directory_path() / "gproj_folded_plan.obj";
+  {
+    std::ofstream out(path);
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j)
+        out << "v " << (i * 6 + j == 14 ? 3.6 : i) << " " << (i * 6 + j == 14 ? 2.3 : j) << " 0\n";
+    for (int i = 0; i < 5; ++i)
+      for (int j = 0; j < 5; ++j)
+        out << "f " << i * 6 + j + 1 << " " << (i + 1) * 6 + j + 1 << " " << (i + 1) * 6 + j + 2
+            << " " << i * 6 + j + 2 << "\n";
+  }
+  MarionetteRunOptions options;
+  options.plan = path.string();
+  options.row = {0, 0.1, 0.2, 0.3, 0.4, 0.5};
+  options.column = {0, 0.2, 0.3, 0.1, 0.2, 0.4};
+  const std::string error = ErrorOf(options);
+  EXPECT_NE(error.find("gproj_folded_plan.obj: 2 quads of the plan view overlap or are not "
+                       "convex in x, y: faces 11, 12"),
+            std::string::npos)
+      << error;
+  options.allow_folded_plan = true;
+  const std::unique_ptr<MarionetteRun> run = MakeMarionetteRun(options);
+  EXPECT_NE(run->Description().find("warning: 2 quads"), std::string::npos) << run->Description();
+  EXPECT_TRUE(run->Run(nullptr).converged);
+  options.plan = kData + "marionette_plan_21x21.obj";  // a valid plan passes without a word
+  options.row.assign(21, 0.0);
+  options.column.assign(21, 0.0);
+  EXPECT_EQ(MakeMarionetteRun(options)->Description().find("warning"), std::string::npos);
+  std::filesystem::remove(path);
+}
+
 TEST(MarionetteRunTest, ValenceSixGuidesLiftThePlanDirectlyAndByGuidedProjection) {
   MarionetteRunOptions options;
   options.plan = kData + "marionette_plan_valence6.obj";
