@@ -7,7 +7,10 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "geometry/face_colours.h"
 #include "geometry/mesh_io.h"
+#include "geometry/svg_render.h"
+#include "problems/pq_planarization.h"
 
 namespace gproj {
 
@@ -200,6 +203,26 @@ void AddVertexControlOptions(CLI::App* command, std::string* fixed_path,
                  "Boundary vertices slide along the input's boundary (they stay on it to "
                  "rounding)")
       ->excludes(fix);
+}
+
+void WriteFaceOutputs(const PolyMesh& result, bool circular, const std::string& face_values,
+                      const std::string& heatmap, const std::string& picture,
+                      const std::string& title) {
+  const ColourScale scale = PlanarityColourScale(result, circular);
+  const std::vector<Rgb> colours = ColoursOf(RelativeFacePlanarity(result, circular), scale);
+  char legend[256];
+  std::snprintf(legend, sizeof(legend),
+                "colour: %s per face (/ mean edge), log scale, blue %.1e to red %.1e",
+                scale.measure.c_str(), scale.min, scale.max);
+  if (!face_values.empty()) WriteTextFileAtomically(face_values, QuadShapesCsv(result, circular));
+  if (!heatmap.empty()) WriteColouredPly(result, colours, heatmap);
+  if (!picture.empty()) {
+    SvgOptions svg;
+    svg.title = title;
+    svg.legend = legend;
+    svg.face_colours = colours;
+    WriteTextFileAtomically(picture, RenderMeshSvg(result, svg));
+  }
 }
 
 void PrintPanelSummary(const NamedValues& initial, const NamedValues& final) {

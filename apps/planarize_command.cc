@@ -14,7 +14,7 @@ namespace {
 
 struct PlanarizeArgs {
   std::string input, output, report, picture, solver = "gp", linear_solver = "cholmod";
-  std::string reference, fixed;
+  std::string reference, fixed, face_values, heatmap;
   PQPlanarizationOptions options;
 };
 
@@ -26,9 +26,16 @@ int RunPlanarize(PlanarizeArgs args) {
     ApplyLinearSolver(args.linear_solver, &options.solver);
     std::string why;
     if (!options.IsValid(&why)) throw InputError("invalid option: " + why);
+    if (!args.heatmap.empty() &&
+        (args.heatmap.size() < 4 || args.heatmap.compare(args.heatmap.size() - 4, 4, ".ply") != 0))
+      throw InputError("--heatmap " + args.heatmap + ": the heatmap is written as .ply");
     CheckOutputPaths(
         {{"input", args.input}, {"--reference", args.reference}, {"--fixed", args.fixed}},
-        {{"--output", args.output, true}, {"--report", args.report}, {"--picture", args.picture}});
+        {{"--output", args.output, true},
+         {"--report", args.report},
+         {"--picture", args.picture},
+         {"--face-values", args.face_values},
+         {"--heatmap", args.heatmap, true}});
     input = ReadMesh(args.input, MeshRequirements{true});
     if (!args.fixed.empty())
       options.vertices.fixed = ReadVertexIds(args.fixed, static_cast<int>(input.n_vertices()));
@@ -58,14 +65,11 @@ int RunPlanarize(PlanarizeArgs args) {
   try {
     if (!report.failed) {
       WriteMeshAtomically(pq->Result(), args.output);
-      if (!args.picture.empty()) {
-        SvgOptions svg;
-        char title[128];
-        std::snprintf(title, sizeof(title), "%zu quads, max planarity %.2e", input.n_faces(),
-                      final_measures.max_planarity);
-        svg.title = title;
-        WriteTextFileAtomically(args.picture, RenderMeshSvg(pq->Result(), svg));
-      }
+      char title[128];
+      std::snprintf(title, sizeof(title), "%zu quads, max planarity %.2e", input.n_faces(),
+                    final_measures.max_planarity);
+      WriteFaceOutputs(pq->Result(), options.circular, args.face_values, args.heatmap, args.picture,
+                       title);
     }
     if (!args.report.empty())
       WriteTextFileAtomically(args.report, ReportJson("planarize", report, extra).dump(2) + "\n");
@@ -90,8 +94,9 @@ int RunPlanarize(PlanarizeArgs args) {
     WarnIfFarFromInput("planarize", options.circular ? "a circular mesh" : "a PQ (conjugate) mesh",
                        input, pq->Result(), final_measures.max_displacement, 10.0);
   }
-  const int code = ConcludeRun("planarize", report, "max_planarity", options.tolerance,
-                               {args.output, args.picture, args.report});
+  const int code =
+      ConcludeRun("planarize", report, "max_planarity", options.tolerance,
+                  {args.output, args.picture, args.face_values, args.heatmap, args.report});
   if (code == kExitNotConverged) {
     const std::vector<int> above = pq->FacesAboveTolerance();
     const std::vector<int> held = pq->FacesAtAngleBound();
@@ -124,7 +129,15 @@ void RegisterPlanarizeCommand(CLI::App* app, int* exit_code) {
                   "Write a JSON report: converged, iterations, seconds, variables, per-iteration "
                   "history and the initial and final measures");
   cmd->add_option("--picture", args->picture,
-                  "Also write a shaded picture of the result (.svg, opens in any browser)");
+                  "Also write a shaded picture of the result (.svg, opens in any browser), each "
+                  "face coloured by its planarity");
+  cmd->add_option("--face-values", args->face_values,
+                  "Write per-face values as CSV: face, planarity (/ mean edge), planarity_abs "
+                  "(input units), kink_deg (between the quad's two triangles), min_angle_deg "
+                  "(and concyclicity with --circular)");
+  cmd->add_option("--heatmap", args->heatmap,
+                  "Write the result as a .ply with a colour per face (planarity, log scale; "
+                  "MeshLab and Blender show it; the scale is in the report)");
   cmd->add_option("--solver", args->solver,
                   "gp: guided projection (default); ceres: Levenberg-Marquardt on the same "
                   "residuals (cross-check)")

@@ -2,6 +2,9 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cstdio>
+
+#include "geometry/circle.h"
 
 namespace gproj {
 namespace {
@@ -75,6 +78,46 @@ QuadShapeSummary Summarize(const std::vector<QuadShape>& shapes) {
     s.max_diagonal_distance = std::max(s.max_diagonal_distance, q.diagonal_distance);
   }
   return s;
+}
+
+std::vector<double> RelativeFacePlanarity(const PolyMesh& mesh, bool circular) {
+  double edge_sum = 0.0;
+  for (auto e : mesh.edges()) edge_sum += mesh.calc_edge_length(e);
+  const double mean_edge = mesh.n_edges() > 0 ? edge_sum / mesh.n_edges() : 1.0;
+  std::vector<double> values(mesh.n_faces(), 0.0);
+  Eigen::Vector3d p[4];
+  for (auto f : mesh.faces()) {
+    if (!QuadPoints(mesh, f, p)) continue;
+    double v = MeasureQuadShape(p[0], p[1], p[2], p[3]).diagonal_distance / mean_edge;
+    if (circular) v = std::max(v, QuadConcyclicity({p[0], p[1], p[2], p[3]}) / mean_edge);
+    values[f.idx()] = v;
+  }
+  return values;
+}
+
+std::string QuadShapesCsv(const PolyMesh& mesh, bool circular) {
+  double edge_sum = 0.0;
+  for (auto e : mesh.edges()) edge_sum += mesh.calc_edge_length(e);
+  const double mean_edge = mesh.n_edges() > 0 ? edge_sum / mesh.n_edges() : 1.0;
+  std::string csv = "face,planarity,planarity_abs,kink_deg,min_angle_deg";
+  csv += circular ? ",concyclicity\n" : "\n";
+  char line[192];
+  Eigen::Vector3d p[4];
+  for (auto f : mesh.faces()) {
+    if (!QuadPoints(mesh, f, p)) continue;
+    const QuadShape s = MeasureQuadShape(p[0], p[1], p[2], p[3]);
+    std::snprintf(line, sizeof(line), "%d,%.6e,%.6e,%.6e,%.6f", f.idx(),
+                  s.diagonal_distance / mean_edge, s.diagonal_distance, s.kink_deg,
+                  s.min_angle_deg);
+    csv += line;
+    if (circular) {
+      std::snprintf(line, sizeof(line), ",%.6e",
+                    QuadConcyclicity({p[0], p[1], p[2], p[3]}) / mean_edge);
+      csv += line;
+    }
+    csv += "\n";
+  }
+  return csv;
 }
 
 ShapeChange CompareCornerAngles(const PolyMesh& before, const PolyMesh& after,

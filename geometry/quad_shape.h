@@ -61,6 +61,15 @@ QuadShape MeasureQuadShape(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
 // Per face of a quad mesh (non-quads get a default QuadShape).
 std::vector<QuadShape> MeasureQuadShapes(const PolyMesh& mesh);
 
+// Per quad of `mesh`: its diagonal distance / the mesh's mean edge length (the planarity
+// measure), and with `circular` the larger of that and the concyclicity (distance of the
+// vertices to their fitted circle / mean edge). Non-quads get 0.
+std::vector<double> RelativeFacePlanarity(const PolyMesh& mesh, bool circular);
+
+// The table of `--face-values`: one line per face, "face,planarity,planarity_abs,kink_deg,
+// min_angle_deg" (+ ",concyclicity" when `circular`), with a header line.
+std::string QuadShapesCsv(const PolyMesh& mesh, bool circular);
+
 struct QuadShapeSummary {
   int non_convex = 0;            // quads with a corner sine ≤ 0
   double min_angle_deg = 180.0;  // over all corners

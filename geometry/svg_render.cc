@@ -22,11 +22,12 @@ std::string RenderMeshSvg(const PolyMesh& mesh, const SvgOptions& options) {
     double depth;
     std::vector<Eigen::Vector2d> points;
     double shade;
+    int index;
   };
   std::vector<Face> faces;
   Eigen::AlignedBox2d box;
   for (auto f : mesh.faces()) {
-    Face face{0.0, {}, 0.0};
+    Face face{0.0, {}, 0.0, f.idx()};
     std::vector<Eigen::Vector3d> p;
     for (auto fv : mesh.fv_range(f)) {
       const auto& q = mesh.point(fv);
@@ -51,7 +52,8 @@ std::string RenderMeshSvg(const PolyMesh& mesh, const SvgOptions& options) {
             [](const Face& a, const Face& b) { return a.depth < b.depth; });
   const double margin = 20.0;
   const double scale = (options.width - 2 * margin) / std::max(box.sizes().x(), 1e-300);
-  const int height = static_cast<int>(std::ceil(box.sizes().y() * scale + 2 * margin)) + 30;
+  const int top = options.legend.empty() ? 30 : 50;
+  const int height = static_cast<int>(std::ceil(box.sizes().y() * scale + 2 * margin)) + top;
   std::string svg;
   char buffer[160];
   std::snprintf(buffer, sizeof(buffer),
@@ -62,17 +64,27 @@ std::string RenderMeshSvg(const PolyMesh& mesh, const SvgOptions& options) {
   if (!options.title.empty())
     svg += "<text x=\"20\" y=\"22\" font-family=\"sans-serif\" font-size=\"15\">" + options.title +
            "</text>\n";
+  if (!options.legend.empty())
+    svg += "<text x=\"20\" y=\"42\" font-family=\"sans-serif\" font-size=\"13\">" + options.legend +
+           "</text>\n";
   for (const Face& face : faces) {
     svg += "<polygon points=\"";
     for (const auto& q : face.points) {
       std::snprintf(buffer, sizeof(buffer), "%.1f,%.1f ", margin + (q.x() - box.min().x()) * scale,
-                    30 + margin + (q.y() - box.min().y()) * scale);
+                    top + margin + (q.y() - box.min().y()) * scale);
       svg += buffer;
     }
     const int g = static_cast<int>(std::lround(255 * face.shade));
+    int rgb[3] = {g * 7 / 10, g * 8 / 10, g};
+    if (!options.face_colours.empty()) {
+      const auto& c = options.face_colours.at(face.index);
+      // Shade the face's colour, keeping it recognisable: 0.55 + 0.45 × the Lambert term.
+      const double s = 0.55 + 0.45 * (face.shade - 0.25) / 0.75;
+      for (int k = 0; k < 3; ++k) rgb[k] = static_cast<int>(std::lround(c[k] * s));
+    }
     std::snprintf(buffer, sizeof(buffer),
                   "\" fill=\"rgb(%d,%d,%d)\" stroke=\"rgb(%d,%d,%d)\" stroke-width=\"0.3\"/>\n",
-                  g * 7 / 10, g * 8 / 10, g, g / 2, g / 2, g / 2);
+                  rgb[0], rgb[1], rgb[2], g / 2, g / 2, g / 2);
     svg += buffer;
   }
   svg += "</svg>\n";

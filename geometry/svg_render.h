@@ -3,7 +3,10 @@
 // direction (orthographic), flat Lambert shading, back-to-front painter's order.
 
 #include <Eigen/Core>
+#include <array>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "geometry/mesh_io.h"
 
@@ -14,6 +17,10 @@ struct SvgOptions {
   Eigen::Vector3d light = Eigen::Vector3d(0.4, -0.5, 1.0);  // direction towards the light
   int width = 900;                                          // pixels; height follows the aspect
   std::string title;
+  // One colour per face (FaceColours), shaded; empty: the default blue-grey.
+  std::vector<std::array<std::uint8_t, 3>> face_colours;
+  // A line under the title, e.g. the colour scale.
+  std::string legend;
 };
 
 // The SVG document. Throws InputError if the mesh has no faces or non-finite points.

@@ -48,13 +48,27 @@ nlohmann::json OptionsJson(const PQPlanarizationOptions& o) {
           {"ceres_soft_scale", o.ceres_soft_scale}};
 }
 
+ColourScale PlanarityColourScale(const PolyMesh& result, bool circular) {
+  return ScaleFor(circular ? "max(planarity, concyclicity)" : "planarity",
+                  RelativeFacePlanarity(result, circular), /*logarithmic=*/true);
+}
+
+nlohmann::json ColourScaleJson(const ColourScale& scale) {
+  return {{"measure", scale.measure},
+          {"scale", scale.logarithmic ? "log10" : "linear"},
+          {"min", scale.min},
+          {"max", scale.max},
+          {"colours", "blue (min), yellow, red (max)"}};
+}
+
 nlohmann::json PlanarizationFacts(const PolyMesh& input, const PolyMesh& result,
                                   const PQPlanarizationOptions& options) {
   return {{"linear_solver", LinearSolverTypeName(options.solver.linear_solver)},
           {"vertices", input.n_vertices()},
           {"faces", input.n_faces()},
           {"options", OptionsJson(options)},
-          {"shape_change", ShapeChangeJson(CompareCornerAngles(input, result))}};
+          {"shape_change", ShapeChangeJson(CompareCornerAngles(input, result))},
+          {"colour_scale", ColourScaleJson(PlanarityColourScale(result, options.circular))}};
 }
 
 bool PQPlanarizationOptions::IsValid(std::string* why) const {

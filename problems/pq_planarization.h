@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "geometry/face_colours.h"
 #include "geometry/mesh_io.h"
 #include "problems/guided_problem.h"
 #include "problems/mesh_variables.h"
@@ -81,8 +82,13 @@ NamedValues ToNamedValues(const PlanarityMeasures& m);
 // circular, ceres_soft_scale).
 nlohmann::json OptionsJson(const PQPlanarizationOptions& o);
 
-// The report's facts about a run besides the solver's: linear_solver, vertices, faces, options
-// and shape_change (input against result).
+// The colour scale of the per-face pictures (--heatmap, --picture): RelativeFacePlanarity of
+// `result` on a log scale.
+ColourScale PlanarityColourScale(const PolyMesh& result, bool circular);
+nlohmann::json ColourScaleJson(const ColourScale& scale);
+
+// The report's facts about a run besides the solver's: linear_solver, vertices, faces, options,
+// shape_change (input against result) and colour_scale.
 nlohmann::json PlanarizationFacts(const PolyMesh& input, const PolyMesh& result,
                                   const PQPlanarizationOptions& options);
 

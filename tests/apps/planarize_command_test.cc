@@ -76,6 +76,32 @@ TEST_F(PlanarizeCommandTest, HoldsTheVerticesOfAFixedFileAndRefusesBadIds) {
   EXPECT_NE(both.err.find("excludes"), std::string::npos) << both.err;
 }
 
+TEST_F(PlanarizeCommandTest, WritesFaceValuesAndAColouredHeatmap) {
+  const std::string in = Write("in.obj", kQuad2x1);
+  const CommandRun r =
+      Gproj("planarize " + in + " -o " + (dir_ / "out.obj").string() + " --face-values " +
+            (dir_ / "f.csv").string() + " --heatmap " + (dir_ / "h.ply").string() + " --picture " +
+            (dir_ / "p.svg").string() + " --report " + (dir_ / "r.json").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::istringstream csv(Slurp(dir_ / "f.csv"));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "face,planarity,planarity_abs,kink_deg,min_angle_deg");
+  int rows = 0;
+  while (std::getline(csv, line)) ++rows;
+  EXPECT_EQ(rows, 2);
+  const std::string ply = Slurp(dir_ / "h.ply");
+  EXPECT_NE(ply.find("property uchar red"), std::string::npos);
+  EXPECT_EQ(ReadMesh((dir_ / "h.ply").string()).n_faces(), 2u);
+  EXPECT_NE(Slurp(dir_ / "r.json").find("\"colour_scale\""), std::string::npos);
+  EXPECT_NE(Slurp(dir_ / "p.svg").find("colour: planarity per face"), std::string::npos);
+  const CommandRun wrong = Gproj("planarize " + in + " -o " + (dir_ / "o2.obj").string() +
+                                 " --heatmap " + (dir_ / "h.obj").string());
+  EXPECT_EQ(wrong.exit_code, 1);
+  EXPECT_NE(wrong.err.find("--heatmap"), std::string::npos) << wrong.err;
+  EXPECT_FALSE(fs::exists(dir_ / "o2.obj"));
+}
+
 TEST_F(PlanarizeCommandTest, ChecksEveryOutputPathBeforeWorking) {
   const std::string in = Write("in.obj", kQuad2x1);
   const std::string missing = (dir_ / "missing" / "x").string();
