@@ -357,6 +357,8 @@ struct VertexUpdate {
   int vertex_block = -1, edge_block = -1;
   FramePointPlanarity* frame = nullptr;
   std::vector<EdgeStencil> stencils;  // per inner edge
+  VertexControl control;              // held and gliding vertices, as in the A-net step
+  PolyMesh start;                     // the mesh the update was built from (held positions)
 };
 
 std::unique_ptr<VertexUpdate> BuildVertexUpdate(const PolyMesh& mesh,
@@ -377,6 +379,8 @@ std::unique_ptr<VertexUpdate> BuildVertexUpdate(const PolyMesh& mesh,
   LoadVertices(mesh, u->norm, u->vertex_block, &problem);
   LoadANetNormals(mesh, u->vertex_block, anet, &problem);
   AddANetFamilies(mesh, options.anet, u->vertex_block, anet, &query, u->norm, &problem);
+  u->control = ApplyVertexControl(mesh, u->norm, u->vertex_block, options.anet.vertices, &problem);
+  u->start = mesh;
   u->frame = problem.AddFamily<FramePointPlanarity>(options.frame_weight);
   for (size_t k = 0; k < inner_edges.size(); ++k) {
     const EdgeStencil s = EdgeStencilOf(mesh, colour, inner_edges[k]);
@@ -491,6 +495,7 @@ void HNet::RunRounds(const PolyMesh& reference, const RoundCallback& on_round,
   for (int round = 0; round < options_.max_rounds; ++round) {
     const auto round_start = std::chrono::steady_clock::now();
     StoreVertices(update->problem, update->vertex_block, update->norm, &mesh_);
+    update->control.RestoreHeld(update->start, &mesh_);
     HNetRound r = UpdateWeights(round, reference);
     const bool settled = round > 0 && r.weight_change <= options_.weight_tolerance;
     const bool last = settled || round + 1 == options_.max_rounds;

@@ -136,6 +136,21 @@ TEST(HNetTest, JitteredHyperboloidBecomesASmoothHNet) {
   EXPECT_LE(MaxTangentPlaneAngle(hnet.mesh(), hnet.weights()), 0.01);
 }
 
+TEST(HNetTest, HeldVerticesStayThroughTheANetStepAndEveryRound) {
+  const PolyMesh exact = Grid("hyperboloid", 11);
+  const PolyMesh mesh = Grid("hyperboloid", 11, 0.03, 4);
+  HNetOptions options;
+  options.anet.vertices.fixed = {0, 10, 60};
+  HNet hnet(mesh, &exact, options);
+  const HNetSummary summary = hnet.Run();
+  ASSERT_TRUE(summary.report.converged) << summary.report.termination;
+  ASSERT_FALSE(summary.rounds.empty());
+  for (int v : options.anet.vertices.fixed)
+    EXPECT_EQ(hnet.mesh().point(hnet.mesh().vertex_handle(v)), mesh.point(mesh.vertex_handle(v)))
+        << v;
+  EXPECT_GT(MaxDisplacement(hnet.mesh(), mesh), 1e-4);  // the others moved
+}
+
 TEST(HNetTest, RefusesMeshesThatAreNotSimplyConnected) {
   // A 4 × 4 grid with the middle face removed: an annulus.
   PolyMesh grid = Grid("hypar", 5);
