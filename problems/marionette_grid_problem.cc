@@ -53,6 +53,10 @@ MarionetteGridProblem::MarionetteGridProblem(const PolyMesh& mesh, const std::st
     for (int i = 1; i <= plan_.rows; ++i) hard.push_back({plan_.Vertex(i, 0), column[i]});
   }
   problem_ = MakeMarionetteProblem(plan_, hard, soft, 1.0, 1e-8);
+  if (fit()) {
+    options_.solver.shifted_constraints = true;
+    options_.solver.max_iterations = std::max(options_.solver.max_iterations, 3);
+  }
 }
 
 CeresOptions MarionetteGridProblem::ceres_options(int max_iterations) const {

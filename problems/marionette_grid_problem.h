@@ -15,7 +15,10 @@
 namespace gproj {
 
 struct MarionetteOptions {
-  // Guided projection: the rows are linear, so one iteration with a tiny ε solves them.
+  // Guided projection: the rows are linear, so one iteration with a tiny ε solves a lift. A fit
+  // is exact in that solve only up to the weight ratio of its target rows (1e-8): it takes two
+  // more with shifted constraint targets (Bregman iteration, SolverOptions::shifted_constraints),
+  // which make it the constrained least-squares solution of 002 eq. 14, planar to rounding.
   SolverOptions solver = MarionetteSolverOptions();
   // Max planarity (diagonal distance / mean edge) and, for a lift, max guide error
   // (|z_v − h_v| / (1 + |h_v|)) to reach.

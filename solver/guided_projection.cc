@@ -196,6 +196,10 @@ class Minimizer {
       return !Finish(TerminationType::kConvergence, "step tolerance met");
     if (k == options_.max_iterations)
       return !Finish(TerminationType::kNoConvergence, "maximum number of iterations reached");
+    // The targets move after a step (Bregman: the first solve has none), and the step's
+    // energy is that of the shifted rows.
+    if (options_.shifted_constraints && k > 0) system_->ShiftConstraintTargets();
+    step_energy_ = system_->Energy();
     return false;
   }
 
@@ -244,7 +248,7 @@ class Minimizer {
   // Moves x to the next iterate; false when the run ends (failure, or no lower energy).
   bool TakeStep() {
     steps_->SetRhs();
-    const double energy = record_.energy;
+    const double energy = step_energy_;
     double epsilon = options_.monotone ? damping_ : options_.epsilon;
     record_ = IterationRecord();
     int failures = 0, rejections = 0;
@@ -294,6 +298,7 @@ class Minimizer {
   double damping_ = 0.0;  // ε of the next step when options_.monotone
   double growth_ = 2.0;   // growth of ε² on the next rejection
   double schur_seconds_ = 0.0;
+  double step_energy_ = 0.0;  // energy at x^k that a monotone step must lower
 };
 
 }  // namespace

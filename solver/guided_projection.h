@@ -44,6 +44,12 @@ struct SolverOptions {
   // assembly per step.
   bool monotone = false;
   int max_rejections = 12;
+  // Exact constraints by shifted targets (Bregman iteration; the method of multipliers for
+  // non-linear rows): after each step every kConstraint row's target moves against its
+  // residual, so the iterates converge to a point where the constraint rows hold exactly and
+  // the soft rows are minimised subject to them, rather than to a balance set by the weights.
+  // The energy is then that of the shifted rows; max_constraint stays the true residual.
+  bool shifted_constraints = false;
   // Applied to every trial point x^k + d before it is assessed, e.g. to set auxiliary unknowns
   // to their exact values from the primary ones (null: none).
   std::function<void(Eigen::VectorXd*)> project_trial;

@@ -79,6 +79,7 @@ LinearizedSystem::LinearizedSystem(Problem* problem) : problem_(problem) {
   r_.setZero(a_.num_cols);
   at_d_.setZero(a_.num_cols);
   phi_.setZero(a_.num_cols);
+  row_scale_.assign(num_families, 0.0);
   x_local_.resize(max_local);
   phi_local_.resize(max_rows);
   jac_local_.resize(static_cast<size_t>(max_rows) * max_local);
@@ -91,6 +92,8 @@ bool LinearizedSystem::Assemble(const Eigen::VectorXd& x, double fairness_weight
     ConstraintFamily& fam = problem_->family(f);
     fam.Update(problem_->layout(), x);
     const double s = std::sqrt(RowWeight(fam.role(), fam.weight(), fairness_weight, soft_scale));
+    row_scale_[f] = s;
+    const bool shifted = shift_.size() > 0 && fam.role() == FamilyRole::kConstraint;
     const int rows = fam.rows_per_element();
     const auto& begin = local_begin_[f];
     const auto& index = local_index_[f];
@@ -108,7 +111,7 @@ bool LinearizedSystem::Assemble(const Eigen::VectorXd& x, double fairness_weight
           return false;
         }
         phi_[col] = value;
-        r_[col] = s * value;
+        r_[col] = s * (shifted ? value - shift_[col] : value);
         const double* jac_row = jac_local_.data() + static_cast<size_t>(row) * local_dim;
         for (int l = 0; l < local_dim; ++l) {
           if (scatter[l] < 0) continue;
@@ -123,6 +126,17 @@ bool LinearizedSystem::Assemble(const Eigen::VectorXd& x, double fairness_weight
     }
   }
   return true;
+}
+
+void LinearizedSystem::ShiftConstraintTargets() {
+  if (shift_.size() == 0) shift_.setZero(a_.num_cols);
+  for (int f = 0; f < problem_->num_families(); ++f) {
+    if (problem_->family(f).role() != FamilyRole::kConstraint) continue;
+    for (int col = family_row_begin_[f]; col < family_row_begin_[f + 1]; ++col) {
+      shift_[col] -= phi_[col];
+      r_[col] = row_scale_[f] * (phi_[col] - shift_[col]);
+    }
+  }
 }
 
 void LinearizedSystem::MultiplyAr(Eigen::VectorXd* out) const {

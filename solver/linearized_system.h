@@ -31,6 +31,9 @@ class LinearizedSystem {
   int family_row_begin(int f) const { return family_row_begin_[f]; }
   // ½‖r‖² of the last Assemble.
   double Energy() const { return 0.5 * r_.squaredNorm(); }
+  // Moves every kConstraint row's target against its residual at the last Assemble (v ← v − φ;
+  // the row is then φ − v, see SolverOptions::shifted_constraints) and rewrites r to match.
+  void ShiftConstraintTargets();
   // out = A r (n).
   void MultiplyAr(Eigen::VectorXd* out) const;
   // out = (A Aᵀ + β I) d (n), without forming A Aᵀ.
@@ -40,6 +43,8 @@ class LinearizedSystem {
   Problem* problem_;
   CscMatrix a_;
   Eigen::VectorXd r_, phi_;
+  Eigen::VectorXd shift_;              // per row: v of the shifted constraint rows (empty: none)
+  std::vector<double> row_scale_;      // per family: √weight of the last Assemble
   std::vector<int> family_row_begin_;  // #families + 1
   // Per family, per element: global indices of the local scalars, and for every (row, local)
   // the position in a_.values (or −1).
