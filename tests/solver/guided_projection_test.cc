@@ -337,3 +337,40 @@ TEST(ConstantItemTest, HeldPointsStayBitForBitWhileTheOthersConverge) {
 
 }  // namespace
 }  // namespace gproj
+
+namespace gproj {
+namespace {
+
+// min ‖p − (3, 0)‖² subject to x + y = 1: the projection (2, −1). With equal weights a penalty
+// stops halfway; shifted constraint targets reach the constrained minimiser exactly.
+TEST(ShiftedConstraintTest, ReachesTheConstrainedMinimiserInsteadOfTheWeightBalance) {
+  for (bool shifted : {false, true}) {
+    Problem problem;
+    const int block = problem.layout().AddBlock("p", 1, 2);
+    problem.ResizeToLayout();
+    const int item = problem.layout().Item(block, 0);
+    problem.AddTerm<1, 2>("line", [](const auto* p, auto* r) { r[0] = p[0] + p[1] - 1.0; })
+        ->Add({item});
+    problem
+        .AddTerm<2, 2>(
+            "target", [](const auto* p, auto* r) { r[0] = p[0] - 3.0, r[1] = p[1]; },
+            FamilyRole::kSoft, 1.0)
+        ->Add({item});
+    SolverOptions options;
+    options.shifted_constraints = shifted;
+    options.residual_tolerance = 0.0;
+    options.step_tolerance = 1e-15;
+    options.max_iterations = 60;
+    const SolverSummary summary = Solve(options, &problem);
+    const Eigen::Vector2d p = problem.x().head<2>();
+    if (shifted) {
+      EXPECT_NEAR(p.x(), 2.0, 1e-12) << summary.FullReport();
+      EXPECT_NEAR(p.y(), -1.0, 1e-12);
+    } else {
+      EXPECT_GT(std::abs(p.x() + p.y() - 1.0), 0.1);  // the penalty's balance
+    }
+  }
+}
+
+}  // namespace
+}  // namespace gproj
