@@ -41,6 +41,29 @@ std::vector<int> VertexIds(const py::object& ids, int num_vertices) {
   return out;
 }
 
+// The valid-panel and vertex-control arguments shared by planarize, anet and hnet.
+void ApplyMeshControl(double min_angle, const py::object& edge_length, bool allow_folds,
+                      const py::object& fixed, bool fix_boundary, bool glide_boundary,
+                      int num_vertices, PanelBoundsOptions* panels,
+                      VertexControlOptions* vertices) {
+  panels->min_angle_deg = min_angle;
+  if (!edge_length.is_none()) {
+    const auto bounds = edge_length.cast<std::pair<double, double>>();
+    panels->min_edge_length = bounds.first;
+    panels->max_edge_length = bounds.second;
+  }
+  if (allow_folds) {
+    panels->corners = false;
+    panels->min_edge_fraction = 0.0;
+  }
+  vertices->fixed = VertexIds(fixed, num_vertices);
+  vertices->fix_boundary = fix_boundary;
+  vertices->glide_boundary = glide_boundary;
+  std::string why;
+  if (!panels->IsValid(&why) || !vertices->IsValid(&why))
+    throw InputError("invalid option: " + why);
+}
+
 py::tuple Planarize(const py::object& vertices, const py::object& faces, double tolerance,
                     bool circular, double closeness, int fairness_order, double ceres_soft_scale,
                     double min_angle, const py::object& edge_length, bool allow_folds,
@@ -55,26 +78,14 @@ py::tuple Planarize(const py::object& vertices, const py::object& faces, double 
   options.closeness_weight = closeness;
   options.fairness_order = fairness_order;
   options.ceres_soft_scale = ceres_soft_scale;
-  options.panels.min_angle_deg = min_angle;
-  if (!edge_length.is_none()) {
-    const auto bounds = edge_length.cast<std::pair<double, double>>();
-    options.panels.min_edge_length = bounds.first;
-    options.panels.max_edge_length = bounds.second;
-  }
-  if (allow_folds) {
-    options.panels.corners = false;
-    options.panels.min_edge_fraction = 0.0;
-  }
   SolverArgs{max_iterations, fairness, epsilon, soft_decay, soft_floor, linear_solver, threads}
       .ApplyTo(&options.solver);
   CheckSolverName(solver);
   std::string why;
   if (!options.IsValid(&why)) throw InputError("invalid option: " + why);
   const PolyMesh input = MeshFromArrays(vertices, faces, true);
-  options.vertices.fixed = VertexIds(fixed, static_cast<int>(input.n_vertices()));
-  options.vertices.fix_boundary = fix_boundary;
-  options.vertices.glide_boundary = glide_boundary;
-  if (!options.vertices.IsValid(&why)) throw InputError("invalid option: " + why);
+  ApplyMeshControl(min_angle, edge_length, allow_folds, fixed, fix_boundary, glide_boundary,
+                   static_cast<int>(input.n_vertices()), &options.panels, &options.vertices);
   const std::unique_ptr<PolyMesh> ref = ReferenceMesh(reference);
   PQPlanarization pq(input, options, ref.get());
   RunBridge bridge(callback);
@@ -132,6 +143,9 @@ const char* const kStarFormDoc = R"(
     point: weight of the distance to the reference's closest points.
     fairness_order: 2 or 3.
     reference: None (the input itself) or a reference surface (Vr, Fr), any polygon mesh.
+    min_angle, edge_length, allow_folds: the quads' corner-angle and edge-length bounds, as for
+        planarize.
+    fixed, fix_boundary, glide_boundary: held and gliding vertices, as for planarize.
 )";
 
 ANetOptions NetOptions(const std::string& star_form, double tolerance, double tangent, double point,
@@ -152,14 +166,18 @@ ANetOptions NetOptions(const std::string& star_form, double tolerance, double ta
 
 py::tuple RunANet(const py::object& vertices, const py::object& faces, const std::string& star_form,
                   double tolerance, double tangent, double point, int fairness_order,
-                  const py::object& reference, const py::object& callback, int max_iterations,
-                  double fairness, double epsilon, double soft_decay, double soft_floor,
-                  const std::string& linear_solver, int threads) {
-  const ANetOptions options = NetOptions(
+                  const py::object& reference, double min_angle, const py::object& edge_length,
+                  bool allow_folds, const py::object& fixed, bool fix_boundary, bool glide_boundary,
+                  const py::object& callback, int max_iterations, double fairness, double epsilon,
+                  double soft_decay, double soft_floor, const std::string& linear_solver,
+                  int threads) {
+  ANetOptions options = NetOptions(
       star_form, tolerance, tangent, point, fairness_order,
       {max_iterations, fairness, epsilon, soft_decay, soft_floor, linear_solver, threads});
   const PolyMesh mesh = MeshFromArrays(vertices, faces, true);
   CheckANetTopology(mesh, "mesh");
+  ApplyMeshControl(min_angle, edge_length, allow_folds, fixed, fix_boundary, glide_boundary,
+                   static_cast<int>(mesh.n_vertices()), &options.panels, &options.vertices);
   const std::unique_ptr<PolyMesh> ref = ReferenceMesh(reference);
   ANet anet(mesh, ref.get(), options);
   RunBridge bridge(callback);
@@ -172,10 +190,12 @@ py::tuple RunANet(const py::object& vertices, const py::object& faces, const std
 
 py::tuple RunHNet(const py::object& vertices, const py::object& faces, const std::string& star_form,
                   double tolerance, double tangent, double point, int fairness_order,
-                  const py::object& reference, int rounds, double frame_weight,
-                  bool allow_not_simply_connected, const py::object& callback, int max_iterations,
-                  double fairness, double epsilon, double soft_decay, double soft_floor,
-                  const std::string& linear_solver, int threads) {
+                  const py::object& reference, double min_angle, const py::object& edge_length,
+                  bool allow_folds, const py::object& fixed, bool fix_boundary, bool glide_boundary,
+                  int rounds, double frame_weight, bool allow_not_simply_connected,
+                  const py::object& callback, int max_iterations, double fairness, double epsilon,
+                  double soft_decay, double soft_floor, const std::string& linear_solver,
+                  int threads) {
   HNetOptions options;
   options.anet = NetOptions(
       star_form, tolerance, tangent, point, fairness_order,
@@ -187,6 +207,9 @@ py::tuple RunHNet(const py::object& vertices, const py::object& faces, const std
   options.allow_not_simply_connected = allow_not_simply_connected;
   const PolyMesh mesh = MeshFromArrays(vertices, faces, true);
   CheckANetTopology(mesh, "mesh");
+  ApplyMeshControl(min_angle, edge_length, allow_folds, fixed, fix_boundary, glide_boundary,
+                   static_cast<int>(mesh.n_vertices()), &options.anet.panels,
+                   &options.anet.vertices);
   const std::unique_ptr<PolyMesh> ref = ReferenceMesh(reference);
   HNet hnet(mesh, ref.get(), options);
   RunBridge bridge(callback);
@@ -237,7 +260,10 @@ void BindMeshProblems(py::module_& m) {
       py::arg("V"), py::arg("F"), py::kw_only(), py::arg("star_form") = "normals",
       py::arg("tolerance") = an.tolerance, py::arg("tangent") = an.tangent_weight,
       py::arg("point") = an.point_weight, py::arg("fairness_order") = an.fairness_order,
-      py::arg("reference") = py::none());
+      py::arg("reference") = py::none(), py::arg("min_angle") = an.panels.min_angle_deg,
+      py::arg("edge_length") = py::none(), py::arg("allow_folds") = false,
+      py::arg("fixed") = py::none(), py::arg("fix_boundary") = false,
+      py::arg("glide_boundary") = false);
   const std::string anet_doc = std::string(R"(anet(V, F, ...) -> (V_out, report)
 
 A-net (`gproj anet`): makes the vertex stars of a quad mesh planar, close to a reference surface

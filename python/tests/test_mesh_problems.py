@@ -48,6 +48,18 @@ def test_planarize_equals_the_command_line(cli, variant):
         assert report["final"]["non_convex_quads"] == 0
 
 
+def test_anet_and_hnet_hold_fixed_vertices_like_the_command_line(cli):
+    V, F = gproj.grid(nu=9, nv=9, surface="hyperboloid", noise=0.05)
+    V_out, report = compare_with_command_line(
+        cli, "anet", V, F, {"fixed": [0, 8], "min_angle": 10.0},
+        ["--fixed", cli.write_text("fixed.txt", "0 8\n"), "--min-angle", 10])
+    assert report["converged"]
+    assert np.array_equal(V_out[[0, 8]], V[[0, 8]])
+    assert report["final"]["non_convex_quads"] == 0
+    with pytest.raises(ValueError, match="out of range"):
+        gproj.hnet(V, F, fixed=[81])
+
+
 def test_planarize_refuses_bad_vertex_control():
     V, F = gproj.grid(nu=4, nv=4, noise=0.05)
     with pytest.raises(ValueError, match="out of range"):
