@@ -3,6 +3,8 @@
 // motion, and a clear failure where no valid planar mesh is near.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "geometry/quad_grid.h"
 #include "geometry/quad_shape.h"
 #include "problems/pq_planarization.h"
@@ -68,6 +70,28 @@ TEST(PQPlanarizationValidityTest, WithoutTheBoundsTheSameGridFolds) {
   PQPlanarization pq(mesh, options);
   ASSERT_TRUE(pq.Run().converged);
   EXPECT_GT(pq.Measures().shape.non_convex, 5);
+}
+
+TEST(PQPlanarizationValidityTest, EnergyNeverRisesFromOneIterationToTheNext) {
+  // Each record's energy uses that iteration's weights, which only fade; a monotone step lowers
+  // the energy with the weights it was taken with, so the history cannot rise. Plain
+  // Gauss–Newton steps on the same input (the old defaults) jump.
+  const PolyMesh mesh = MakeQuadGrid(Twisted(41));
+  auto max_rise = [&](const PQPlanarizationOptions& options) {
+    PQPlanarization pq(mesh, options);
+    const RunReport report = pq.Run();
+    double rise = 0.0;
+    for (size_t k = 1; k < report.history.size(); ++k)
+      rise = std::max(rise, report.history[k].energy / report.history[k - 1].energy);
+    return rise;
+  };
+  EXPECT_LE(max_rise(PQPlanarizationOptions()), 1.0);
+  PQPlanarizationOptions plain;
+  plain.solver.monotone = false;
+  plain.closeness_weight = 1.0;
+  plain.panels.corners = false;
+  plain.panels.min_edge_fraction = 0.0;
+  EXPECT_GT(max_rise(plain), 2.0);
 }
 
 TEST(PQPlanarizationValidityTest, DefaultMovesLittleMoreThanAClosenessDominatedSolve) {
