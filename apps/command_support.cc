@@ -10,7 +10,6 @@
 #include "geometry/face_colours.h"
 #include "geometry/mesh_io.h"
 #include "geometry/svg_render.h"
-#include "problems/pq_planarization.h"
 
 namespace gproj {
 
@@ -205,16 +204,21 @@ void AddVertexControlOptions(CLI::App* command, std::string* fixed_path,
       ->excludes(fix);
 }
 
-void WriteFaceOutputs(const PolyMesh& result, bool circular, const std::string& face_values,
-                      const std::string& heatmap, const std::string& picture,
-                      const std::string& title) {
-  const ColourScale scale = PlanarityColourScale(result, circular);
-  const std::vector<Rgb> colours = ColoursOf(RelativeFacePlanarity(result, circular), scale);
+void CheckHeatmapPath(const std::string& path) {
+  if (!path.empty() && (path.size() < 4 || path.compare(path.size() - 4, 4, ".ply") != 0))
+    throw InputError("--heatmap " + path + ": the heatmap is written as .ply");
+}
+
+void WriteFaceOutputs(const PolyMesh& result, const std::vector<double>& values,
+                      const ColourScale& scale, const std::string& csv,
+                      const std::string& face_values, const std::string& heatmap,
+                      const std::string& picture, const std::string& title) {
+  const std::vector<Rgb> colours = ColoursOf(values, scale);
   char legend[256];
   std::snprintf(legend, sizeof(legend),
-                "colour: %s per face (/ mean edge), log scale, blue %.1e to red %.1e",
-                scale.measure.c_str(), scale.min, scale.max);
-  if (!face_values.empty()) WriteTextFileAtomically(face_values, QuadShapesCsv(result, circular));
+                "colour: %s per face (/ mean edge), %s scale, blue %.1e to red %.1e",
+                scale.measure.c_str(), scale.logarithmic ? "log" : "linear", scale.min, scale.max);
+  if (!face_values.empty()) WriteTextFileAtomically(face_values, csv);
   if (!heatmap.empty()) WriteColouredPly(result, colours, heatmap);
   if (!picture.empty()) {
     SvgOptions svg;

@@ -73,13 +73,16 @@ void AddPanelBoundsOptions(CLI::App* command, PanelBoundsOptions* panels);
 void AddVertexControlOptions(CLI::App* command, std::string* fixed_path,
                              VertexControlOptions* options);
 
-// The per-face outputs of a quad-mesh result: `face_values` (CSV, QuadShapesCsv), `heatmap`
-// (PLY with a colour per face) and `picture` (SVG), each only when its path is not empty. The
-// colours show RelativeFacePlanarity on a log scale (PlanarityColourScale, the report's
-// "colour_scale").
-void WriteFaceOutputs(const PolyMesh& result, bool circular, const std::string& face_values,
-                      const std::string& heatmap, const std::string& picture,
-                      const std::string& title);
+// Throws InputError unless `path` is empty or ends in .ply (the --heatmap format).
+void CheckHeatmapPath(const std::string& path);
+
+// The per-face outputs of a mesh result: `face_values` (the CSV text `csv`), `heatmap` (PLY with
+// a colour per face) and `picture` (SVG), each only when its path is not empty. The colours show
+// `values` (one per face) on `scale`.
+void WriteFaceOutputs(const PolyMesh& result, const std::vector<double>& values,
+                      const ColourScale& scale, const std::string& csv,
+                      const std::string& face_values, const std::string& heatmap,
+                      const std::string& picture, const std::string& title);
 
 // "panels: non-convex quads 0 -> 0, smallest corner angle …" from the ShapeValues of the initial
 // and final measures.

@@ -17,7 +17,7 @@ namespace {
 struct NetArgs {
   std::string input, output, reference, report, star_form = "normals", linear_solver = "cholmod",
                                                 solver = "gp";
-  std::string surface_mesh, picture, fixed;
+  std::string surface_mesh, picture, fixed, face_values, heatmap;
   int samples = 8;
   bool allow_not_simply_connected = false;
   HNetOptions options;
@@ -70,11 +70,14 @@ bool Prepare(const char* name, NetArgs* args, PolyMesh* mesh,
       args->star_form == "quads" ? StarPlanarityForm::kQuads : StarPlanarityForm::kNormals;
   try {
     ApplyLinearSolver(args->linear_solver, &args->options.anet.solver);
+    CheckHeatmapPath(args->heatmap);
     CheckOutputPaths(
         {{"input", args->input}, {"--reference", args->reference}, {"--fixed", args->fixed}},
         {{"--output", args->output, std::string(name) == "anet"},
          {"--report", args->report},
          {"--picture", args->picture},
+         {"--face-values", args->face_values},
+         {"--heatmap", args->heatmap, true},
          {"--surface-mesh", args->surface_mesh, true}});
     *mesh = ReadMesh(args->input, MeshRequirements{true});
     CheckANetTopology(*mesh, args->input);
@@ -117,7 +120,16 @@ int RunANet(NetArgs& args) {
   extra["input"] = args.input;
   extra["output"] = report.failed ? "" : args.output;
   try {
-    if (!report.failed) WriteMeshAtomically(anet->Result(), args.output);
+    if (!report.failed) {
+      const PolyMesh result = anet->Result();
+      WriteMeshAtomically(result, args.output);
+      char title[128];
+      std::snprintf(title, sizeof(title), "A-net: %zu quads, max star planarity %.2e",
+                    mesh.n_faces(), anet->Measures().max_star_planarity);
+      WriteFaceOutputs(result, FaceStarPlanarity(result), StarPlanarityColourScale(result),
+                       ANetFaceValuesCsv(result), args.face_values, args.heatmap, args.picture,
+                       title);
+    }
     if (!args.report.empty())
       WriteTextFileAtomically(args.report, ReportJson("anet", report, extra).dump(2) + "\n");
   } catch (const InputError& e) {
@@ -140,7 +152,7 @@ int RunANet(NetArgs& args) {
                        30.0);
   }
   return ConcludeRun("anet", report, "max_star_planarity", args.options.anet.tolerance,
-                     {args.output, args.report});
+                     {args.output, args.picture, args.face_values, args.heatmap, args.report});
 }
 
 // Prints one H-net round, with the table's header before round 0.
@@ -226,6 +238,14 @@ void RegisterNetCommands(CLI::App* app, int* exit_code) {
       "fair (004 §3.2). Exit codes as for planarize.");
   AddSharedOptions(a, anet.get());
   a->add_option("-o,--output", anet->output, "A-net mesh to write")->required();
+  a->add_option("--face-values", anet->face_values,
+                "Write per-face values as CSV: face, star_planarity (largest of its corners', / "
+                "mean edge), kink_deg, min_angle_deg");
+  a->add_option("--heatmap", anet->heatmap,
+                "Write the result as a .ply with a colour per face (star planarity, log scale; "
+                "the scale is in the report)");
+  a->add_option("--picture", anet->picture,
+                "Also write a shaded picture of the result (.svg), coloured like the heatmap");
   a->callback([anet, exit_code]() { *exit_code = RunANet(*anet); });
 
   auto hnet = std::make_shared<NetArgs>();

@@ -26,9 +26,7 @@ int RunPlanarize(PlanarizeArgs args) {
     ApplyLinearSolver(args.linear_solver, &options.solver);
     std::string why;
     if (!options.IsValid(&why)) throw InputError("invalid option: " + why);
-    if (!args.heatmap.empty() &&
-        (args.heatmap.size() < 4 || args.heatmap.compare(args.heatmap.size() - 4, 4, ".ply") != 0))
-      throw InputError("--heatmap " + args.heatmap + ": the heatmap is written as .ply");
+    CheckHeatmapPath(args.heatmap);
     CheckOutputPaths(
         {{"input", args.input}, {"--reference", args.reference}, {"--fixed", args.fixed}},
         {{"--output", args.output, true},
@@ -68,8 +66,11 @@ int RunPlanarize(PlanarizeArgs args) {
       char title[128];
       std::snprintf(title, sizeof(title), "%zu quads, max planarity %.2e", input.n_faces(),
                     final_measures.max_planarity);
-      WriteFaceOutputs(pq->Result(), options.circular, args.face_values, args.heatmap, args.picture,
-                       title);
+      const PolyMesh result = pq->Result();
+      WriteFaceOutputs(result, RelativeFacePlanarity(result, options.circular),
+                       PlanarityColourScale(result, options.circular),
+                       QuadShapesCsv(result, options.circular), args.face_values, args.heatmap,
+                       args.picture, title);
     }
     if (!args.report.empty())
       WriteTextFileAtomically(args.report, ReportJson("planarize", report, extra).dump(2) + "\n");

@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "constraints/closeness.h"
 #include "constraints/normal_orthogonality.h"
@@ -67,11 +68,13 @@ NamedValues ToNamedValues(const StarPlanarityMeasures& m) {
   return values;
 }
 
-StarPlanarityMeasures MeasureStarPlanarity(const PolyMesh& mesh, const PolyMesh& reference) {
-  StarPlanarityMeasures m;
+namespace {
+
+// Per vertex: the largest distance of a neighbour from the star's least-squares plane / mean
+// edge (−1 for vertices with fewer than three neighbours).
+std::vector<double> VertexStarPlanarity(const PolyMesh& mesh) {
   const double mean_edge = MeanEdgeLength(mesh);
-  double sum = 0.0;
-  int count = 0;
+  std::vector<double> values(mesh.n_vertices(), -1.0);
   std::vector<Eigen::Vector3d> points;
   for (auto v : mesh.vertices()) {
     if (mesh.valence(v) < 3) continue;
@@ -81,7 +84,46 @@ StarPlanarityMeasures MeasureStarPlanarity(const PolyMesh& mesh, const PolyMesh&
     const Eigen::Vector3d n = StarNormal(c, points);
     double worst = 0.0;
     for (const auto& p : points) worst = std::max(worst, std::abs(n.dot(p - c)));
-    worst /= mean_edge;
+    values[v.idx()] = worst / mean_edge;
+  }
+  return values;
+}
+
+}  // namespace
+
+std::vector<double> FaceStarPlanarity(const PolyMesh& mesh) {
+  const std::vector<double> star = VertexStarPlanarity(mesh);
+  std::vector<double> values(mesh.n_faces(), 0.0);
+  for (auto f : mesh.faces())
+    for (auto v : mesh.fv_range(f)) values[f.idx()] = std::max(values[f.idx()], star[v.idx()]);
+  return values;
+}
+
+std::string ANetFaceValuesCsv(const PolyMesh& mesh) {
+  const std::vector<double> star = FaceStarPlanarity(mesh);
+  const std::vector<QuadShape> shapes = MeasureQuadShapes(mesh);
+  std::string csv = "face,star_planarity,kink_deg,min_angle_deg\n";
+  char line[128];
+  for (auto f : mesh.faces()) {
+    std::snprintf(line, sizeof(line), "%d,%.6e,%.6e,%.6f\n", f.idx(), star[f.idx()],
+                  shapes[f.idx()].kink_deg, shapes[f.idx()].min_angle_deg);
+    csv += line;
+  }
+  return csv;
+}
+
+ColourScale StarPlanarityColourScale(const PolyMesh& result) {
+  return ScaleFor("star planarity", FaceStarPlanarity(result), /*logarithmic=*/true);
+}
+
+StarPlanarityMeasures MeasureStarPlanarity(const PolyMesh& mesh, const PolyMesh& reference) {
+  StarPlanarityMeasures m;
+  double sum = 0.0;
+  int count = 0;
+  const std::vector<double> star = VertexStarPlanarity(mesh);
+  for (auto v : mesh.vertices()) {
+    const double worst = star[v.idx()];
+    if (worst < 0.0) continue;
     if (worst > m.max_star_planarity) {
       m.max_star_planarity = worst;
       m.worst_vertex = v.idx();
@@ -98,7 +140,8 @@ StarPlanarityMeasures MeasureStarPlanarity(const PolyMesh& mesh, const PolyMesh&
 nlohmann::json ANetFacts(const PolyMesh& input, const PolyMesh& result) {
   return {{"vertices", input.n_vertices()},
           {"faces", input.n_faces()},
-          {"shape_change", ShapeChangeJson(CompareCornerAngles(input, result, 30.0))}};
+          {"shape_change", ShapeChangeJson(CompareCornerAngles(input, result, 30.0))},
+          {"colour_scale", ColourScaleJson(StarPlanarityColourScale(result))}};
 }
 
 void CheckANetTopology(const PolyMesh& mesh, const std::string& path) {

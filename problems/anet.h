@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "geometry/closest_point.h"
+#include "geometry/face_colours.h"
 #include "geometry/mesh_io.h"
 #include "problems/guided_problem.h"
 #include "problems/mesh_variables.h"
@@ -76,9 +77,16 @@ NamedValues ToNamedValues(const StarPlanarityMeasures& m);
 
 StarPlanarityMeasures MeasureStarPlanarity(const PolyMesh& mesh, const PolyMesh& reference);
 
-// The report's facts about a run besides the solver's: vertices, faces and shape_change (corner
+// Per face: the largest star planarity (as in MeasureStarPlanarity) of its corners.
+std::vector<double> FaceStarPlanarity(const PolyMesh& mesh);
+// The table of `anet --face-values`: "face,star_planarity,kink_deg,min_angle_deg" per face.
+std::string ANetFaceValuesCsv(const PolyMesh& mesh);
+// The colour scale of the per-face pictures: FaceStarPlanarity on a log scale.
+ColourScale StarPlanarityColourScale(const PolyMesh& result);
+
+// The report's facts about a run besides the solver's: vertices, faces, shape_change (corner
 // angles changed by more than 30°: A-net quads are skew, their angles move more than planar
-// ones).
+// ones) and colour_scale.
 nlohmann::json ANetFacts(const PolyMesh& input, const PolyMesh& result);
 
 // Refuses (InputError naming the vertex/face) what an A-net cannot be: non-quad faces, and

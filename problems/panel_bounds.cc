@@ -122,6 +122,14 @@ NamedValues ShapeValues(const QuadShapeSummary& s) {
           {"max_planarity_abs", s.max_diagonal_distance}};
 }
 
+nlohmann::json ColourScaleJson(const ColourScale& scale) {
+  return {{"measure", scale.measure},
+          {"scale", scale.logarithmic ? "log10" : "linear"},
+          {"min", scale.min},
+          {"max", scale.max},
+          {"colours", "blue (min), yellow, red (max)"}};
+}
+
 nlohmann::json ShapeChangeJson(const ShapeChange& change) {
   return {{"threshold_deg", change.threshold_deg},
           {"quads_changed", change.quads_changed},

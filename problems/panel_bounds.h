@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "constraints/panel_validity.h"
+#include "geometry/face_colours.h"
 #include "geometry/mesh_io.h"
 #include "geometry/quad_shape.h"
 #include "problems/guided_problem.h"
@@ -51,6 +52,9 @@ std::vector<int> FacesAtCornerBound(const PolyMesh& mesh, const PanelBounds& bou
 // The shape measures a designer reads, as named values: non_convex_quads, min_corner_angle_deg,
 // max_kink_deg, max_planarity_abs (diagonal distance in the mesh's units).
 NamedValues ShapeValues(const QuadShapeSummary& summary);
+
+// The report's "colour_scale" object.
+nlohmann::json ColourScaleJson(const ColourScale& scale);
 
 // The report's "shape_change" object.
 nlohmann::json ShapeChangeJson(const ShapeChange& change);

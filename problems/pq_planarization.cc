@@ -53,14 +53,6 @@ ColourScale PlanarityColourScale(const PolyMesh& result, bool circular) {
                   RelativeFacePlanarity(result, circular), /*logarithmic=*/true);
 }
 
-nlohmann::json ColourScaleJson(const ColourScale& scale) {
-  return {{"measure", scale.measure},
-          {"scale", scale.logarithmic ? "log10" : "linear"},
-          {"min", scale.min},
-          {"max", scale.max},
-          {"colours", "blue (min), yellow, red (max)"}};
-}
-
 nlohmann::json PlanarizationFacts(const PolyMesh& input, const PolyMesh& result,
                                   const PQPlanarizationOptions& options) {
   return {{"linear_solver", LinearSolverTypeName(options.solver.linear_solver)},

@@ -85,7 +85,6 @@ nlohmann::json OptionsJson(const PQPlanarizationOptions& o);
 // The colour scale of the per-face pictures (--heatmap, --picture): RelativeFacePlanarity of
 // `result` on a log scale.
 ColourScale PlanarityColourScale(const PolyMesh& result, bool circular);
-nlohmann::json ColourScaleJson(const ColourScale& scale);
 
 // The report's facts about a run besides the solver's: linear_solver, vertices, faces, options,
 // shape_change (input against result) and colour_scale.

@@ -102,6 +102,28 @@ TEST_F(PlanarizeCommandTest, WritesFaceValuesAndAColouredHeatmap) {
   EXPECT_FALSE(fs::exists(dir_ / "o2.obj"));
 }
 
+TEST_F(PlanarizeCommandTest, ANetWritesStarPlanarityFaceValuesAndHeatmap) {
+  const std::string grid = (dir_ / "h.obj").string();
+  ASSERT_EQ(Gproj("grid --surface hyperboloid --nu 9 --nv 9 --noise 0.05 -o " + grid).exit_code, 0);
+  const CommandRun r = Gproj("anet " + grid + " -o " + (dir_ / "a.obj").string() +
+                             " --face-values " + (dir_ / "a.csv").string() + " --heatmap " +
+                             (dir_ / "a.ply").string() + " --report " + (dir_ / "r.json").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::istringstream csv(Slurp(dir_ / "a.csv"));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "face,star_planarity,kink_deg,min_angle_deg");
+  int rows = 0;
+  while (std::getline(csv, line)) ++rows;
+  EXPECT_EQ(rows, 64);
+  EXPECT_EQ(ReadMesh((dir_ / "a.ply").string()).n_faces(), 64u);
+  EXPECT_NE(Slurp(dir_ / "r.json").find("\"star planarity\""), std::string::npos);
+  const CommandRun wrong = Gproj("anet " + grid + " -o " + (dir_ / "b.obj").string() +
+                                 " --heatmap " + (dir_ / "b.off").string());
+  EXPECT_EQ(wrong.exit_code, 1);
+  EXPECT_FALSE(fs::exists(dir_ / "b.obj"));
+}
+
 TEST_F(PlanarizeCommandTest, ChecksEveryOutputPathBeforeWorking) {
   const std::string in = Write("in.obj", kQuad2x1);
   const std::string missing = (dir_ / "missing" / "x").string();
