@@ -182,11 +182,7 @@ void AddPanelBoundsOptions(CLI::App* command, PanelBoundsOptions* panels) {
       ->expected(2)
       ->check(NonNegative());
   command->add_flag_callback(
-      "--allow-folds",
-      [panels]() {
-        panels->corners = false;
-        panels->min_edge_fraction = 0.0;
-      },
+      "--allow-folds", [panels]() { panels->AllowFolds(); },
       "No corner-angle or default edge bounds: quads may turn non-convex or fold");
 }
 
@@ -202,6 +198,19 @@ void AddVertexControlOptions(CLI::App* command, std::string* fixed_path,
                  "Boundary vertices slide along the input's boundary (they stay on it to "
                  "rounding)")
       ->excludes(fix);
+}
+
+void AddFaceOutputOptions(CLI::App* command, std::string* face_values, std::string* heatmap,
+                          std::string* picture, const std::string& columns,
+                          const std::string& measure) {
+  command->add_option("--face-values", *face_values, "Write per-face values as CSV: " + columns);
+  command->add_option("--heatmap", *heatmap,
+                      "Write the result as a .ply with a colour per face (" + measure +
+                          ", log scale; MeshLab and Blender show it; the scale is in the report)");
+  command->add_option("--picture", *picture,
+                      "Also write a shaded picture of the result (.svg, opens in any browser), "
+                      "each face coloured by its " +
+                          measure);
 }
 
 void CheckHeatmapPath(const std::string& path) {

@@ -73,6 +73,12 @@ void AddPanelBoundsOptions(CLI::App* command, PanelBoundsOptions* panels);
 void AddVertexControlOptions(CLI::App* command, std::string* fixed_path,
                              VertexControlOptions* options);
 
+// --face-values, --heatmap and --picture of a quad-mesh command; `columns` names the CSV's
+// columns, `measure` what the colours show.
+void AddFaceOutputOptions(CLI::App* command, std::string* face_values, std::string* heatmap,
+                          std::string* picture, const std::string& columns,
+                          const std::string& measure);
+
 // Throws InputError unless `path` is empty or ends in .ply (the --heatmap format).
 void CheckHeatmapPath(const std::string& path);
 

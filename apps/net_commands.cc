@@ -149,7 +149,7 @@ int RunANet(NetArgs& args) {
           m.max_glide_distance);
     PrintPanelSummary(report.initial, report.final);
     WarnIfFarFromInput("anet", "an A-net (asymptotic)", mesh, anet->Result(), m.max_displacement,
-                       30.0);
+                       kANetShapeChangeDeg);
   }
   return ConcludeRun("anet", report, "max_star_planarity", args.options.anet.tolerance,
                      {args.output, args.picture, args.face_values, args.heatmap, args.report});
@@ -238,14 +238,10 @@ void RegisterNetCommands(CLI::App* app, int* exit_code) {
       "fair (004 §3.2). Exit codes as for planarize.");
   AddSharedOptions(a, anet.get());
   a->add_option("-o,--output", anet->output, "A-net mesh to write")->required();
-  a->add_option("--face-values", anet->face_values,
-                "Write per-face values as CSV: face, star_planarity (largest of its corners', / "
-                "mean edge), kink_deg, min_angle_deg");
-  a->add_option("--heatmap", anet->heatmap,
-                "Write the result as a .ply with a colour per face (star planarity, log scale; "
-                "the scale is in the report)");
-  a->add_option("--picture", anet->picture,
-                "Also write a shaded picture of the result (.svg), coloured like the heatmap");
+  AddFaceOutputOptions(a, &anet->face_values, &anet->heatmap, &anet->picture,
+                       "face, star_planarity (largest of its corners', / mean edge), kink_deg, "
+                       "min_angle_deg",
+                       "star planarity");
   a->callback([anet, exit_code]() { *exit_code = RunANet(*anet); });
 
   auto hnet = std::make_shared<NetArgs>();

@@ -129,16 +129,11 @@ void RegisterPlanarizeCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--report", args->report,
                   "Write a JSON report: converged, iterations, seconds, variables, per-iteration "
                   "history and the initial and final measures");
-  cmd->add_option("--picture", args->picture,
-                  "Also write a shaded picture of the result (.svg, opens in any browser), each "
-                  "face coloured by its planarity");
-  cmd->add_option("--face-values", args->face_values,
-                  "Write per-face values as CSV: face, planarity (/ mean edge), planarity_abs "
-                  "(input units), kink_deg (between the quad's two triangles), min_angle_deg "
-                  "(and concyclicity with --circular)");
-  cmd->add_option("--heatmap", args->heatmap,
-                  "Write the result as a .ply with a colour per face (planarity, log scale; "
-                  "MeshLab and Blender show it; the scale is in the report)");
+  AddFaceOutputOptions(cmd, &args->face_values, &args->heatmap, &args->picture,
+                       "face, planarity (/ mean edge), planarity_abs (input units), kink_deg "
+                       "(between the quad's two triangles), min_angle_deg (and concyclicity with "
+                       "--circular)",
+                       "planarity");
   cmd->add_option("--solver", args->solver,
                   "gp: guided projection (default); ceres: Levenberg-Marquardt on the same "
                   "residuals (cross-check)")

@@ -53,21 +53,20 @@ void PolylineGliding::Update(const VariableLayout& layout, const Eigen::VectorXd
     const Eigen::Vector3d p = x.segment<3>(layout.ItemOffset(element_items(e)[0]));
     Eigen::Vector3d direction;
     const std::vector<Eigen::Vector3d>& polyline = polylines_[polyline_of_[e]];
-    ClosestPoint(polyline, p, &foot_[e], &direction);
-    if (retraction_) {
+    int segment = 0;
+    double t = 0.5;
+    ClosestPoint(polyline, p, &foot_[e], &direction, &segment, &t);
+    const bool at_corner = t <= 1e-12 || t >= 1.0 - 1e-12;
+    if (retraction_ && at_corner) {
       // At a corner of the polyline the tangent is that of neither segment: glide along the
       // bisecting direction (from the previous to the next corner), so a step can cross it.
-      for (size_t i = 0; i < polyline.size(); ++i) {
-        if ((polyline[i] - foot_[e]).squaredNorm() > 1e-24 * (1.0 + foot_[e].squaredNorm()))
-          continue;
-        const bool closed = polyline.size() > 2 && polyline.front() == polyline.back();
-        const size_t last = polyline.size() - 1;
-        size_t prev = i > 0 ? i - 1 : (closed ? last - 1 : i);
-        size_t next = i < last ? i + 1 : (closed ? 1 : i);
-        const Eigen::Vector3d chord = polyline[next] - polyline[prev];
-        if (chord.squaredNorm() > 0.0) direction = chord.normalized();
-        break;
-      }
+      const int i = segment + (t > 0.5 ? 1 : 0);
+      const int last = static_cast<int>(polyline.size()) - 1;
+      const bool closed = polyline.size() > 2 && polyline.front() == polyline.back();
+      const int prev = i > 0 ? i - 1 : (closed ? last - 1 : i);
+      const int next = i < last ? i + 1 : (closed ? 1 : i);
+      const Eigen::Vector3d chord = polyline[next] - polyline[prev];
+      if (chord.squaredNorm() > 0.0) direction = chord.normalized();
     }
     e1_[e] = direction.unitOrthogonal();
     e2_[e] = direction.cross(e1_[e]);
@@ -94,17 +93,19 @@ double PolylineGliding::DistanceToPolyline(int e, const VariableLayout& layout,
 
 void PolylineGliding::ClosestPoint(const std::vector<Eigen::Vector3d>& polyline,
                                    const Eigen::Vector3d& p, Eigen::Vector3d* foot,
-                                   Eigen::Vector3d* direction) {
+                                   Eigen::Vector3d* direction, int* segment, double* t) {
   double best = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i + 1 < polyline.size(); ++i) {
     const Eigen::Vector3d a = polyline[i], ab = polyline[i + 1] - a;
-    const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
-    const Eigen::Vector3d q = a + t * ab;
+    const double s = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+    const Eigen::Vector3d q = a + s * ab;
     const double d = (q - p).squaredNorm();
     if (d < best) {
       best = d;
       *foot = q;
       *direction = ab.normalized();
+      if (segment != nullptr) *segment = static_cast<int>(i);
+      if (t != nullptr) *t = s;
     }
   }
 }

@@ -26,6 +26,13 @@ bool QuadPoints(const PolyMesh& mesh, PolyMesh::FaceHandle f, Eigen::Vector3d* p
   return true;
 }
 
+// The mean edge length (1 for a mesh without edges): the unit of the relative measures.
+double MeanEdge(const PolyMesh& mesh) {
+  double sum = 0.0;
+  for (auto e : mesh.edges()) sum += mesh.calc_edge_length(e);
+  return mesh.n_edges() > 0 ? sum / mesh.n_edges() : 1.0;
+}
+
 }  // namespace
 
 std::array<double, 4> QuadCornerAngles(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
@@ -81,9 +88,7 @@ QuadShapeSummary Summarize(const std::vector<QuadShape>& shapes) {
 }
 
 std::vector<double> RelativeFacePlanarity(const PolyMesh& mesh, bool circular) {
-  double edge_sum = 0.0;
-  for (auto e : mesh.edges()) edge_sum += mesh.calc_edge_length(e);
-  const double mean_edge = mesh.n_edges() > 0 ? edge_sum / mesh.n_edges() : 1.0;
+  const double mean_edge = MeanEdge(mesh);
   std::vector<double> values(mesh.n_faces(), 0.0);
   Eigen::Vector3d p[4];
   for (auto f : mesh.faces()) {
@@ -96,9 +101,7 @@ std::vector<double> RelativeFacePlanarity(const PolyMesh& mesh, bool circular) {
 }
 
 std::string QuadShapesCsv(const PolyMesh& mesh, bool circular) {
-  double edge_sum = 0.0;
-  for (auto e : mesh.edges()) edge_sum += mesh.calc_edge_length(e);
-  const double mean_edge = mesh.n_edges() > 0 ? edge_sum / mesh.n_edges() : 1.0;
+  const double mean_edge = MeanEdge(mesh);
   std::string csv = "face,planarity,planarity_abs,kink_deg,min_angle_deg";
   csv += circular ? ",concyclicity\n" : "\n";
   char line[192];

@@ -138,10 +138,11 @@ StarPlanarityMeasures MeasureStarPlanarity(const PolyMesh& mesh, const PolyMesh&
 }
 
 nlohmann::json ANetFacts(const PolyMesh& input, const PolyMesh& result) {
-  return {{"vertices", input.n_vertices()},
-          {"faces", input.n_faces()},
-          {"shape_change", ShapeChangeJson(CompareCornerAngles(input, result, 30.0))},
-          {"colour_scale", ColourScaleJson(StarPlanarityColourScale(result))}};
+  return {
+      {"vertices", input.n_vertices()},
+      {"faces", input.n_faces()},
+      {"shape_change", ShapeChangeJson(CompareCornerAngles(input, result, kANetShapeChangeDeg))},
+      {"colour_scale", ColourScaleJson(StarPlanarityColourScale(result))}};
 }
 
 void CheckANetTopology(const PolyMesh& mesh, const std::string& path) {

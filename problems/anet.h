@@ -88,6 +88,8 @@ ColourScale StarPlanarityColourScale(const PolyMesh& result);
 // angles changed by more than 30°: A-net quads are skew, their angles move more than planar
 // ones) and colour_scale.
 nlohmann::json ANetFacts(const PolyMesh& input, const PolyMesh& result);
+// The corner-angle change (degrees) that counts as a large shape change for A-nets.
+constexpr double kANetShapeChangeDeg = 30.0;
 
 // Refuses (InputError naming the vertex/face) what an A-net cannot be: non-quad faces, and
 // inner vertices of odd valence. `path` goes into the message.

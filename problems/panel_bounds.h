@@ -29,6 +29,12 @@ struct PanelBoundsOptions {
   double max_edge_length = 0.0;
   double min_edge_fraction = 0.1;
 
+  // No bounds at all (--allow-folds): neither corner rows nor the default edge floor.
+  void AllowFolds() {
+    corners = false;
+    min_edge_fraction = 0.0;
+  }
+
   bool IsValid(std::string* why) const;
 };
 

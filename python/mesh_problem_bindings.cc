@@ -52,10 +52,7 @@ void ApplyMeshControl(double min_angle, const py::object& edge_length, bool allo
     panels->min_edge_length = bounds.first;
     panels->max_edge_length = bounds.second;
   }
-  if (allow_folds) {
-    panels->corners = false;
-    panels->min_edge_fraction = 0.0;
-  }
+  if (allow_folds) panels->AllowFolds();
   vertices->fixed = VertexIds(fixed, num_vertices);
   vertices->fix_boundary = fix_boundary;
   vertices->glide_boundary = glide_boundary;

@@ -65,8 +65,7 @@ TEST(PQPlanarizationValidityTest, WithoutTheBoundsTheSameGridFolds) {
   const PolyMesh mesh = MakeQuadGrid(Twisted(41));
   PQPlanarizationOptions options;
   options.solver.fairness_weight = 0.0;
-  options.panels.corners = false;
-  options.panels.min_edge_fraction = 0.0;
+  options.panels.AllowFolds();
   PQPlanarization pq(mesh, options);
   ASSERT_TRUE(pq.Run().converged);
   EXPECT_GT(pq.Measures().shape.non_convex, 5);
@@ -89,8 +88,7 @@ TEST(PQPlanarizationValidityTest, EnergyNeverRisesFromOneIterationToTheNext) {
   PQPlanarizationOptions plain;
   plain.solver.monotone = false;
   plain.closeness_weight = 1.0;
-  plain.panels.corners = false;
-  plain.panels.min_edge_fraction = 0.0;
+  plain.panels.AllowFolds();
   EXPECT_GT(max_rise(plain), 2.0);
 }
 
@@ -104,8 +102,7 @@ TEST(PQPlanarizationValidityTest, DefaultMovesLittleMoreThanAClosenessDominatedS
   PQPlanarizationOptions closeness;
   closeness.solver.fairness_weight = 0.0;
   closeness.closeness_weight = 100.0;
-  closeness.panels.corners = false;
-  closeness.panels.min_edge_fraction = 0.0;
+  closeness.panels.AllowFolds();
   PQPlanarization dominated(mesh, closeness);
   ASSERT_TRUE(dominated.Run().converged);
   EXPECT_LE(by_default.Measures().max_displacement, 1.5 * dominated.Measures().max_displacement);
