@@ -53,33 +53,9 @@ void PolylineGliding::Update(const VariableLayout& layout, const Eigen::VectorXd
     const Eigen::Vector3d p = x.segment<3>(layout.ItemOffset(element_items(e)[0]));
     Eigen::Vector3d direction;
     const std::vector<Eigen::Vector3d>& polyline = polylines_[polyline_of_[e]];
-    int segment = 0;
-    double t = 0.5;
-    ClosestPoint(polyline, p, &foot_[e], &direction, &segment, &t);
-    const bool at_corner = t <= 1e-12 || t >= 1.0 - 1e-12;
-    if (retraction_ && at_corner) {
-      // At a corner of the polyline the tangent is that of neither segment: glide along the
-      // bisecting direction (from the previous to the next corner), so a step can cross it.
-      const int i = segment + (t > 0.5 ? 1 : 0);
-      const int last = static_cast<int>(polyline.size()) - 1;
-      const bool closed = polyline.size() > 2 && polyline.front() == polyline.back();
-      const int prev = i > 0 ? i - 1 : (closed ? last - 1 : i);
-      const int next = i < last ? i + 1 : (closed ? 1 : i);
-      const Eigen::Vector3d chord = polyline[next] - polyline[prev];
-      if (chord.squaredNorm() > 0.0) direction = chord.normalized();
-    }
+    ClosestPoint(polyline, p, &foot_[e], &direction);
     e1_[e] = direction.unitOrthogonal();
     e2_[e] = direction.cross(e1_[e]);
-  }
-}
-
-void PolylineGliding::Project(const VariableLayout& layout, Eigen::VectorXd* x) const {
-  if (!retraction_) return;
-  for (int e = 0; e < num_elements(); ++e) {
-    auto p = x->segment<3>(layout.ItemOffset(element_items(e)[0]));
-    Eigen::Vector3d foot, direction;
-    ClosestPoint(polylines_[polyline_of_[e]], p, &foot, &direction);
-    p = foot;
   }
 }
 

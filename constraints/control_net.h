@@ -5,8 +5,9 @@
 //   PolylineGliding: a point glides along a fixed polyline β: with q the closest point of β to
 //     the point at x^k and t the polyline's direction there, (c − q)·e1 = 0 and (c − q)·e2 = 0
 //     with e1, e2 ⟂ t (frozen at x^k, refreshed by Update). Items {c}. Role kConstraint.
-//     With SetRetraction(true) every trial point is also moved onto its polyline (Project), so
-//     the points stay on it to rounding while the rows keep the steps tangent.
+//     The rows are not followed by a closest-point retraction onto β: at a corner of β the
+//     retraction moves a point across the rows' tangent to first order, and monotone steps
+//     then stall; the rows alone bring the points onto β to the constraint tolerance.
 
 #include <Eigen/Core>
 #include <vector>
@@ -39,11 +40,11 @@ class PolylineGliding : public ConstraintFamily {
   int AddPoint(int item, const std::vector<Eigen::Vector3d>& polyline) {
     return AddPoint(item, AddPolyline(polyline));
   }
-  void SetRetraction(bool on) { retraction_ = on; }
 
   void EvaluateElement(int e, const double* x, double* phi, double* jac) const override;
   void Update(const VariableLayout& layout, const Eigen::VectorXd& x) override;
-  void Project(const VariableLayout& layout, Eigen::VectorXd* x) const override;
+  // The rows' frame turns from segment to segment, so a shifted target would point elsewhere.
+  bool ShiftsTargets() const override { return false; }
 
   // Distance from the point of element e (at x) to its polyline.
   double DistanceToPolyline(int e, const VariableLayout& layout, const Eigen::VectorXd& x) const;
@@ -58,7 +59,6 @@ class PolylineGliding : public ConstraintFamily {
   std::vector<std::vector<Eigen::Vector3d>> polylines_;
   std::vector<int> polyline_of_;  // per element
   std::vector<Eigen::Vector3d> foot_, e1_, e2_;
-  bool retraction_ = false;
 };
 
 }  // namespace gproj

@@ -39,6 +39,40 @@ std::vector<std::vector<int>> BoundaryLoops(const PolyMesh& mesh) {
   return loops;
 }
 
+bool IsBoundaryCorner(const PolyMesh& mesh, int previous, int v, int next) {
+  const auto vh = mesh.vertex_handle(v);
+  int faces = 0;
+  for (auto f = mesh.cvf_begin(vh); f.is_valid(); ++f) ++faces;
+  if (faces <= 1) return true;
+  const Eigen::Vector3d p = ToEigen(mesh.point(vh));
+  const Eigen::Vector3d in = p - ToEigen(mesh.point(mesh.vertex_handle(previous)));
+  const Eigen::Vector3d out = ToEigen(mesh.point(mesh.vertex_handle(next))) - p;
+  const double turn = std::atan2(in.cross(out).norm(), in.dot(out));
+  return turn > kBoundaryCornerTurnDeg * M_PI / 180.0;
+}
+
+std::vector<std::vector<int>> SplitAtCorners(const PolyMesh& mesh, const std::vector<int>& loop) {
+  const int m = static_cast<int>(loop.size());
+  std::vector<int> corners;
+  for (int i = 0; i < m; ++i)
+    if (IsBoundaryCorner(mesh, loop[(i + m - 1) % m], loop[i], loop[(i + 1) % m]))
+      corners.push_back(i);
+  std::vector<std::vector<int>> paths;
+  if (corners.empty()) {
+    paths.push_back(loop);
+    paths.back().push_back(loop.front());
+    return paths;
+  }
+  for (size_t c = 0; c < corners.size(); ++c) {
+    const int begin = corners[c];
+    const int end = c + 1 < corners.size() ? corners[c + 1] : corners.front() + m;
+    std::vector<int> path;
+    for (int i = begin; i <= end; ++i) path.push_back(loop[i % m]);
+    paths.push_back(std::move(path));
+  }
+  return paths;
+}
+
 VertexControl ApplyVertexControl(const PolyMesh& mesh, const MeshNormalization& norm,
                                  int vertex_block, const VertexControlOptions& options,
                                  Problem* problem) {
@@ -58,6 +92,15 @@ VertexControl ApplyVertexControl(const PolyMesh& mesh, const MeshNormalization& 
   if (options.fix_boundary)
     for (auto v : mesh.vertices())
       if (mesh.is_boundary(v)) held[v.idx()] = true;
+  std::vector<std::vector<int>> glide_paths;
+  if (options.glide_boundary)
+    for (const std::vector<int>& loop : BoundaryLoops(mesh))
+      for (std::vector<int>& path : SplitAtCorners(mesh, loop)) {
+        // A corner ends two paths and is held: gliding around it is not sliding along the
+        // boundary, and its tangent is that of neither side.
+        if (path.front() != path.back()) held[path.front()] = held[path.back()] = true;
+        glide_paths.push_back(std::move(path));
+      }
   const VariableLayout& layout = problem->layout();
   for (int v = 0; v < n; ++v)
     if (held[v]) {
@@ -66,14 +109,12 @@ VertexControl ApplyVertexControl(const PolyMesh& mesh, const MeshNormalization& 
     }
   if (options.glide_boundary) {
     out.glide = problem->AddFamily<PolylineGliding>(1.0, "boundary_gliding");
-    out.glide->SetRetraction(true);
-    for (const std::vector<int>& loop : BoundaryLoops(mesh)) {
+    for (const std::vector<int>& path : glide_paths) {
       std::vector<Eigen::Vector3d> points;
-      for (int v : loop)
+      for (int v : path)
         points.push_back(norm.ToProblem(ToEigen(mesh.point(mesh.vertex_handle(v)))));
-      points.push_back(points.front());
       const int id = out.glide->AddPolyline(std::move(points));
-      for (int v : loop)
+      for (int v : path)
         if (!held[v]) out.glide->AddPoint(layout.Item(vertex_block, v), id);
     }
   }

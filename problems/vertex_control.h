@@ -1,8 +1,8 @@
 #pragma once
 // Vertex control for the mesh problems (planarisation, circular meshes, A-nets): vertices held
 // exactly (Problem::SetConstant: no derivative, untouched bit for bit), boundary vertices gliding
-// along the input's boundary loops (PolylineGliding rows with a retraction onto the loop after
-// every step, so they stay on it to rounding), and closeness to a reference surface through the
+// along the input's boundary loops (PolylineGliding rows, met to the constraint tolerance; the
+// loops cut at their corners, which are held), and closeness to a reference surface through the
 // tangent plane of the closest point plus a weaker point term (004 §3.2), so vertices slide along
 // the surface instead of being pinned to their start.
 
@@ -20,7 +20,8 @@ namespace gproj {
 struct VertexControlOptions {
   std::vector<int> fixed;       // vertex ids held exactly
   bool fix_boundary = false;    // every boundary vertex held
-  bool glide_boundary = false;  // boundary vertices not held slide along their boundary loop
+  bool glide_boundary = false;  // boundary vertices not held slide along their boundary path
+                                // between corners (kBoundaryCornerTurnDeg), corners held
 
   bool IsValid(std::string* why) const;
 };
@@ -59,5 +60,14 @@ void AddReferenceCloseness(const ClosestPointQuery& reference, const MeshNormali
 
 // The boundary loops of a mesh, each as its vertex ids in order.
 std::vector<std::vector<int>> BoundaryLoops(const PolyMesh& mesh);
+
+// A boundary vertex is a corner when it lies in one face only (the corner of a quad grid) or
+// the boundary turns there by more than this angle.
+inline constexpr double kBoundaryCornerTurnDeg = 30.0;
+bool IsBoundaryCorner(const PolyMesh& mesh, int previous, int v, int next);
+
+// A boundary loop cut at its corners into paths from corner to corner (each corner ends one path
+// and starts the next); a loop without corners comes back closed (first id repeated at the end).
+std::vector<std::vector<int>> SplitAtCorners(const PolyMesh& mesh, const std::vector<int>& loop);
 
 }  // namespace gproj

@@ -66,6 +66,11 @@ class ConstraintFamily {
   // trial point, so such unknowns never lag behind the ones they are made from.
   virtual void Project(const VariableLayout& layout, Eigen::VectorXd* x) const {}
 
+  // Whether shifted targets (SolverOptions::shifted_constraints) apply to the rows. Bounds
+  // (inequalities with their slacks, φ = min(g, 0)) say no: a shifted target would keep
+  // pushing a bound that is met.
+  virtual bool ShiftsTargets() const { return true; }
+
   const std::string& name() const { return name_; }
   FamilyRole role() const { return role_; }
   double weight() const { return weight_; }

@@ -70,6 +70,8 @@ class InequalityTerm : public Term<Data, SlackResidual<Residual, kRows>, kRows, 
             std::isfinite(r[i]) && r[i] > 0.0 ? std::sqrt(r[i]) : 0.0;
     }
   }
+
+  bool ShiftsTargets() const override { return false; }
 };
 
 namespace internal {

@@ -131,7 +131,8 @@ bool LinearizedSystem::Assemble(const Eigen::VectorXd& x, double fairness_weight
 void LinearizedSystem::ShiftConstraintTargets() {
   if (shift_.size() == 0) shift_.setZero(a_.num_cols);
   for (int f = 0; f < problem_->num_families(); ++f) {
-    if (problem_->family(f).role() != FamilyRole::kConstraint) continue;
+    const ConstraintFamily& family = problem_->family(f);
+    if (family.role() != FamilyRole::kConstraint || !family.ShiftsTargets()) continue;
     for (int col = family_row_begin_[f]; col < family_row_begin_[f + 1]; ++col) {
       shift_[col] -= phi_[col];
       r_[col] = row_scale_[f] * (phi_[col] - shift_[col]);

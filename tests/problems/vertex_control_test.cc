@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -63,27 +65,80 @@ TEST(VertexControlTest, FixedBoundaryStaysAndTheInsideBecomesPlanar) {
   EXPECT_EQ(pq.Measures().shape.non_convex, 0);
 }
 
+// Boundary vertices glide along the input's boundary, the grid's four corners are held; on a
+// conjugate-looking grid and on a twisted one whose grid lines are the rulings (far from
+// conjugate, where a closest-point retraction after each step used to stall at 7e-3).
 TEST(VertexControlTest, GlidingBoundaryVerticesSlideAlongTheInputBoundary) {
-  const PolyMesh mesh = NoisyParaboloid(41);
-  PQPlanarizationOptions options;
-  options.vertices.glide_boundary = true;
-  PQPlanarization pq(mesh, options);
-  const RunReport report = pq.Run();
-  ASSERT_TRUE(report.converged) << report.termination;
-  EXPECT_LE(ValueOf(report.final, "max_glide_distance"), 1e-9);
-  const PolyMesh out = pq.Result();
+  for (double twist : {0.0, 0.3}) {
+    QuadGridOptions grid;
+    grid.nu = grid.nv = 41;
+    grid.noise = 0.05;
+    grid.c = twist;
+    const PolyMesh mesh = MakeQuadGrid(grid);
+    PQPlanarizationOptions options;
+    options.vertices.glide_boundary = true;
+    PQPlanarization pq(mesh, options);
+    const RunReport report = pq.Run();
+    ASSERT_TRUE(report.converged) << twist << " " << report.termination;
+    EXPECT_LE(pq.Measures().max_planarity, 1e-9);
+    EXPECT_EQ(pq.Measures().shape.non_convex, 0);
+    EXPECT_LE(ValueOf(report.final, "max_glide_distance"), 1e-9);
+    const PolyMesh out = pq.Result();
+    const std::vector<std::vector<int>> loops = BoundaryLoops(mesh);
+    ASSERT_EQ(loops.size(), 1u);
+    EXPECT_EQ(loops[0].size(), 160u);
+    const double diagonal = 2.0 * std::sqrt(2.0);  // about; the bound is far below any slip
+    double worst = 0.0, slid = 0.0;
+    for (int v : loops[0]) {
+      const Eigen::Vector3d p = ToEigen(out.point(out.vertex_handle(v)));
+      worst = std::max(worst, DistanceToLoop(mesh, loops[0], p));
+      slid = std::max(slid, (p - ToEigen(mesh.point(mesh.vertex_handle(v)))).norm());
+    }
+    EXPECT_LE(worst / diagonal, 1e-9) << twist;
+    EXPECT_GT(slid, 1e-5) << twist;  // they did slide
+    for (int corner : {0, 40, 1640, 1680})
+      EXPECT_EQ(out.point(out.vertex_handle(corner)), mesh.point(mesh.vertex_handle(corner)));
+  }
+}
+
+TEST(VertexControlTest, BoundaryLoopsAreCutAtTheirCorners) {
+  QuadGridOptions grid;
+  grid.nu = 5, grid.nv = 4;
+  grid.noise = 0.0;
+  const PolyMesh mesh = MakeQuadGrid(grid);
   const std::vector<std::vector<int>> loops = BoundaryLoops(mesh);
   ASSERT_EQ(loops.size(), 1u);
-  EXPECT_EQ(loops[0].size(), 160u);
-  const double diagonal = 2.0 * std::sqrt(2.0);  // about; the bound is far below any slip
-  double worst = 0.0, slid = 0.0;
-  for (int v : loops[0]) {
-    const Eigen::Vector3d p = ToEigen(out.point(out.vertex_handle(v)));
-    worst = std::max(worst, DistanceToLoop(mesh, loops[0], p));
-    slid = std::max(slid, (p - ToEigen(mesh.point(mesh.vertex_handle(v)))).norm());
+  const std::vector<std::vector<int>> paths = SplitAtCorners(mesh, loops[0]);
+  ASSERT_EQ(paths.size(), 4u);  // the grid's corners, each in one face
+  std::vector<int> lengths;
+  for (const std::vector<int>& path : paths) {
+    lengths.push_back(static_cast<int>(path.size()));
+    for (int end : {path.front(), path.back()}) {
+      int faces = 0;
+      for (auto f = mesh.cvf_begin(mesh.vertex_handle(end)); f.is_valid(); ++f) ++faces;
+      EXPECT_EQ(faces, 1) << end;
+    }
   }
-  EXPECT_LE(worst / diagonal, 1e-9);
-  EXPECT_GT(slid, 1e-5);  // they did slide
+  std::sort(lengths.begin(), lengths.end());
+  EXPECT_EQ(lengths, (std::vector<int>{4, 4, 5, 5}));
+
+  // A ring of quads around a hole: its loops turn by 360/16 = 22.5 degrees at every vertex
+  // and have no vertex in one face only, so they come back whole and closed.
+  PolyMesh ring;
+  std::vector<PolyMesh::VertexHandle> inner, outer;
+  for (int i = 0; i < 16; ++i) {
+    const double a = 2.0 * M_PI * i / 16;
+    inner.push_back(ring.add_vertex({std::cos(a), std::sin(a), 0.0}));
+    outer.push_back(ring.add_vertex({2 * std::cos(a), 2 * std::sin(a), 0.0}));
+  }
+  for (int i = 0; i < 16; ++i)
+    ring.add_face({inner[i], outer[i], outer[(i + 1) % 16], inner[(i + 1) % 16]});
+  for (const std::vector<int>& loop : BoundaryLoops(ring)) {
+    const std::vector<std::vector<int>> whole = SplitAtCorners(ring, loop);
+    ASSERT_EQ(whole.size(), 1u);
+    EXPECT_EQ(whole[0].size(), 17u);
+    EXPECT_EQ(whole[0].front(), whole[0].back());
+  }
 }
 
 TEST(VertexControlTest, ReferenceSurfacePullsVerticesOntoIt) {

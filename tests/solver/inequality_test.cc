@@ -76,5 +76,22 @@ TEST(InequalityTest, CeresMinimisesTheSameRows) {
   EXPECT_NEAR(problem.x()[1], 0.0, 1e-6);
 }
 
+// Shifted targets (SolverOptions::shifted_constraints) leave the bounds alone: a target shifted
+// while the bound was broken would keep pushing after it holds, i.e. tighten it. The start
+// breaks x ≥ 1 and is pulled to the origin by a weight that fades, so the bound is active.
+TEST(InequalityTest, ShiftedTargetsDoNotTightenABound) {
+  Problem problem = HalfPlaneProblem({{0.2, -1.0}}, 1.0);
+  SolverOptions options;
+  options.shifted_constraints = true;
+  options.soft_weight_decay = 0.5;
+  options.residual_tolerance = 0.0;
+  options.step_tolerance = 0.0;
+  options.max_iterations = 60;
+  const SolverSummary summary = Solve(options, &problem);
+  EXPECT_TRUE(summary.usable) << summary.FullReport();
+  EXPECT_NEAR(problem.x()[0], 1.0, 1e-6) << summary.FullReport();
+  EXPECT_NEAR(problem.x()[1], 0.0, 1e-6);
+}
+
 }  // namespace
 }  // namespace gproj
