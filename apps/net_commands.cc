@@ -23,6 +23,18 @@ struct NetArgs {
   HNetOptions options;
 };
 
+// After a run that missed its tolerance with the whole boundary held or gliding: why that is
+// likely (the asymptotic lines' equations are hyperbolic, fixed by two crossing curves).
+void HintBoundaryControl(const char* command, const VertexControlOptions& vertices,
+                         bool converged) {
+  if (converged || !(vertices.fix_boundary || vertices.glide_boundary)) return;
+  std::fprintf(stderr,
+               "gproj %s: note: an asymptotic net is fixed by two crossing boundary curves; "
+               "keeping the whole boundary%s over-determines it unless the boundary is already "
+               "asymptotic (hold a few vertices with --fixed instead)\n",
+               command, vertices.glide_boundary ? " on the input's loops" : "");
+}
+
 void AddSharedOptions(CLI::App* cmd, NetArgs* args) {
   ANetOptions& o = args->options.anet;
   cmd->add_option("input", args->input,
@@ -150,6 +162,7 @@ int RunANet(NetArgs& args) {
     PrintPanelSummary(report.initial, report.final);
     WarnIfFarFromInput("anet", "an A-net (asymptotic)", mesh, anet->Result(), m.max_displacement,
                        kANetShapeChangeDeg);
+    HintBoundaryControl("anet", args.options.anet.vertices, report.converged);
   }
   return ConcludeRun("anet", report, "max_star_planarity", args.options.anet.tolerance,
                      {args.output, args.picture, args.face_values, args.heatmap, args.report});
@@ -224,6 +237,7 @@ int RunHNet(NetArgs& args) {
                 summary.equitwist_violations.size());
   if (!summary.simply_connected)
     std::printf("warning: the mesh is not simply connected; the result is an optimisation only\n");
+  HintBoundaryControl("hnet", args.options.anet.vertices, report.converged);
   return ConcludeRun("hnet", report, "weight_change", args.options.weight_tolerance,
                      {args.output, args.surface_mesh, args.picture, args.report});
 }

@@ -124,6 +124,24 @@ TEST_F(PlanarizeCommandTest, ANetWritesStarPlanarityFaceValuesAndHeatmap) {
   EXPECT_FALSE(fs::exists(dir_ / "b.obj"));
 }
 
+// A jittered grid's boundary is not asymptotic: held or kept on its loops, no A-net fits it,
+// and the exit-3 message says why.
+TEST_F(PlanarizeCommandTest, ANetWithTheWholeBoundaryHeldSaysWhyItMissesTheTolerance) {
+  const std::string grid = (dir_ / "h.obj").string();
+  ASSERT_EQ(Gproj("grid --surface hyperboloid --nu 9 --nv 9 --noise 0.05 -o " + grid).exit_code, 0);
+  for (const char* control : {" --fix-boundary", " --glide-boundary", ""}) {
+    const CommandRun r = Gproj("anet " + grid + " -o " + (dir_ / "a.obj").string() + control);
+    const bool noted = r.err.find("over-determines") != std::string::npos;
+    if (*control != '\0') {
+      EXPECT_EQ(r.exit_code, 3) << control << r.err;
+      EXPECT_TRUE(noted) << control << r.err;
+    } else {
+      EXPECT_EQ(r.exit_code, 0) << r.err;
+      EXPECT_FALSE(noted) << r.err;
+    }
+  }
+}
+
 TEST_F(PlanarizeCommandTest, ChecksEveryOutputPathBeforeWorking) {
   const std::string in = Write("in.obj", kQuad2x1);
   const std::string missing = (dir_ / "missing" / "x").string();
