@@ -109,6 +109,14 @@ int RunPlanarize(PlanarizeArgs args) {
                    "gproj planarize: %zu quads sit on their corner-angle bound (--min-angle %g): "
                    "%s\n",
                    held.size(), options.panels.min_angle_deg, FaceList(held).c_str());
+    const std::vector<std::array<int, 2>> short_or_long = pq->EdgesAtLengthBound();
+    if (!short_or_long.empty())
+      std::fprintf(stderr, "gproj planarize: %zu edges sit on their length bound (%s): %s\n",
+                   short_or_long.size(),
+                   options.panels.min_edge_length > 0.0 || options.panels.max_edge_length > 0.0
+                       ? "--edge-length"
+                       : "a tenth of their input length",
+                   EdgeList(short_or_long).c_str());
   }
   return code;
 }

@@ -6,7 +6,9 @@
 //     N = (v2 − v0) × (v3 − v1)  (the diagonals' normal),
 //   and g_i = sin∠_i − s_i ≥ 0 keeps ∠_i in [arcsin s_i, 180° − arcsin s_i]: the signed sine is
 //   negative at a reflex corner, so s_i > 0 on all four corners means a convex, unfolded quad.
-//   Edge lengths: g = |v_b − v_a|² − ℓ_min² ≥ 0 and ℓ_max² − |v_b − v_a|² ≥ 0.
+//   Edge lengths: g = (v_b − v_a) · u − ℓ_min ≥ 0 with u the edge's unit direction in the input,
+//   and ℓ_max² − |v_b − v_a|² ≥ 0. The lower row keeps its gradient at zero length (|e|² − ℓ²
+//   does not: an edge collapsed past it stayed collapsed) and counts a flipped edge as broken.
 // Both are added through AddInequalities (one slack per row, eliminated with the auxiliaries).
 
 #include <array>
@@ -30,19 +32,24 @@ struct QuadCornerResidual {
   }
 };
 
-// One bound on an edge's squared length: sign · (|v_b − v_a|² − bound²) ≥ 0 with sign +1 for
-// a lower bound and −1 for an upper one.
+// One bound on an edge: a lower bound `length` along `direction` (unit), or, with a zero
+// direction, an upper bound `length` on |v_b − v_a|.
 struct EdgeLengthBound {
-  double sign = 1.0;
-  double squared = 0.0;
+  std::array<double, 3> direction = {0.0, 0.0, 0.0};
+  double length = 0.0;
 };
 
 struct EdgeLengthResidual {
   template <typename T>
   void operator()(const EdgeLengthBound& bound, const T* a, const T* b, T* r) const {
+    const auto& u = bound.direction;
+    if (u[0] != 0.0 || u[1] != 0.0 || u[2] != 0.0) {
+      r[0] = (b[0] - a[0]) * u[0] + (b[1] - a[1]) * u[1] + (b[2] - a[2]) * u[2] - bound.length;
+      return;
+    }
     const T squared = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
                       (b[2] - a[2]) * (b[2] - a[2]);
-    r[0] = bound.sign * (squared - bound.squared);
+    r[0] = bound.length * bound.length - squared;
   }
 };
 

@@ -64,30 +64,37 @@ PanelBounds AddPanelBounds(const PolyMesh& mesh, const MeshNormalization& norm, 
     out.corners = AddInequalities<QuadCornerBounds, 4, 3, 3, 3, 3>(
         problem, "corner_angles", QuadCornerResidual{}, quads, [](const auto& q) { return q; });
   }
-  auto add_edges = [&](const std::string& name, double sign, auto bound_of) {
+  auto add_edges = [&](const std::string& name, bool lower, auto bound_of) {
+    std::vector<double>& kept = lower ? out.min_edge : out.max_edge;
     std::vector<std::pair<std::array<int, 2>, EdgeLengthBound>> edges;
     for (auto e : mesh.edges()) {
       const auto h = mesh.halfedge_handle(e, 0);
       const int a = mesh.from_vertex_handle(h).idx(), b = mesh.to_vertex_handle(h).idx();
-      const double length = (problem->x().segment<3>(layout.Index(vertex_block, b, 0)) -
-                             problem->x().segment<3>(layout.Index(vertex_block, a, 0)))
-                                .norm();
-      const double bound = bound_of(length);
-      edges.push_back({{item(a), item(b)}, {sign, bound * bound}});
+      const Eigen::Vector3d edge = problem->x().segment<3>(layout.Index(vertex_block, b, 0)) -
+                                   problem->x().segment<3>(layout.Index(vertex_block, a, 0));
+      const double length = edge.norm();
+      EdgeLengthBound bound;
+      bound.length = bound_of(length);
+      kept.push_back(bound.length / norm.scale);
+      if (lower) {
+        if (!(length > 0.0)) continue;  // no direction to bound along
+        for (int c = 0; c < 3; ++c) bound.direction[c] = edge[c] / length;
+      }
+      edges.push_back({{item(a), item(b)}, bound});
     }
     return AddInequalities<EdgeLengthBound, 1, 3, 3>(problem, name, EdgeLengthResidual{}, edges,
                                                      [](const auto& e) { return e; });
   };
   // Lengths in x are in problem units: input units × norm.scale.
   if (options.min_edge_length > 0.0)
-    out.min_edges = add_edges("min_edge_length", 1.0, [&](double length) {
+    out.min_edges = add_edges("min_edge_length", true, [&](double length) {
       return std::min(options.min_edge_length * norm.scale, length);
     });
   else if (options.min_edge_fraction > 0.0)
-    out.min_edges = add_edges("min_edge_length", 1.0,
+    out.min_edges = add_edges("min_edge_length", true,
                               [&](double length) { return options.min_edge_fraction * length; });
   if (options.max_edge_length > 0.0)
-    out.max_edges = add_edges("max_edge_length", -1.0, [&](double length) {
+    out.max_edges = add_edges("max_edge_length", false, [&](double length) {
       return std::max(options.max_edge_length * norm.scale, length);
     });
   return out;
@@ -113,6 +120,33 @@ std::vector<int> FacesAtCornerBound(const PolyMesh& mesh, const PanelBounds& bou
       }
   }
   return faces;
+}
+
+std::vector<std::array<int, 2>> EdgesAtLengthBound(const PolyMesh& input, const PolyMesh& mesh,
+                                                   const PanelBounds& bounds, double margin) {
+  std::vector<std::array<int, 2>> edges;
+  for (auto e : mesh.edges()) {
+    const auto h = mesh.halfedge_handle(e, 0);
+    const auto a = mesh.from_vertex_handle(h), b = mesh.to_vertex_handle(h);
+    const Eigen::Vector3d edge = ToEigen(mesh.point(b)) - ToEigen(mesh.point(a));
+    const Eigen::Vector3d before = ToEigen(input.point(b)) - ToEigen(input.point(a));
+    const size_t i = e.idx();
+    const bool at_min = i < bounds.min_edge.size() && before.norm() > 0.0 &&
+                        edge.dot(before.normalized()) <= bounds.min_edge[i] * (1.0 + margin);
+    const bool at_max =
+        i < bounds.max_edge.size() && edge.norm() >= bounds.max_edge[i] * (1.0 - margin);
+    if (at_min || at_max) edges.push_back({a.idx(), b.idx()});
+  }
+  return edges;
+}
+
+std::string EdgeList(const std::vector<std::array<int, 2>>& edges, int shown) {
+  std::string out = "vertices ";
+  for (int i = 0; i < static_cast<int>(edges.size()) && i < shown; ++i)
+    out += (i > 0 ? ", " : "") + std::to_string(edges[i][0]) + "-" + std::to_string(edges[i][1]);
+  if (static_cast<int>(edges.size()) > shown)
+    out += " (and " + std::to_string(edges.size() - shown) + " more)";
+  return out;
 }
 
 NamedValues ShapeValues(const QuadShapeSummary& s) {

@@ -5,6 +5,7 @@
 // already breaks is relaxed to the input's value, so such a quad or edge is only kept from
 // getting worse.
 
+#include <array>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -44,6 +45,7 @@ struct PanelBounds {
   EdgeLengthTerm* min_edges = nullptr;
   EdgeLengthTerm* max_edges = nullptr;
   std::vector<QuadCornerBounds> corner_bounds;  // per face (quads only)
+  std::vector<double> min_edge, max_edge;       // per mesh edge, input units (empty: off)
 };
 
 // Adds the bounds over the quads and edges of `mesh`, whose vertices are the items of
@@ -54,6 +56,12 @@ PanelBounds AddPanelBounds(const PolyMesh& mesh, const MeshNormalization& norm, 
 // The faces of `mesh` whose corners sit on their bound (within `margin` of the sine).
 std::vector<int> FacesAtCornerBound(const PolyMesh& mesh, const PanelBounds& bounds,
                                     double margin = 1e-6);
+
+// The edges of `mesh` (input units) within a relative `margin` of their length bound, measured
+// as the rows do (the lower one along the edge's direction in `input`), as vertex pairs.
+std::vector<std::array<int, 2>> EdgesAtLengthBound(const PolyMesh& input, const PolyMesh& mesh,
+                                                   const PanelBounds& bounds, double margin = 1e-3);
+std::string EdgeList(const std::vector<std::array<int, 2>>& edges, int shown = 10);
 
 // The shape measures a designer reads, as named values: non_convex_quads, min_corner_angle_deg,
 // max_kink_deg, max_planarity_abs (diagonal distance in the mesh's units).

@@ -224,6 +224,11 @@ std::vector<int> PQPlanarization::FacesAtAngleBound() const {
   return FacesAtCornerBound(current_, bounds_);
 }
 
+std::vector<std::array<int, 2>> PQPlanarization::EdgesAtLengthBound() const {
+  StoreVertices(problem_, vertex_block_, norm_, &current_);
+  return gproj::EdgesAtLengthBound(input_, current_, bounds_);
+}
+
 PlanarityMeasures PQPlanarization::MeasuresAt(const Eigen::VectorXd& x) const {
   StoreVertices(x, problem_.layout(), vertex_block_, norm_, &current_);
   control_.RestoreHeld(input_, &current_);

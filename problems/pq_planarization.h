@@ -125,6 +125,8 @@ class PQPlanarization : public GuidedProblem {
   const PQPlanarizationOptions& options() const { return options_; }
   // The faces whose corners sit on their angle bound in the current iterate.
   std::vector<int> FacesAtAngleBound() const;
+  // The edges of the current mesh on their length bound (vertex pairs).
+  std::vector<std::array<int, 2>> EdgesAtLengthBound() const;
   // The faces whose planarity measure exceeds the tolerance, worst first.
   std::vector<int> FacesAboveTolerance() const;
 

@@ -26,7 +26,7 @@ struct OneQuad {
     corners = AddInequalities<QuadCornerBounds, 4, 3, 3, 3, 3>(
         &problem, "corner_angles", QuadCornerResidual{}, quads, [](const auto& q) { return q; });
     const std::vector<std::pair<std::array<int, 2>, EdgeLengthBound>> edges = {
-        {{0, 1}, {1.0, 0.25}}};
+        {{0, 1}, {{1.0, 0.0, 0.0}, 0.5}}};  // at least 0.5 along the x axis
     edge = AddInequalities<EdgeLengthBound, 1, 3, 3>(&problem, "min_edge", EdgeLengthResidual{},
                                                      edges, [](const auto& e) { return e; });
     (void)block;
@@ -43,7 +43,7 @@ TEST(PanelValidityTest, SlacksOfASquareAreTheRootsOfTheMargins) {
   for (int i = 0; i < 4; ++i)
     EXPECT_NEAR(q.problem.x()[layout.Index(slack, 0, i)], std::sqrt(margin), 1e-12);
   const int edge_slack = layout.FindBlock("min_edge_slack");
-  EXPECT_NEAR(q.problem.x()[layout.Index(edge_slack, 0, 0)], std::sqrt(1.0 - 0.25), 1e-12);
+  EXPECT_NEAR(q.problem.x()[layout.Index(edge_slack, 0, 0)], std::sqrt(1.0 - 0.5), 1e-12);
 }
 
 TEST(PanelValidityTest, GradientsMatchFiniteDifferences) {
