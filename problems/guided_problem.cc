@@ -20,6 +20,12 @@ void Conclude(const GuidedProblem& problem, Clock::time_point start, bool aborte
   if (!report->failed) report->final = problem.Measure();
   report->converged = !report->failed &&
                       (problem.HasTolerance() ? problem.MeetsTolerance(report->final) : !aborted);
+  // A solver stop short of the problem's tolerance (a step too small, no lower energy) is a
+  // stall, whatever the solver calls it.
+  const size_t at = report->termination.find("CONVERGENCE");
+  if (!report->converged && !report->failed && at != std::string::npos &&
+      (at == 0 || report->termination[at - 1] == ' '))
+    report->termination.replace(at, 11, "STALLED short of the tolerance");
   report->seconds = SecondsSince(start);
 }
 

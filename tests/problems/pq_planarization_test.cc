@@ -33,6 +33,22 @@ TEST(PQPlanarizationTest, ShippedNoisyGridReachesPlanarity1e9) {
   EXPECT_DOUBLE_EQ(ValueOf(report.history.back().measures, "max_planarity"), after.max_planarity);
 }
 
+// Fixed soft weights as strong as at the start: the steps stall far above the tolerance. That
+// is not convergence, whatever the solver's stop is called.
+TEST(PQPlanarizationTest, AStallShortOfTheToleranceIsNotConvergence) {
+  const PolyMesh mesh = ReadMesh(kShippedGrid, MeshRequirements{true});
+  PQPlanarizationOptions options;
+  options.solver.soft_weight_decay = 1.0;
+  options.solver.soft_weight_floor = 1.0;
+  PQPlanarization pq(mesh, options);
+  const RunReport report = pq.Run();
+  EXPECT_FALSE(report.converged);
+  EXPECT_FALSE(report.failed);
+  EXPECT_GT(pq.Measures().max_planarity, 1e-4);
+  EXPECT_EQ(report.termination.rfind("STALLED short of the tolerance", 0), 0u)
+      << report.termination;
+}
+
 TEST(PQPlanarizationTest, CholmodAndEigenBackendsAgree) {
   QuadGridOptions grid;
   grid.nu = grid.nv = 8;
