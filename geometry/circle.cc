@@ -3,6 +3,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 
+#include "geometry/scale_free.h"
+
 namespace gproj {
 
 double DistanceToCircle(const Eigen::Vector3d& p, const Circle& circle) {
@@ -39,17 +41,18 @@ Circle FitCircle(const Eigen::Vector3d* points, int count) {
 }
 
 double QuadConcyclicity(const std::array<Eigen::Vector3d, 4>& quad) {
-  const Circle circle = FitCircle(quad.data(), 4);
+  std::array<Eigen::Vector3d, 4> scaled = quad;
+  const double extent = NormalizePolygon(scaled.data(), 4);
+  if (extent == 0.0) return 0.0;
+  const Circle circle = FitCircle(scaled.data(), 4);
   double worst = 0.0;
-  for (const auto& p : quad) worst = std::max(worst, DistanceToCircle(p, circle));
-  return worst;
+  for (const auto& p : scaled) worst = std::max(worst, DistanceToCircle(p, circle));
+  return worst * extent;
 }
 
 CircularityMeasures MeasureCircularity(const PolyMesh& mesh) {
   CircularityMeasures m;
-  double edge_sum = 0.0;
-  for (auto e : mesh.edges()) edge_sum += mesh.calc_edge_length(e);
-  const double mean_edge = mesh.n_edges() > 0 ? edge_sum / mesh.n_edges() : 1.0;
+  const double mean_edge = mesh.n_edges() > 0 ? MeanEdgeLength(mesh) : 1.0;
   int quads = 0;
   for (auto f : mesh.faces()) {
     if (mesh.valence(f) != 4) continue;

@@ -28,6 +28,7 @@
 #endif
 
 #include "geometry/mesh_text.h"
+#include "geometry/scale_free.h"
 
 namespace gproj {
 namespace {
@@ -53,14 +54,18 @@ int LineOf(const std::vector<int>& lines, std::size_t i) { return i < lines.size
 bool IsDegenerate(const PolygonSoup& soup, const std::vector<int>& face) {
   constexpr double kRelativeArea = 1e-12;
   const std::size_t n = face.size();
+  // Measured at unit size, so that no product overflows or underflows at any finite scale.
+  std::vector<Eigen::Vector3d> p(n);
+  for (std::size_t i = 0; i < n; ++i) p[i] = soup.vertices[face[i]];
+  if (NormalizePolygon(p.data(), static_cast<int>(n)) == 0.0) return true;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  for (int v : face) centroid += soup.vertices[v];
+  for (const Eigen::Vector3d& q : p) centroid += q;
   centroid /= static_cast<double>(n);
   Eigen::Vector3d twice_area = Eigen::Vector3d::Zero();
   double max_edge_squared = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3d& a = soup.vertices[face[i]];
-    const Eigen::Vector3d& b = soup.vertices[face[(i + 1) % n]];
+    const Eigen::Vector3d& a = p[i];
+    const Eigen::Vector3d& b = p[(i + 1) % n];
     twice_area += (a - centroid).cross(b - centroid);
     max_edge_squared = std::max(max_edge_squared, (b - a).squaredNorm());
   }

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "geometry/circle.h"
+#include "geometry/scale_free.h"
 
 namespace gproj {
 namespace {
@@ -27,19 +28,16 @@ bool QuadPoints(const PolyMesh& mesh, PolyMesh::FaceHandle f, Eigen::Vector3d* p
 }
 
 // The mean edge length (1 for a mesh without edges): the unit of the relative measures.
-double MeanEdge(const PolyMesh& mesh) {
-  double sum = 0.0;
-  for (auto e : mesh.edges()) sum += mesh.calc_edge_length(e);
-  return mesh.n_edges() > 0 ? sum / mesh.n_edges() : 1.0;
-}
+double MeanEdge(const PolyMesh& mesh) { return mesh.n_edges() > 0 ? MeanEdgeLength(mesh) : 1.0; }
 
 }  // namespace
 
 std::array<double, 4> QuadCornerAngles(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
                                        const Eigen::Vector3d& v2, const Eigen::Vector3d& v3) {
-  const Eigen::Vector3d v[4] = {v0, v1, v2, v3};
+  Eigen::Vector3d v[4] = {v0, v1, v2, v3};
+  NormalizePolygon(v, 4);
   double sines[4];
-  QuadCornerSines(v0.data(), v1.data(), v2.data(), v3.data(), sines);
+  QuadCornerSines(v[0].data(), v[1].data(), v[2].data(), v[3].data(), sines);
   std::array<double, 4> angles{};
   for (int i = 0; i < 4; ++i) {
     const double angle = AngleDeg(v[(i + 1) % 4] - v[i], v[(i + 3) % 4] - v[i]);
@@ -48,9 +46,12 @@ std::array<double, 4> QuadCornerAngles(const Eigen::Vector3d& v0, const Eigen::V
   return angles;
 }
 
-QuadShape MeasureQuadShape(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
-                           const Eigen::Vector3d& v2, const Eigen::Vector3d& v3) {
+QuadShape MeasureQuadShape(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                           const Eigen::Vector3d& p2, const Eigen::Vector3d& p3) {
   QuadShape s;
+  Eigen::Vector3d p[4] = {p0, p1, p2, p3};
+  const double extent = NormalizePolygon(p, 4);  // scale-free: measured at unit size
+  const Eigen::Vector3d &v0 = p[0], &v1 = p[1], &v2 = p[2], &v3 = p[3];
   double sines[4];
   QuadCornerSines(v0.data(), v1.data(), v2.data(), v3.data(), sines);
   const std::array<double, 4> angles = QuadCornerAngles(v0, v1, v2, v3);
@@ -62,9 +63,9 @@ QuadShape MeasureQuadShape(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
   const double kink13 = AngleDeg((v2 - v1).cross(v3 - v1), (v3 - v1).cross(v0 - v1));
   s.kink_deg = std::max(kink02, kink13);
   const Eigen::Vector3d n = d0.cross(d1);
-  s.diagonal_distance = n.norm() > 1e-300
-                            ? std::abs((v1 - v0).dot(n)) / n.norm()
-                            : (v1 - v0).cross(d0).norm() / std::max(d0.norm(), 1e-300);
+  s.diagonal_distance =
+      extent * (n.norm() > 1e-300 ? std::abs((v1 - v0).dot(n)) / n.norm()
+                                  : (v1 - v0).cross(d0).norm() / std::max(d0.norm(), 1e-300));
   return s;
 }
 

@@ -78,13 +78,15 @@ std::vector<double> VertexStarPlanarity(const PolyMesh& mesh) {
   std::vector<Eigen::Vector3d> points;
   for (auto v : mesh.vertices()) {
     if (mesh.valence(v) < 3) continue;
-    const Eigen::Vector3d c = ToEigen(mesh.point(v));
-    points.clear();
+    points.assign(1, ToEigen(mesh.point(v)));  // the centre first, then the ring
     for (auto w : mesh.vv_range(v)) points.push_back(ToEigen(mesh.point(w)));
-    const Eigen::Vector3d n = StarNormal(c, points);
+    // Measured at unit size (the centre at the origin), so that it is scale-free.
+    const double extent = NormalizePolygon(points.data(), static_cast<int>(points.size()));
+    const std::vector<Eigen::Vector3d> ring(points.begin() + 1, points.end());
+    const Eigen::Vector3d n = StarNormal(points[0], ring);
     double worst = 0.0;
-    for (const auto& p : points) worst = std::max(worst, std::abs(n.dot(p - c)));
-    values[v.idx()] = worst / mean_edge;
+    for (const auto& p : ring) worst = std::max(worst, std::abs(n.dot(p - points[0])));
+    values[v.idx()] = worst * extent / mean_edge;
   }
   return values;
 }
@@ -169,7 +171,7 @@ ANetFamilies AddANetLayout(const PolyMesh& mesh, const ANetOptions& options, Pro
 }
 
 void AddANetFamilies(const PolyMesh& mesh, const ANetOptions& options, int vertex_block,
-                     const ANetFamilies& layout_info, const ClosestPointQuery* reference,
+                     const ANetFamilies& layout_info, const PolyMesh* reference,
                      const MeshNormalization& norm, Problem* problem) {
   const VariableLayout& layout = problem->layout();
   auto item = [&](int v) { return layout.Item(vertex_block, v); };
@@ -234,13 +236,13 @@ ANet::ANet(const PolyMesh& mesh, const PolyMesh* reference, const ANetOptions& o
   if (mesh.n_faces() == 0) throw InputError("the mesh has no faces");
   CheckANetTopology(mesh, "");
   norm_ = MeshNormalization::Of(mesh);
-  reference_ = std::make_unique<ClosestPointQuery>(reference != nullptr ? *reference : mesh);
   vertex_block_ = problem_.layout().AddBlock("vertices", static_cast<int>(mesh.n_vertices()), 3);
   families_ = AddANetLayout(mesh, options, &problem_);
   problem_.ResizeToLayout();
   LoadVertices(mesh, norm_, vertex_block_, &problem_);
   LoadANetNormals(mesh, vertex_block_, families_, &problem_);
-  AddANetFamilies(mesh, options, vertex_block_, families_, reference_.get(), norm_, &problem_);
+  AddANetFamilies(mesh, options, vertex_block_, families_, reference != nullptr ? reference : &mesh,
+                  norm_, &problem_);
   bounds_ = AddPanelBounds(mesh, norm_, vertex_block_, options.panels, &problem_);
   control_ = ApplyVertexControl(mesh, norm_, vertex_block_, options.vertices, &problem_);
   start_planarity_ = MeasureStarPlanarity(mesh, mesh).max_star_planarity;

@@ -107,7 +107,7 @@ struct ANetFamilies {
 };
 ANetFamilies AddANetLayout(const PolyMesh& mesh, const ANetOptions& options, Problem* problem);
 void AddANetFamilies(const PolyMesh& mesh, const ANetOptions& options, int vertex_block,
-                     const ANetFamilies& layout, const ClosestPointQuery* reference,
+                     const ANetFamilies& layout, const PolyMesh* reference,
                      const MeshNormalization& norm, Problem* problem);
 // Initialises star normals from the least-squares planes of the stars at x.
 void LoadANetNormals(const PolyMesh& mesh, int vertex_block, const ANetFamilies& layout,
@@ -141,7 +141,6 @@ class ANet : public GuidedProblem {
   PolyMesh input_;
   mutable PolyMesh current_;  // the iterate as a mesh, rewritten in place by MeasuresAt
   MeshNormalization norm_;
-  std::unique_ptr<ClosestPointQuery> reference_;
   Problem problem_;
   int vertex_block_ = -1;
   ANetFamilies families_;

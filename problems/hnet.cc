@@ -364,7 +364,7 @@ struct VertexUpdate {
 std::unique_ptr<VertexUpdate> BuildVertexUpdate(const PolyMesh& mesh,
                                                 const std::vector<int>& colour,
                                                 const HNetOptions& options,
-                                                const ClosestPointQuery& query) {
+                                                const PolyMesh& reference) {
   auto u = std::make_unique<VertexUpdate>();
   Problem& problem = u->problem;
   u->norm = MeshNormalization::Of(mesh);
@@ -378,7 +378,7 @@ std::unique_ptr<VertexUpdate> BuildVertexUpdate(const PolyMesh& mesh,
   problem.ResizeToLayout();
   LoadVertices(mesh, u->norm, u->vertex_block, &problem);
   LoadANetNormals(mesh, u->vertex_block, anet, &problem);
-  AddANetFamilies(mesh, options.anet, u->vertex_block, anet, &query, u->norm, &problem);
+  AddANetFamilies(mesh, options.anet, u->vertex_block, anet, &reference, u->norm, &problem);
   u->control = ApplyVertexControl(mesh, u->norm, u->vertex_block, options.anet.vertices, &problem);
   u->start = mesh;
   u->frame = problem.AddFamily<FramePointPlanarity>(options.frame_weight);
@@ -483,8 +483,8 @@ HNetRound HNet::UpdateWeights(int round, const PolyMesh& reference) {
 void HNet::RunRounds(const PolyMesh& reference, const RoundCallback& on_round,
                      HNetSummary* summary) {
   RunReport& report = summary->report;
-  const ClosestPointQuery query(reference);
-  const std::unique_ptr<VertexUpdate> update = BuildVertexUpdate(mesh_, colour_, options_, query);
+  const std::unique_ptr<VertexUpdate> update =
+      BuildVertexUpdate(mesh_, colour_, options_, reference);
   report.variables = update->problem.layout().num_variables();
   summary->equitwist_violations = EquitwistViolations(mesh_, colour_);
   SolverOptions solver_options = options_.anet.solver;

@@ -18,19 +18,13 @@ MeshNormalization MeshNormalization::Of(const PolyMesh& mesh) {
   return n;
 }
 
-double MeanEdgeLength(const PolyMesh& mesh) {
-  double sum = 0.0;
-  for (auto e : mesh.edges()) sum += mesh.calc_edge_length(e);
-  return mesh.n_edges() > 0 ? sum / mesh.n_edges() : 0.0;
-}
-
 double MaxDisplacement(const PolyMesh& mesh, const PolyMesh& reference) {
   Eigen::AlignedBox3d box;
   for (auto v : reference.vertices()) box.extend(ToEigen(reference.point(v)));
-  const double diagonal = box.diagonal().norm();
+  const double diagonal = box.diagonal().stableNorm();
   double worst = 0.0;
   for (auto v : mesh.vertices())
-    worst = std::max(worst, (ToEigen(mesh.point(v)) - ToEigen(reference.point(v))).norm());
+    worst = std::max(worst, (ToEigen(mesh.point(v)) - ToEigen(reference.point(v))).stableNorm());
   return diagonal > 0.0 ? worst / diagonal : worst;
 }
 

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include "geometry/mesh_io.h"
+#include "geometry/scale_free.h"
 #include "solver/guided_projection.h"
 #include "solver/problem.h"
 
@@ -21,8 +22,6 @@ struct MeshNormalization {
 };
 
 inline Eigen::Vector3d ToEigen(const PolyMesh::Point& p) { return {p[0], p[1], p[2]}; }
-
-double MeanEdgeLength(const PolyMesh& mesh);
 
 // Max vertex displacement between two meshes of one connectivity / bbox diagonal of `reference`.
 double MaxDisplacement(const PolyMesh& mesh, const PolyMesh& reference);

@@ -97,23 +97,23 @@ NamedValues ToNamedValues(const PlanarityMeasures& m) {
   return values;
 }
 
-double DiagonalDistance(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
-                        const Eigen::Vector3d& v2, const Eigen::Vector3d& v3) {
-  const Eigen::Vector3d d0 = v2 - v0, d1 = v3 - v1;
+double DiagonalDistance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                        const Eigen::Vector3d& p2, const Eigen::Vector3d& p3) {
+  Eigen::Vector3d p[4] = {p0, p1, p2, p3};
+  const double extent = NormalizePolygon(p, 4);  // scale-free: measured at unit size
+  const Eigen::Vector3d d0 = p[2] - p[0], d1 = p[3] - p[1];
   const Eigen::Vector3d n = d0.cross(d1);
   const double length = n.norm();
   if (length <= 1e-300) {
     // Parallel diagonals: distance of v1 from the line through v0, v2.
-    return (v1 - v0).cross(d0).norm() / std::max(d0.norm(), 1e-300);
+    return extent * (p[1] - p[0]).cross(d0).norm() / std::max(d0.norm(), 1e-300);
   }
-  return std::abs((v1 - v0).dot(n)) / length;
+  return extent * std::abs((p[1] - p[0]).dot(n)) / length;
 }
 
 PlanarityMeasures MeasurePlanarity(const PolyMesh& mesh, const PolyMesh& reference) {
   PlanarityMeasures m;
-  double edge_sum = 0.0;
-  for (auto e : mesh.edges()) edge_sum += mesh.calc_edge_length(e);
-  m.mean_edge_length = mesh.n_edges() > 0 ? edge_sum / mesh.n_edges() : 0.0;
+  m.mean_edge_length = MeanEdgeLength(mesh);
   double sum = 0.0;
   for (auto f : mesh.faces()) {
     Eigen::Vector3d p[4];
@@ -178,8 +178,7 @@ PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOpti
     }
   }
   if (reference != nullptr) {
-    reference_ = std::make_unique<ClosestPointQuery>(*reference);
-    AddReferenceCloseness(*reference_, norm_, vertex_block_, static_cast<int>(mesh.n_vertices()),
+    AddReferenceCloseness(*reference, norm_, vertex_block_, static_cast<int>(mesh.n_vertices()),
                           options.closeness_weight * options.reference_tangent_weight,
                           options.closeness_weight * options.reference_point_weight, &problem_);
   } else if (options.closeness_weight > 0.0) {

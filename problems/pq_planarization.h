@@ -142,7 +142,6 @@ class PQPlanarization : public GuidedProblem {
   int normal_block_ = -1;
   PanelBounds bounds_;
   VertexControl control_;
-  std::unique_ptr<ClosestPointQuery> reference_;
   double start_planarity_ = 0.0;
 };
 

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <memory>
 
 #include "constraints/surface_closeness.h"
 #include "geometry/text_input.h"
@@ -134,14 +135,19 @@ double VertexControl::MaxGlideDistance(const VariableLayout& layout,
   return worst / scale / bbox_diagonal;
 }
 
-void AddReferenceCloseness(const ClosestPointQuery& reference, const MeshNormalization& norm,
+void AddReferenceCloseness(const PolyMesh& reference, const MeshNormalization& norm,
                            int vertex_block, int num_vertices, double tangent_weight,
                            double point_weight, Problem* problem) {
-  const SurfaceProjector projector = [&reference, norm](const Eigen::Vector3d& q,
-                                                        Eigen::Vector3d* p, Eigen::Vector3d* n) {
-    reference.Project(norm.FromProblem(q), p, n);
-    *p = norm.ToProblem(*p);
-  };
+  // The query works in the problem's units (mean edge 1), so its squared distances stay finite
+  // at any input scale; the rows' projector owns it.
+  PolyMesh moved = reference;
+  for (auto v : moved.vertices()) {
+    const Eigen::Vector3d p = norm.ToProblem(ToEigen(moved.point(v)));
+    moved.set_point(v, PolyMesh::Point(p.x(), p.y(), p.z()));
+  }
+  const auto query = std::make_shared<const ClosestPointQuery>(moved);
+  const SurfaceProjector projector = [query](const Eigen::Vector3d& q, Eigen::Vector3d* p,
+                                             Eigen::Vector3d* n) { query->Project(q, p, n); };
   const VariableLayout& layout = problem->layout();
   if (tangent_weight > 0.0) {
     auto* tangent = problem->AddFamily<SurfaceTangentCloseness>(projector, tangent_weight);

@@ -54,7 +54,7 @@ VertexControl ApplyVertexControl(const PolyMesh& mesh, const MeshNormalization& 
 
 // Soft closeness of every vertex to `reference`: the tangent-plane row with `tangent_weight`,
 // the point rows with `point_weight` (either 0: left out).
-void AddReferenceCloseness(const ClosestPointQuery& reference, const MeshNormalization& norm,
+void AddReferenceCloseness(const PolyMesh& reference, const MeshNormalization& norm,
                            int vertex_block, int num_vertices, double tangent_weight,
                            double point_weight, Problem* problem);
 

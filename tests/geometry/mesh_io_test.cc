@@ -615,6 +615,23 @@ TEST_F(MeshIoTest, NonQuadFaceWhenQuadsOnly) {
   EXPECT_EQ(ReadMesh(path).n_faces(), 2u);
 }
 
+// Degeneracy is judged at the face's own size: a unit square at 1e-150 (whose area underflows
+// to 0 when computed directly) and at 1e200 (whose squared edges overflow) are valid.
+TEST_F(MeshIoTest, FacesAreJudgedAtAnyFiniteScale) {
+  for (const char* scale : {"1e-150", "1e200"}) {
+    const std::string s = scale;
+    const std::string path =
+        Write(std::string("square_") + scale + ".obj",
+              "v 0 0 0\nv " + s + " 0 0\nv " + s + " " + s + " 0\nv 0 " + s + " 0\nf 1 2 3 4\n");
+    EXPECT_EQ(ReadMesh(path).n_faces(), 1u) << scale;
+  }
+  const std::string collinear = Write("collinear_tiny.obj",
+                                      "v 0 0 0\nv 1e-150 0 0\nv 2e-150 0 0\nv 3e-150 0 0\n"
+                                      "f 1 2 3 4\n");
+  EXPECT_NE(InputErrorMessage([&] { ReadMesh(collinear); }).find("is degenerate"),
+            std::string::npos);
+}
+
 TEST_F(MeshIoTest, DegenerateFaces) {
   const std::string collinear = Write("collinear.obj",
                                       "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\n"

@@ -104,6 +104,28 @@ TEST(ANetDriftTest, AnExactANetStaysWhereItIs) {
   EXPECT_LE(MaxDisplacement(anet.Result(), mesh), 1e-6);
 }
 
+// Scale-free: the star-planarity measure and the closest-point query on the reference work in
+// units of the mean edge (at 1e200 the measure overflowed to 0 and the run "converged" at
+// iteration 0; at 1e150 the reference query failed).
+TEST(ANetDriftTest, AnyFiniteScaleRunsLikeTheOriginal) {
+  const PolyMesh original = Jittered("hyperboloid", 17, 0.1);
+  ANet reference(original, nullptr, ANetOptions());
+  const RunReport expected = reference.Run();
+  ASSERT_TRUE(expected.converged);
+  for (double scale : {1e-150, 1e150, 1e200}) {
+    PolyMesh mesh = original;
+    for (auto v : mesh.vertices()) mesh.set_point(v, mesh.point(v) * scale);
+    ANet anet(mesh, nullptr, ANetOptions());
+    const RunReport report = anet.Run();
+    ASSERT_TRUE(report.converged) << scale << " " << report.termination;
+    EXPECT_EQ(report.iterations, expected.iterations) << scale;
+    EXPECT_NEAR(ValueOf(report.initial, "max_star_planarity"),
+                ValueOf(expected.initial, "max_star_planarity"), 1e-12)
+        << scale;
+    EXPECT_NEAR(anet.Measures().max_star_planarity, reference.Measures().max_star_planarity, 1e-12);
+  }
+}
+
 TEST(ANetDriftTest, WeakFadingClosenessLetsTheSameGridSlide) {
   // The defaults before this issue: what the test above guards against.
   const PolyMesh mesh = Jittered("hyperboloid", 17, 0.1);

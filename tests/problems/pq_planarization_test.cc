@@ -49,6 +49,34 @@ TEST(PQPlanarizationTest, AStallShortOfTheToleranceIsNotConvergence) {
       << report.termination;
 }
 
+// The problem is scale-free after normalisation, and so are the measures: the shipped grid
+// scaled by 1e-150 … 1e200 runs exactly like the original (the planarity measure used to
+// overflow to 0 at 1e78, so a non-planar mesh "converged" at iteration 0, and the solver
+// failed at 1e200).
+TEST(PQPlanarizationTest, AnyFiniteScaleRunsLikeTheOriginal) {
+  const PolyMesh original = ReadMesh(kShippedGrid, MeshRequirements{true});
+  PQPlanarization reference(original, PQPlanarizationOptions());
+  const RunReport expected = reference.Run();
+  ASSERT_TRUE(expected.converged);
+  for (double scale : {1e-150, 1e78, 1e150, 1e200}) {
+    PolyMesh mesh = original;
+    for (auto v : mesh.vertices()) mesh.set_point(v, mesh.point(v) * scale);
+    PQPlanarization pq(mesh, PQPlanarizationOptions());
+    EXPECT_NEAR(pq.Measures().max_planarity, ValueOf(expected.initial, "max_planarity"), 1e-12)
+        << scale;
+    const RunReport report = pq.Run();
+    ASSERT_TRUE(report.converged) << scale << " " << report.termination;
+    EXPECT_EQ(report.iterations, expected.iterations) << scale;
+    EXPECT_NEAR(pq.Measures().max_planarity, reference.Measures().max_planarity, 1e-12) << scale;
+    const PolyMesh result = pq.Result();
+    const PolyMesh back = reference.Result();
+    double worst = 0.0;
+    for (auto v : result.vertices())
+      worst = std::max(worst, (result.point(v) / scale - back.point(v)).length());
+    EXPECT_LE(worst, 1e-12) << scale;
+  }
+}
+
 TEST(PQPlanarizationTest, CholmodAndEigenBackendsAgree) {
   QuadGridOptions grid;
   grid.nu = grid.nv = 8;

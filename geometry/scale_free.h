@@ -1,0 +1,20 @@
+#pragma once
+// Measures that hold for any finite coordinates (tested from 1e-150 to 1e200): lengths by
+// Eigen's stableNorm (no overflow of the squares), and polygons measured after moving them to
+// their first vertex and dividing by their own extent.
+
+#include <Eigen/Core>
+
+#include "geometry/mesh_io.h"
+
+namespace gproj {
+
+// The mean edge length of `mesh`, 0 without edges.
+double MeanEdgeLength(const PolyMesh& mesh);
+
+// Moves p[0..n) by −p[0] and divides by the largest coordinate difference; returns that factor
+// (0 when the points coincide, which leaves them at 0). Lengths measured on the result are
+// multiplied by it to come back to the input's units; angles need nothing.
+double NormalizePolygon(Eigen::Vector3d* p, int n);
+
+}  // namespace gproj
