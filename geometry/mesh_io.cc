@@ -24,6 +24,7 @@
 #ifdef _WIN32
 #include <process.h>
 #else
+#include <signal.h>
 #include <unistd.h>
 #endif
 
@@ -178,6 +179,42 @@ std::string TemporaryPathFor(const std::string& path) {
   const std::string temporary_name =
       "." + name + ".tmp-" + std::to_string(ProcessId()) + target.extension().string();
   return (target.parent_path() / temporary_name).string();
+}
+
+// Whether process `pid` still runs (a temporary of a running gproj must be left alone).
+bool ProcessRuns(long long pid) {
+#ifdef _WIN32
+  return true;  // not checked: stale temporaries are left
+#else
+  if (pid <= 0 || pid > std::numeric_limits<pid_t>::max()) return false;
+  return kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM;
+#endif
+}
+
+// Removes the temporaries of `path` that killed runs left behind (".out.obj.tmp-<pid>.obj" of a
+// process that no longer runs). Errors are ignored: this is housekeeping.
+void RemoveStaleTemporaries(const std::string& path) {
+  const fs::path target(path);
+  const std::string prefix = "." + target.filename().string() + ".tmp-";
+  const std::string suffix = target.extension().string();
+  const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  std::error_code ec;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() <= prefix.size() + suffix.size() ||
+        name.compare(0, prefix.size(), prefix) != 0 ||
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+      continue;
+    const std::string digits =
+        name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+    long long pid = 0;
+    const auto parsed = std::from_chars(digits.data(), digits.data() + digits.size(), pid);
+    if (parsed.ec != std::errc() || parsed.ptr != digits.data() + digits.size()) continue;
+    if (pid != ProcessId() && !ProcessRuns(pid)) {
+      std::error_code ignored;
+      fs::remove(it->path(), ignored);
+    }
+  }
 }
 
 // Removes the temporary file unless it was renamed into place.
@@ -356,6 +393,7 @@ void WriteMeshAtomically(const PolyMesh& mesh, const std::string& path) {
 }
 
 void WriteTextFileAtomically(const std::string& path, const std::string& contents) {
+  RemoveStaleTemporaries(path);
   TemporaryFile temporary(TemporaryPathFor(path));
   WriteNewFile(path, temporary.path(), contents);
   temporary.CommitTo(path);

@@ -275,6 +275,19 @@ TEST_F(MeshIoTest, WriteTextFileAtomicallyWritesAndReplaces) {
   EXPECT_EQ(DirectoryEntries(), std::vector<std::string>{"report.json"});
 }
 
+// A run killed while writing leaves its hidden temporary; the next write of the same file
+// removes it when its process no longer runs, and keeps those of running processes.
+TEST_F(MeshIoTest, StaleTemporariesOfKilledRunsAreRemoved) {
+  const std::string stale = ".out.obj.tmp-999999999.obj";  // above any pid_t of a live process
+  const std::string live = ".out.obj.tmp-1.obj";           // pid 1 always runs
+  const std::string other = ".other.obj.tmp-999999999.obj";
+  for (const std::string& name : {stale, live, other}) std::ofstream(Path(name)) << "partial\n";
+  WriteTextFileAtomically(Path("out.obj"), "# mesh\n");
+  std::vector<std::string> entries = DirectoryEntries();
+  std::sort(entries.begin(), entries.end());
+  EXPECT_EQ(entries, (std::vector<std::string>{other, live, "out.obj"}));
+}
+
 // ---------------------------------------------------------------------------------------------
 // Reading errors.
 
