@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <deque>
 #include <limits>
 #include <memory>
@@ -412,6 +413,18 @@ void FreezeWeights(const std::vector<double>& w, VertexUpdate* u) {
   }
 }
 
+// The first face whose shape parameter cannot place a frame point (not finite, or −1, where
+// (b + w b') / (1 + w) has no value), as "face F has W = …"; empty if there is none.
+std::string UnusableWeight(const std::vector<double>& w) {
+  for (size_t f = 0; f < w.size(); ++f)
+    if (!std::isfinite(w[f]) || std::abs(1.0 + w[f]) < 1e-12) {
+      char text[96];
+      std::snprintf(text, sizeof(text), "face %zu has shape parameter W = %g", f, w[f]);
+      return text;
+    }
+  return "";
+}
+
 struct VertexUpdateResult {
   bool failed = false, converged = false;
   int steps = 0;
@@ -500,6 +513,15 @@ void HNet::RunRounds(const PolyMesh& reference, const RoundCallback& on_round,
     const bool settled = round > 0 && r.weight_change <= options_.weight_tolerance;
     const bool last = settled || round + 1 == options_.max_rounds;
     if (!last) {
+      const std::string unusable = UnusableWeight(w_);
+      if (!unusable.empty()) {
+        report.failed = true;
+        report.termination =
+            "no frame points: " + unusable +
+            "; the vertex stars there are flat or degenerate (an H-net needs a surface of "
+            "negative Gaussian curvature: a flat region has no asymptotic directions)";
+        return;
+      }
       FreezeWeights(w_, update.get());
       const VertexUpdateResult s =
           SolveVertexUpdate(solver_options, options_.use_ceres, update.get());

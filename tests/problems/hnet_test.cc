@@ -151,6 +151,25 @@ TEST(HNetTest, HeldVerticesStayThroughTheANetStepAndEveryRound) {
   EXPECT_GT(MaxDisplacement(hnet.mesh(), mesh), 1e-4);  // the others moved
 }
 
+// A flat grid (all stars planar in one plane) has no asymptotic directions: the weights come
+// out undefined, and the run stops saying so and naming a face, instead of "the start x is not
+// finite".
+TEST(HNetTest, AFlatMeshStopsWithADiagnosisNamingAFace) {
+  PolyMesh flat = Grid("hypar", 7);
+  for (auto v : flat.vertices()) {
+    auto p = flat.point(v);
+    p[2] = 0.0;
+    flat.set_point(v, p);
+  }
+  HNet hnet(flat, nullptr, HNetOptions());
+  const HNetSummary summary = hnet.Run();
+  EXPECT_TRUE(summary.report.failed);
+  EXPECT_NE(summary.report.termination.find("face "), std::string::npos)
+      << summary.report.termination;
+  EXPECT_NE(summary.report.termination.find("negative Gaussian curvature"), std::string::npos)
+      << summary.report.termination;
+}
+
 TEST(HNetTest, RefusesMeshesThatAreNotSimplyConnected) {
   // A 4 × 4 grid with the middle face removed: an annulus.
   PolyMesh grid = Grid("hypar", 5);
