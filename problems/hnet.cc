@@ -340,6 +340,17 @@ HNet::HNet(const PolyMesh& mesh, const PolyMesh* reference, const HNetOptions& o
     throw InputError("invalid H-net options: frame weight > 0, rounds and iterations ≥ 1");
   if (mesh.n_faces() == 0) throw InputError("the mesh has no faces");
   CheckANetTopology(mesh, "");
+  // The weight and frame-point formulas work in the input's units; products of coordinates
+  // must stay finite (the A-net step alone is scale-free).
+  const double mean_edge = MeanEdgeLength(mesh);
+  if (!(mean_edge >= kMinHNetEdge && mean_edge <= kMaxHNetEdge)) {
+    char text[160];
+    std::snprintf(text, sizeof(text),
+                  "the mean edge length is %.3g; the H-net rounds need it within [%g, %g] "
+                  "(rescale the mesh)",
+                  mean_edge, kMinHNetEdge, kMaxHNetEdge);
+    throw InputError(text);
+  }
   topology_note_ = SimplyConnectedProblem(mesh);
   if (!topology_note_.empty() && !options.allow_not_simply_connected)
     throw InputError(topology_note_ +

@@ -130,9 +130,13 @@ NamedValues ToNamedValues(const HNetRound& r);
 // The H-net as JSON: "vertices", "faces" and four corner "weights" per face.
 nlohmann::json HNetJson(const PolyMesh& mesh, const std::vector<std::array<double, 4>>& weights);
 
+// The mean edge lengths the H-net rounds accept (their formulas multiply coordinates).
+inline constexpr double kMinHNetEdge = 1e-100, kMaxHNetEdge = 1e100;
+
 class HNet {
  public:
-  // Checks the topology (quads, even inner valence, bipartite, simply connected unless allowed).
+  // Checks the topology (quads, even inner valence, bipartite, simply connected unless allowed)
+  // and the scale (mean edge in [kMinHNetEdge, kMaxHNetEdge]); throws InputError.
   HNet(const PolyMesh& mesh, const PolyMesh* reference, const HNetOptions& options);
 
   using RoundCallback = std::function<void(const HNetRound&)>;

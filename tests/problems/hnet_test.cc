@@ -170,6 +170,22 @@ TEST(HNetTest, AFlatMeshStopsWithADiagnosisNamingAFace) {
       << summary.report.termination;
 }
 
+// The rounds' formulas multiply coordinates: a mesh at 1e150 is refused up front with the
+// reason, instead of failing after the A-net step with undefined weights.
+TEST(HNetTest, RefusesAScaleItsFormulasCannotTake) {
+  PolyMesh huge = Grid("hyperboloid", 7);
+  for (auto v : huge.vertices()) huge.set_point(v, huge.point(v) * 1e150);
+  try {
+    HNet hnet(huge, nullptr, HNetOptions());
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("rescale the mesh"), std::string::npos) << e.what();
+  }
+  PolyMesh small = Grid("hyperboloid", 7);
+  for (auto v : small.vertices()) small.set_point(v, small.point(v) * 1e-6);
+  EXPECT_NO_THROW(HNet(small, nullptr, HNetOptions()));
+}
+
 TEST(HNetTest, RefusesMeshesThatAreNotSimplyConnected) {
   // A 4 × 4 grid with the middle face removed: an annulus.
   PolyMesh grid = Grid("hypar", 5);
