@@ -55,9 +55,14 @@ int RunWeingartenCommand(WeingartenArgs args) try {
                 args.settings.preset.c_str(), DescribeWeingartenLevel(level, problem).c_str());
     log.PrintHeader();
   };
-  const WeingartenRun run = RunWeingarten(
-      input, options, args.solver != "gp", args.settings.molds,
-      [&log](const RunRecord& r) { return log.Print(r), true; }, on_level);
+  WeingartenRun run;
+  try {
+    run = RunWeingarten(
+        input, options, args.solver != "gp", args.settings.molds,
+        [&log](const RunRecord& r) { return log.Print(r), true; }, on_level);
+  } catch (const InputError& e) {  // a property of the surface read from the input
+    throw InputError(args.input + ": " + e.what());
+  }
   nlohmann::json report = WeingartenReportJson(options, run);
   report.update(
       {{"input", args.input}, {"output", args.files.output}, {"preset", args.settings.preset}});

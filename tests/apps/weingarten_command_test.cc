@@ -39,6 +39,19 @@ TEST_F(WeingartenCommandTest, OptimisesTheShippedSurfaceAndWritesEveryOutput) {
 
 // Without --tolerance the preset's iterations are the ask (exit 0); with one, the run stops as
 // soon as it is met, and one it cannot meet gives exit 3 with the result and report written.
+// A property of the surface found while sampling it is an input error that names the file.
+TEST_F(WeingartenCommandTest, ADegenerateSurfaceIsRefusedNamingTheFile) {
+  nlohmann::json surface = nlohmann::json::parse(Slurp(Data("freeform_10x10.json")));
+  for (auto& row : surface["control_points"])
+    for (auto& p : row) p = {p[0].get<double>(), 0.0, 0.0};  // every point on one line
+  const std::string path = Write("line.json", surface.dump());
+  const CommandRun r = Gproj("weingarten " + path + " -o " + Path("out.json"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err.rfind("gproj weingarten: " + path + ": the surface is degenerate", 0), 0u)
+      << r.err;
+  EXPECT_FALSE(Exists("out.json"));
+}
+
 TEST_F(WeingartenCommandTest, ToleranceStopsTheRunAndDecidesTheExitCode) {
   const std::string base = "weingarten " + Data("freeform_10x10.json") + " --max-iterations 6";
   const CommandRun met = Gproj(base + " -o " + Path("met.json") + " --tolerance 0.3 --report " +
