@@ -239,6 +239,12 @@ void WriteFaceOutputs(const PolyMesh& result, const std::vector<double>& values,
 }
 
 void PrintPanelSummary(const NamedValues& initial, const NamedValues& final) {
+  const double glide = ValueOf(final, "max_glide_distance");  // NaN without gliding
+  if (glide >= 0.0)
+    std::printf(
+        "       boundary vertices glided; max distance from the input boundary %.2e of the bbox "
+        "diagonal\n",
+        glide);
   std::printf(
       "panels: non-convex quads %.0f -> %.0f, smallest corner angle %.1f -> %.1f deg, max kink "
       "%.2e -> %.2e deg, max planarity %.2e -> %.2e (diagonal distance, input units)\n",

@@ -91,7 +91,7 @@ void WriteFaceOutputs(const PolyMesh& result, const std::vector<double>& values,
                       const std::string& picture, const std::string& title);
 
 // "panels: non-convex quads 0 -> 0, smallest corner angle …" from the ShapeValues of the initial
-// and final measures.
+// and final measures, after the gliding line when the final measures have max_glide_distance.
 void PrintPanelSummary(const NamedValues& initial, const NamedValues& final);
 // Warns on stderr when the result is far from the input (a corner angle changed by more than
 // `threshold_deg` in over 5% of the quads, or a vertex moved more than 2% of the bbox diagonal):

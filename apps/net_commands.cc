@@ -154,11 +154,6 @@ int RunANet(NetArgs& args) {
         "final: max star planarity %.3e, mean %.3e, max displacement %.3e of the bbox "
         "diagonal\n",
         m.max_star_planarity, m.mean_star_planarity, m.max_displacement);
-    if (m.max_glide_distance >= 0.0)
-      std::printf(
-          "       boundary vertices glided; max distance from the input boundary %.2e of "
-          "the bbox diagonal\n",
-          m.max_glide_distance);
     PrintPanelSummary(report.initial, report.final);
     WarnIfFarFromInput("anet", "an A-net (asymptotic)", mesh, anet->Result(), m.max_displacement,
                        kANetShapeChangeDeg);

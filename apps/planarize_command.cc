@@ -86,11 +86,6 @@ int RunPlanarize(PlanarizeArgs args) {
     if (final_measures.max_concyclicity >= 0.0)
       std::printf("       max concyclicity %.3e (distance to the fitted circle / mean edge)\n",
                   final_measures.max_concyclicity);
-    if (final_measures.max_glide_distance >= 0.0)
-      std::printf(
-          "       boundary vertices glided; max distance from the input boundary %.2e of "
-          "the bbox diagonal\n",
-          final_measures.max_glide_distance);
     PrintPanelSummary(report.initial, report.final);
     WarnIfFarFromInput("planarize", options.circular ? "a circular mesh" : "a PQ (conjugate) mesh",
                        input, pq->Result(), final_measures.max_displacement, 10.0);

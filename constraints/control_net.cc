@@ -69,7 +69,7 @@ double PolylineGliding::DistanceToPolyline(int e, const VariableLayout& layout,
 
 void PolylineGliding::ClosestPoint(const std::vector<Eigen::Vector3d>& polyline,
                                    const Eigen::Vector3d& p, Eigen::Vector3d* foot,
-                                   Eigen::Vector3d* direction, int* segment, double* t) {
+                                   Eigen::Vector3d* direction) {
   double best = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i + 1 < polyline.size(); ++i) {
     const Eigen::Vector3d a = polyline[i], ab = polyline[i + 1] - a;
@@ -80,8 +80,6 @@ void PolylineGliding::ClosestPoint(const std::vector<Eigen::Vector3d>& polyline,
       best = d;
       *foot = q;
       *direction = ab.normalized();
-      if (segment != nullptr) *segment = static_cast<int>(i);
-      if (t != nullptr) *t = s;
     }
   }
 }

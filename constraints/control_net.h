@@ -49,11 +49,9 @@ class PolylineGliding : public ConstraintFamily {
   // Distance from the point of element e (at x) to its polyline.
   double DistanceToPolyline(int e, const VariableLayout& layout, const Eigen::VectorXd& x) const;
 
-  // Closest point of a polyline to p and the unit direction of its segment; optionally the
-  // segment's index and the foot's parameter t ∈ [0, 1] on it.
+  // Closest point of a polyline to p and the unit direction of its segment.
   static void ClosestPoint(const std::vector<Eigen::Vector3d>& polyline, const Eigen::Vector3d& p,
-                           Eigen::Vector3d* foot, Eigen::Vector3d* direction,
-                           int* segment = nullptr, double* t = nullptr);
+                           Eigen::Vector3d* foot, Eigen::Vector3d* direction);
 
  private:
   std::vector<std::vector<Eigen::Vector3d>> polylines_;

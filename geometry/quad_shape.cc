@@ -32,12 +32,10 @@ double MeanEdge(const PolyMesh& mesh) { return mesh.n_edges() > 0 ? MeanEdgeLeng
 
 }  // namespace
 
-std::array<double, 4> QuadCornerAngles(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
-                                       const Eigen::Vector3d& v2, const Eigen::Vector3d& v3) {
-  Eigen::Vector3d v[4] = {v0, v1, v2, v3};
-  NormalizePolygon(v, 4);
-  double sines[4];
-  QuadCornerSines(v[0].data(), v[1].data(), v[2].data(), v[3].data(), sines);
+namespace {
+
+// Corner angles of a quad already at unit size (NormalizePolygon), from its corner sines.
+std::array<double, 4> CornerAngles(const Eigen::Vector3d* v, const double* sines) {
   std::array<double, 4> angles{};
   for (int i = 0; i < 4; ++i) {
     const double angle = AngleDeg(v[(i + 1) % 4] - v[i], v[(i + 3) % 4] - v[i]);
@@ -46,26 +44,51 @@ std::array<double, 4> QuadCornerAngles(const Eigen::Vector3d& v0, const Eigen::V
   return angles;
 }
 
+// Distance between the diagonal lines of a quad at unit size.
+double UnitDiagonalDistance(const Eigen::Vector3d* v) {
+  const Eigen::Vector3d d0 = v[2] - v[0], d1 = v[3] - v[1];
+  const Eigen::Vector3d n = d0.cross(d1);
+  const double length = n.norm();
+  if (length <= 1e-300)  // parallel diagonals: distance of v1 from the line through v0, v2
+    return (v[1] - v[0]).cross(d0).norm() / std::max(d0.norm(), 1e-300);
+  return std::abs((v[1] - v[0]).dot(n)) / length;
+}
+
+}  // namespace
+
+std::array<double, 4> QuadCornerAngles(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
+                                       const Eigen::Vector3d& v2, const Eigen::Vector3d& v3) {
+  Eigen::Vector3d v[4] = {v0, v1, v2, v3};
+  NormalizePolygon(v, 4);
+  double sines[4];
+  QuadCornerSines(v[0].data(), v[1].data(), v[2].data(), v[3].data(), sines);
+  return CornerAngles(v, sines);
+}
+
+double DiagonalDistance(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
+                        const Eigen::Vector3d& v2, const Eigen::Vector3d& v3) {
+  Eigen::Vector3d v[4] = {v0, v1, v2, v3};
+  const double extent = NormalizePolygon(v, 4);
+  return extent * UnitDiagonalDistance(v);
+}
+
 QuadShape MeasureQuadShape(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
                            const Eigen::Vector3d& p2, const Eigen::Vector3d& p3) {
   QuadShape s;
-  Eigen::Vector3d p[4] = {p0, p1, p2, p3};
-  const double extent = NormalizePolygon(p, 4);  // scale-free: measured at unit size
-  const Eigen::Vector3d &v0 = p[0], &v1 = p[1], &v2 = p[2], &v3 = p[3];
+  Eigen::Vector3d v[4] = {p0, p1, p2, p3};
+  const double extent = NormalizePolygon(v, 4);  // scale-free: measured at unit size
   double sines[4];
-  QuadCornerSines(v0.data(), v1.data(), v2.data(), v3.data(), sines);
-  const std::array<double, 4> angles = QuadCornerAngles(v0, v1, v2, v3);
+  QuadCornerSines(v[0].data(), v[1].data(), v[2].data(), v[3].data(), sines);
+  const std::array<double, 4> angles = CornerAngles(v, sines);
   s.min_angle_deg = *std::min_element(angles.begin(), angles.end());
   for (double sine : sines) s.convex = s.convex && sine > 0.0;
-  const Eigen::Vector3d d0 = v2 - v0, d1 = v3 - v1;
   // Split along v0–v2: triangles (v0, v1, v2) and (v0, v2, v3); along v1–v3 likewise.
-  const double kink02 = AngleDeg((v1 - v0).cross(v2 - v0), (v2 - v0).cross(v3 - v0));
-  const double kink13 = AngleDeg((v2 - v1).cross(v3 - v1), (v3 - v1).cross(v0 - v1));
+  const double kink02 =
+      AngleDeg((v[1] - v[0]).cross(v[2] - v[0]), (v[2] - v[0]).cross(v[3] - v[0]));
+  const double kink13 =
+      AngleDeg((v[2] - v[1]).cross(v[3] - v[1]), (v[3] - v[1]).cross(v[0] - v[1]));
   s.kink_deg = std::max(kink02, kink13);
-  const Eigen::Vector3d n = d0.cross(d1);
-  s.diagonal_distance =
-      extent * (n.norm() > 1e-300 ? std::abs((v1 - v0).dot(n)) / n.norm()
-                                  : (v1 - v0).cross(d0).norm() / std::max(d0.norm(), 1e-300));
+  s.diagonal_distance = extent * UnitDiagonalDistance(v);
   return s;
 }
 

@@ -55,6 +55,10 @@ struct QuadShape {
 std::array<double, 4> QuadCornerAngles(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
                                        const Eigen::Vector3d& v2, const Eigen::Vector3d& v3);
 
+// Distance between the two diagonal lines of a quad (the planarity measure), in its units.
+double DiagonalDistance(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
+                        const Eigen::Vector3d& v2, const Eigen::Vector3d& v3);
+
 QuadShape MeasureQuadShape(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
                            const Eigen::Vector3d& v2, const Eigen::Vector3d& v3);
 

@@ -75,14 +75,14 @@ namespace {
 std::vector<double> VertexStarPlanarity(const PolyMesh& mesh) {
   const double mean_edge = MeanEdgeLength(mesh);
   std::vector<double> values(mesh.n_vertices(), -1.0);
-  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector3d> points, ring;  // reused: measured every iteration
   for (auto v : mesh.vertices()) {
     if (mesh.valence(v) < 3) continue;
     points.assign(1, ToEigen(mesh.point(v)));  // the centre first, then the ring
     for (auto w : mesh.vv_range(v)) points.push_back(ToEigen(mesh.point(w)));
     // Measured at unit size (the centre at the origin), so that it is scale-free.
     const double extent = NormalizePolygon(points.data(), static_cast<int>(points.size()));
-    const std::vector<Eigen::Vector3d> ring(points.begin() + 1, points.end());
+    ring.assign(points.begin() + 1, points.end());
     const Eigen::Vector3d n = StarNormal(points[0], ring);
     double worst = 0.0;
     for (const auto& p : ring) worst = std::max(worst, std::abs(n.dot(p - points[0])));

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "constraints/edge_parallelism.h"
+#include "geometry/quad_shape.h"
 #include "problems/circular_mesh.h"
 #include "problems/mesh_variables.h"
 #include "problems/pq_planarization.h"

@@ -97,35 +97,19 @@ NamedValues ToNamedValues(const PlanarityMeasures& m) {
   return values;
 }
 
-double DiagonalDistance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
-                        const Eigen::Vector3d& p2, const Eigen::Vector3d& p3) {
-  Eigen::Vector3d p[4] = {p0, p1, p2, p3};
-  const double extent = NormalizePolygon(p, 4);  // scale-free: measured at unit size
-  const Eigen::Vector3d d0 = p[2] - p[0], d1 = p[3] - p[1];
-  const Eigen::Vector3d n = d0.cross(d1);
-  const double length = n.norm();
-  if (length <= 1e-300) {
-    // Parallel diagonals: distance of v1 from the line through v0, v2.
-    return extent * (p[1] - p[0]).cross(d0).norm() / std::max(d0.norm(), 1e-300);
-  }
-  return extent * std::abs((p[1] - p[0]).dot(n)) / length;
-}
-
 PlanarityMeasures MeasurePlanarity(const PolyMesh& mesh, const PolyMesh& reference) {
   PlanarityMeasures m;
   m.mean_edge_length = MeanEdgeLength(mesh);
+  const std::vector<QuadShape> shapes = MeasureQuadShapes(mesh);  // quads only (checked)
   double sum = 0.0;
-  for (auto f : mesh.faces()) {
-    Eigen::Vector3d p[4];
-    int k = 0;
-    for (auto v : mesh.fv_range(f)) p[k++ % 4] = ToEigen(mesh.point(v));
-    const double d = DiagonalDistance(p[0], p[1], p[2], p[3]) / m.mean_edge_length;
+  for (const QuadShape& shape : shapes) {
+    const double d = shape.diagonal_distance / m.mean_edge_length;
     m.max_planarity = std::max(m.max_planarity, d);
     sum += d;
   }
   m.mean_planarity = mesh.n_faces() > 0 ? sum / mesh.n_faces() : 0.0;
   m.max_displacement = MaxDisplacement(mesh, reference);
-  m.shape = Summarize(MeasureQuadShapes(mesh));
+  m.shape = Summarize(shapes);
   return m;
 }
 

@@ -91,10 +91,6 @@ ColourScale PlanarityColourScale(const PolyMesh& result, bool circular);
 nlohmann::json PlanarizationFacts(const PolyMesh& input, const PolyMesh& result,
                                   const PQPlanarizationOptions& options);
 
-// Distance between the two diagonal lines of a quad.
-double DiagonalDistance(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
-                        const Eigen::Vector3d& v2, const Eigen::Vector3d& v3);
-
 // Planarity of `mesh` (quads), displacement against `reference` (same connectivity; may be
 // the mesh itself).
 PlanarityMeasures MeasurePlanarity(const PolyMesh& mesh, const PolyMesh& reference);
