@@ -52,12 +52,12 @@ int RunCanal(const CanalArgs& args) {
     if (args.options.smooth) log.PrintHeader();
     report = canal->Run([&log](const RunRecord& r) { return log.Print(r), true; });
     mesh = canal->Mesh();
-    if (!args.strip.empty()) WriteMeshAtomically(StripMesh(canal->strip()), args.strip);
   } catch (const InputError& e) {
     std::cerr << "gproj canal: " << e.what() << "\n";
     return kExitInputError;
   }
-  const NamedValues strip = MeasureCircularMesh(StripMesh(canal->strip()));
+  const PolyMesh strip_mesh = StripMesh(canal->strip());
+  const NamedValues strip = MeasureCircularMesh(strip_mesh);
   std::printf("F: %.6g -> %.6g\n", ValueOf(report.initial, "smoothness_energy"),
               ValueOf(report.final, "smoothness_energy"));
   PrintMeasures("strip", strip);
@@ -73,7 +73,8 @@ int RunCanal(const CanalArgs& args) {
   std::snprintf(title, sizeof(title), "Canal surface, %zu circular quads, max concyclicity %.1e",
                 mesh.n_faces(), ValueOf(report.final, "max_concyclicity"));
   // The smoothing's tolerance is Ceres' relative function decrease, not a bound on a measure.
-  return WriteAndConclude("canal", report, mesh, title, args.outputs, extra, "", 0.0, args.strip);
+  return WriteAndConclude("canal", report, mesh, title, args.outputs, extra, "", 0.0, args.strip,
+                          args.strip.empty() ? nullptr : &strip_mesh);
 }
 
 }  // namespace

@@ -218,23 +218,23 @@ void CheckHeatmapPath(const std::string& path) {
     throw InputError("--heatmap " + path + ": the heatmap is written as .ply");
 }
 
-void WriteFaceOutputs(const PolyMesh& result, const std::vector<double>& values,
-                      const ColourScale& scale, const std::string& csv,
-                      const std::string& face_values, const std::string& heatmap,
-                      const std::string& picture, const std::string& title) {
+void AddFaceOutputs(const PolyMesh& result, const std::vector<double>& values,
+                    const ColourScale& scale, const std::string& csv,
+                    const std::string& face_values, const std::string& heatmap,
+                    const std::string& picture, const std::string& title, OutputFiles* out) {
   const std::vector<Rgb> colours = ColoursOf(values, scale);
   char legend[256];
   std::snprintf(legend, sizeof(legend),
                 "colour: %s per face (/ mean edge), %s scale, blue %.1e to red %.1e",
                 scale.measure.c_str(), scale.logarithmic ? "log" : "linear", scale.min, scale.max);
-  if (!face_values.empty()) WriteTextFileAtomically(face_values, csv);
-  if (!heatmap.empty()) WriteColouredPly(result, colours, heatmap);
+  if (!face_values.empty()) out->AddText(face_values, csv);
+  if (!heatmap.empty()) out->AddText(heatmap, ColouredPlyText(result, colours));
   if (!picture.empty()) {
     SvgOptions svg;
     svg.title = title;
     svg.legend = legend;
     svg.face_colours = colours;
-    WriteTextFileAtomically(picture, RenderMeshSvg(result, svg));
+    out->AddText(picture, RenderMeshSvg(result, svg));
   }
 }
 

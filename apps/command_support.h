@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/mesh_io.h"
 #include "geometry/quad_shape.h"
 #include "problems/guided_problem.h"
 #include "problems/panel_bounds.h"
@@ -82,13 +83,13 @@ void AddFaceOutputOptions(CLI::App* command, std::string* face_values, std::stri
 // Throws InputError unless `path` is empty or ends in .ply (the --heatmap format).
 void CheckHeatmapPath(const std::string& path);
 
-// The per-face outputs of a mesh result: `face_values` (the CSV text `csv`), `heatmap` (PLY with
-// a colour per face) and `picture` (SVG), each only when its path is not empty. The colours show
-// `values` (one per face) on `scale`.
-void WriteFaceOutputs(const PolyMesh& result, const std::vector<double>& values,
-                      const ColourScale& scale, const std::string& csv,
-                      const std::string& face_values, const std::string& heatmap,
-                      const std::string& picture, const std::string& title);
+// Adds the per-face outputs of a mesh result to `out`: `face_values` (the CSV text `csv`),
+// `heatmap` (PLY with a colour per face) and `picture` (SVG), each only when its path is not
+// empty. The colours show `values` (one per face) on `scale`.
+void AddFaceOutputs(const PolyMesh& result, const std::vector<double>& values,
+                    const ColourScale& scale, const std::string& csv,
+                    const std::string& face_values, const std::string& heatmap,
+                    const std::string& picture, const std::string& title, OutputFiles* out);
 
 // "panels: non-convex quads 0 -> 0, smallest corner angle …" from the ShapeValues of the initial
 // and final measures, after the gliding line when the final measures have max_glide_distance.

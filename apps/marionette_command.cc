@@ -22,9 +22,11 @@ bool WriteOutputs(const MarionetteArgs& args, const MarionetteRun& run, const Ru
   extra.update(
       {{"output", report.failed ? "" : args.output}, {"tolerance", args.options.lift.tolerance}});
   try {
-    if (!report.failed) WriteMeshAtomically(run.Result(), args.output);
+    OutputFiles files;
+    if (!report.failed) files.AddMesh(run.Result(), args.output);
     if (!args.report.empty())
-      WriteTextFileAtomically(args.report, ReportJson("marionette", report, extra).dump(2) + "\n");
+      files.AddText(args.report, ReportJson("marionette", report, extra).dump(2) + "\n");
+    files.Commit();
     return true;
   } catch (const InputError& e) {
     std::cerr << "gproj marionette: " << e.what() << "\n";

@@ -132,18 +132,20 @@ int RunANet(NetArgs& args) {
   extra["input"] = args.input;
   extra["output"] = report.failed ? "" : args.output;
   try {
+    OutputFiles files;
     if (!report.failed) {
       const PolyMesh result = anet->Result();
-      WriteMeshAtomically(result, args.output);
+      files.AddMesh(result, args.output);
       char title[128];
       std::snprintf(title, sizeof(title), "A-net: %zu quads, max star planarity %.2e",
                     mesh.n_faces(), anet->Measures().max_star_planarity);
-      WriteFaceOutputs(result, FaceStarPlanarity(result), StarPlanarityColourScale(result),
-                       ANetFaceValuesCsv(result), args.face_values, args.heatmap, args.picture,
-                       title);
+      AddFaceOutputs(result, FaceStarPlanarity(result), StarPlanarityColourScale(result),
+                     ANetFaceValuesCsv(result), args.face_values, args.heatmap, args.picture, title,
+                     &files);
     }
     if (!args.report.empty())
-      WriteTextFileAtomically(args.report, ReportJson("anet", report, extra).dump(2) + "\n");
+      files.AddText(args.report, ReportJson("anet", report, extra).dump(2) + "\n");
+    files.Commit();
   } catch (const InputError& e) {
     std::cerr << "gproj anet: " << e.what() << "\n";
     return kExitInputError;
@@ -176,10 +178,10 @@ void LogRound(const HNetRound& r) {
 // The patches (JSON), the sampled surface, the picture and the report.
 void WriteHNetOutputs(const NetArgs& args, const HNet& hnet, const HNetRound& last,
                       const nlohmann::json& report) {
-  WriteTextFileAtomically(args.output, HNetJson(hnet.mesh(), hnet.weights()).dump(1) + "\n");
+  OutputFiles files;
+  files.AddText(args.output, HNetJson(hnet.mesh(), hnet.weights()).dump(1) + "\n");
   if (!args.surface_mesh.empty())
-    WriteMeshAtomically(SampleHNetSurface(hnet.mesh(), hnet.weights(), args.samples),
-                        args.surface_mesh);
+    files.AddMesh(SampleHNetSurface(hnet.mesh(), hnet.weights(), args.samples), args.surface_mesh);
   if (!args.picture.empty()) {
     SvgOptions svg;
     char title[160];
@@ -187,10 +189,11 @@ void WriteHNetOutputs(const NetArgs& args, const HNet& hnet, const HNetRound& la
                   "H-net: %zu patches, max tangent-plane angle %.2e deg, W in [%.4g, %.4g]",
                   hnet.mesh().n_faces(), last.max_tangent_angle_deg, last.min_w, last.max_w);
     svg.title = title;
-    WriteTextFileAtomically(args.picture,
-                            RenderMeshSvg(SampleHNetSurface(hnet.mesh(), hnet.weights(), 2), svg));
+    files.AddText(args.picture,
+                  RenderMeshSvg(SampleHNetSurface(hnet.mesh(), hnet.weights(), 2), svg));
   }
-  if (!args.report.empty()) WriteTextFileAtomically(args.report, report.dump(2) + "\n");
+  if (!args.report.empty()) files.AddText(args.report, report.dump(2) + "\n");
+  files.Commit();
 }
 
 int RunHNet(NetArgs& args) {

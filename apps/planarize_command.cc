@@ -61,19 +61,21 @@ int RunPlanarize(PlanarizeArgs args) {
   extra["input"] = args.input;
   extra["output"] = report.failed ? "" : args.output;
   try {
+    OutputFiles files;
     if (!report.failed) {
-      WriteMeshAtomically(pq->Result(), args.output);
+      const PolyMesh result = pq->Result();
+      files.AddMesh(result, args.output);
       char title[128];
       std::snprintf(title, sizeof(title), "%zu quads, max planarity %.2e", input.n_faces(),
                     final_measures.max_planarity);
-      const PolyMesh result = pq->Result();
-      WriteFaceOutputs(result, RelativeFacePlanarity(result, options.circular),
-                       PlanarityColourScale(result, options.circular),
-                       QuadShapesCsv(result, options.circular), args.face_values, args.heatmap,
-                       args.picture, title);
+      AddFaceOutputs(result, RelativeFacePlanarity(result, options.circular),
+                     PlanarityColourScale(result, options.circular),
+                     QuadShapesCsv(result, options.circular), args.face_values, args.heatmap,
+                     args.picture, title, &files);
     }
     if (!args.report.empty())
-      WriteTextFileAtomically(args.report, ReportJson("planarize", report, extra).dump(2) + "\n");
+      files.AddText(args.report, ReportJson("planarize", report, extra).dump(2) + "\n");
+    files.Commit();
   } catch (const InputError& e) {
     std::cerr << "gproj planarize: " << e.what() << "\n";
     return kExitInputError;

@@ -35,19 +35,23 @@ void PrintMeasures(const char* label, const NamedValues& measures) {
 
 int WriteAndConclude(const std::string& command, const RunReport& report, const PolyMesh& mesh,
                      const std::string& title, const MeshOutputs& outputs, nlohmann::json extra,
-                     const std::string& measure, double tolerance, const std::string& also) {
+                     const std::string& measure, double tolerance, const std::string& also,
+                     const PolyMesh* also_mesh) {
   extra["output"] = report.failed ? "" : outputs.mesh;
   try {
+    OutputFiles files;
     if (!report.failed) {
-      WriteMeshAtomically(mesh, outputs.mesh);
+      files.AddMesh(mesh, outputs.mesh);
+      if (also_mesh != nullptr) files.AddMesh(*also_mesh, also);
       if (!outputs.picture.empty()) {
         SvgOptions svg;
         svg.title = title;
-        WriteTextFileAtomically(outputs.picture, RenderMeshSvg(mesh, svg));
+        files.AddText(outputs.picture, RenderMeshSvg(mesh, svg));
       }
     }
     if (!outputs.report.empty())
-      WriteTextFileAtomically(outputs.report, ReportJson(command, report, extra).dump(2) + "\n");
+      files.AddText(outputs.report, ReportJson(command, report, extra).dump(2) + "\n");
+    files.Commit();
   } catch (const InputError& e) {
     std::cerr << "gproj " << command << ": " << e.what() << "\n";
     return kExitInputError;

@@ -35,12 +35,13 @@ struct MeshOutputs {
 // "<label>: max planarity …, max concyclicity …" from MeasureCircularMesh's values.
 void PrintMeasures(const char* label, const NamedValues& measures);
 
-// Unless the run failed, writes the mesh and the picture (titled `title`); then the report
-// (ReportJson with `extra` and "output"), all atomically. Returns ConcludeRun's exit code,
-// which names `measure` and `tolerance` for a missed tolerance and lists `outputs` and `also`
-// as written; kExitInputError when a file cannot be written.
+// Unless the run failed, writes the mesh, `also_mesh` to `also` (when given) and the picture
+// (titled `title`); then the report (ReportJson with `extra` and "output"), all or none.
+// Returns ConcludeRun's exit code, which names `measure` and `tolerance` for a missed tolerance
+// and lists the outputs as written; kExitInputError when a file cannot be written.
 int WriteAndConclude(const std::string& command, const RunReport& report, const PolyMesh& mesh,
                      const std::string& title, const MeshOutputs& outputs, nlohmann::json extra,
-                     const std::string& measure, double tolerance, const std::string& also = "");
+                     const std::string& measure, double tolerance, const std::string& also = "",
+                     const PolyMesh* also_mesh = nullptr);
 
 }  // namespace gproj

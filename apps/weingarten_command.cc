@@ -66,8 +66,10 @@ int RunWeingartenCommand(WeingartenArgs args) try {
   nlohmann::json report = WeingartenReportJson(options, run);
   report.update(
       {{"input", args.input}, {"output", args.files.output}, {"preset", args.settings.preset}});
-  if (!run.report.failed) WriteWeingartenFiles(run, args.files);
-  if (!args.report.empty()) WriteTextFileAtomically(args.report, report.dump(2) + "\n");
+  OutputFiles files;
+  if (!run.report.failed) AddWeingartenFiles(run, args.files, &files);
+  if (!args.report.empty()) files.AddText(args.report, report.dump(2) + "\n");
+  files.Commit();
   if (!run.report.failed) std::printf("%s", SummarizeWeingartenRun(run).c_str());
   const WeingartenFiles& f = args.files;
   return ConcludeRun("weingarten", run.report, options.target_measure(), options.tolerance,

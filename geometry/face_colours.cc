@@ -52,10 +52,9 @@ std::vector<Rgb> ColoursOf(const std::vector<double>& values, const ColourScale&
   return colours;
 }
 
-void WriteColouredPly(const PolyMesh& mesh, const std::vector<Rgb>& colours,
-                      const std::string& path) {
+std::string ColouredPlyText(const PolyMesh& mesh, const std::vector<Rgb>& colours) {
   if (colours.size() != mesh.n_faces())
-    throw std::logic_error("WriteColouredPly: one colour per face is needed");
+    throw std::logic_error("ColouredPlyText: one colour per face is needed");
   std::string text = "ply\nformat ascii 1.0\ncomment written by gproj\nelement vertex " +
                      std::to_string(mesh.n_vertices()) +
                      "\nproperty double x\nproperty double y\nproperty double z\nelement face " +
@@ -75,7 +74,7 @@ void WriteColouredPly(const PolyMesh& mesh, const std::vector<Rgb>& colours,
     std::snprintf(buffer, sizeof(buffer), " %d %d %d\n", c[0], c[1], c[2]);
     text += buffer;
   }
-  WriteTextFileAtomically(path, text);
+  return text;
 }
 
 }  // namespace gproj

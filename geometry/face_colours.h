@@ -30,9 +30,8 @@ ColourScale ScaleFor(const std::string& measure, const std::vector<double>& valu
 Rgb ColourOf(double value, const ColourScale& scale);
 std::vector<Rgb> ColoursOf(const std::vector<double>& values, const ColourScale& scale);
 
-// The mesh as an ASCII PLY with exact vertex coordinates and one colour per face, atomically.
+// The mesh as an ASCII PLY with exact vertex coordinates and one colour per face.
 // colours.size() must equal the number of faces.
-void WriteColouredPly(const PolyMesh& mesh, const std::vector<Rgb>& colours,
-                      const std::string& path);
+std::string ColouredPlyText(const PolyMesh& mesh, const std::vector<Rgb>& colours);
 
 }  // namespace gproj

@@ -170,15 +170,16 @@ long long ProcessId() {
 #endif
 }
 
-// "dir/out.obj" -> "dir/.out.obj.tmp-<pid>.obj": same directory, so that the rename is atomic,
-// hidden, and with the target's extension.
-std::string TemporaryPathFor(const std::string& path) {
+// "dir/out.obj" -> "dir/.out.obj.<kind>-<pid>.obj" (kind "tmp" for a temporary, "old" for the
+// backup of a replaced file): same directory, so that the rename is atomic, hidden, and with
+// the target's extension.
+std::string SidePathFor(const std::string& path, const char* kind) {
   const fs::path target(path);
   const std::string name = target.filename().string();
   if (name.empty() || name == "." || name == "..") Fail(path, 0, "the path names no file");
-  const std::string temporary_name =
-      "." + name + ".tmp-" + std::to_string(ProcessId()) + target.extension().string();
-  return (target.parent_path() / temporary_name).string();
+  const std::string side_name =
+      "." + name + "." + kind + "-" + std::to_string(ProcessId()) + target.extension().string();
+  return (target.parent_path() / side_name).string();
 }
 
 // Whether process `pid` still runs (a temporary of a running gproj must be left alone).
@@ -191,22 +192,27 @@ bool ProcessRuns(long long pid) {
 #endif
 }
 
-// Removes the temporaries of `path` that killed runs left behind (".out.obj.tmp-<pid>.obj" of a
-// process that no longer runs). Errors are ignored: this is housekeeping.
+// Removes the temporaries and backups of `path` that killed runs left behind
+// (".out.obj.tmp-<pid>.obj", ".out.obj.old-<pid>.obj" of a process that no longer runs).
+// Errors are ignored: this is housekeeping.
 void RemoveStaleTemporaries(const std::string& path) {
   const fs::path target(path);
-  const std::string prefix = "." + target.filename().string() + ".tmp-";
+  const std::string stem = "." + target.filename().string() + ".";
   const std::string suffix = target.extension().string();
+  const std::size_t kind_size = 4;  // "tmp-" or "old-"
   const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   std::error_code ec;
   for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
-    if (name.size() <= prefix.size() + suffix.size() ||
-        name.compare(0, prefix.size(), prefix) != 0 ||
+    if (name.size() <= stem.size() + kind_size + suffix.size() ||
+        name.compare(0, stem.size(), stem) != 0 ||
         name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
       continue;
+    const std::string kind = name.substr(stem.size(), kind_size);
+    if (kind != "tmp-" && kind != "old-") continue;
+    const std::size_t digits_start = stem.size() + kind_size;
     const std::string digits =
-        name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+        name.substr(digits_start, name.size() - digits_start - suffix.size());
     long long pid = 0;
     const auto parsed = std::from_chars(digits.data(), digits.data() + digits.size(), pid);
     if (parsed.ec != std::errc() || parsed.ptr != digits.data() + digits.size()) continue;
@@ -216,36 +222,6 @@ void RemoveStaleTemporaries(const std::string& path) {
     }
   }
 }
-
-// Removes the temporary file unless it was renamed into place.
-class TemporaryFile {
- public:
-  explicit TemporaryFile(std::string path) : path_(std::move(path)) {}
-  ~TemporaryFile() {
-    if (!committed_) {
-      std::error_code ignored;
-      fs::remove(path_, ignored);
-    }
-  }
-  TemporaryFile(const TemporaryFile&) = delete;
-  TemporaryFile& operator=(const TemporaryFile&) = delete;
-
-  const std::string& path() const { return path_; }
-
-  void CommitTo(const std::string& target) {
-    std::error_code ec;
-    fs::rename(path_, target, ec);
-    if (ec) {
-      Fail(target, 0,
-           "cannot move the temporary file " + QuotePath(path_) + " into place: " + ec.message());
-    }
-    committed_ = true;
-  }
-
- private:
-  std::string path_;
-  bool committed_ = false;
-};
 
 // Writes `contents` to the new file `temporary` and flushes it to disk; messages name `path`.
 void WriteNewFile(const std::string& path, const std::string& temporary,
@@ -381,6 +357,31 @@ PolyMesh ReadMesh(const std::string& path, const MeshRequirements& requirements)
 void CheckMeshExtension(const std::string& path) { FormatOf(path); }
 
 void WriteMeshAtomically(const PolyMesh& mesh, const std::string& path) {
+  OutputFiles files;
+  files.AddMesh(mesh, path);
+  files.Commit();
+}
+
+void WriteTextFileAtomically(const std::string& path, const std::string& contents) {
+  OutputFiles files;
+  files.AddText(path, contents);
+  files.Commit();
+}
+
+OutputFiles::~OutputFiles() {
+  if (!committed_) RollBack();
+}
+
+void OutputFiles::AddText(const std::string& path, const std::string& contents) {
+  if (committed_) throw std::logic_error("OutputFiles::AddText after Commit");
+  for (const Staged& s : staged_)
+    if (s.path == path) throw std::logic_error("OutputFiles: " + path + " added twice");
+  RemoveStaleTemporaries(path);
+  staged_.push_back({path, SidePathFor(path, "tmp"), "", false});
+  WriteNewFile(path, staged_.back().temporary, contents);
+}
+
+void OutputFiles::AddMesh(const PolyMesh& mesh, const std::string& path) {
   const Format format = FormatOf(path);
   for (const auto vh : mesh.vertices()) {
     const PolyMesh::Point& p = mesh.point(vh);
@@ -389,14 +390,50 @@ void WriteMeshAtomically(const PolyMesh& mesh, const std::string& path) {
            "vertex " + std::to_string(vh.idx()) + " has a non-finite coordinate; nothing written");
     }
   }
-  WriteTextFileAtomically(path, MeshText(mesh, format));
+  AddText(path, MeshText(mesh, format));
 }
 
-void WriteTextFileAtomically(const std::string& path, const std::string& contents) {
-  RemoveStaleTemporaries(path);
-  TemporaryFile temporary(TemporaryPathFor(path));
-  WriteNewFile(path, temporary.path(), contents);
-  temporary.CommitTo(path);
+void OutputFiles::Commit() {
+  if (committed_) throw std::logic_error("OutputFiles::Commit twice");
+  for (Staged& s : staged_) {
+    // A hard link keeps the file being replaced, so that a later failure can put it back.
+    std::error_code ec;
+    if (fs::is_regular_file(s.path, ec)) {
+      const std::string backup = SidePathFor(s.path, "old");
+      fs::remove(backup, ec);
+      fs::create_hard_link(s.path, backup, ec);
+      if (!ec) s.backup = backup;
+    }
+    fs::rename(s.temporary, s.path, ec);
+    if (ec) {
+      const std::string path = s.path;
+      const std::string message = "cannot move the temporary file " + QuotePath(s.temporary) +
+                                  " into place: " + ec.message() + "; no output written";
+      RollBack();
+      Fail(path, 0, message);
+    }
+    s.moved = true;
+  }
+  committed_ = true;
+  for (const Staged& s : staged_) {
+    std::error_code ignored;
+    if (!s.backup.empty()) fs::remove(s.backup, ignored);
+  }
+}
+
+void OutputFiles::RollBack() {
+  for (const Staged& s : staged_) {
+    std::error_code ignored;
+    if (!s.moved) {
+      fs::remove(s.temporary, ignored);
+      if (!s.backup.empty()) fs::remove(s.backup, ignored);
+    } else if (!s.backup.empty()) {
+      fs::rename(s.backup, s.path, ignored);  // the previous contents back
+    } else {
+      fs::remove(s.path, ignored);  // did not exist before
+    }
+  }
+  staged_.clear();
 }
 
 }  // namespace gproj

@@ -61,4 +61,32 @@ void CheckMeshExtension(const std::string& path);
 // Writes `contents` to `path` atomically (temporary file + rename); throws InputError.
 void WriteTextFileAtomically(const std::string& path, const std::string& contents);
 
+// The files of one run, written all or none. Each Add* writes its contents to a hidden temporary
+// next to the target and flushes it to disk, so a full disk or an unwritable folder shows before
+// any target changes; Commit then renames the temporaries over their targets. If an Add* or
+// Commit throws (InputError naming the path), or the set is destroyed uncommitted, every
+// temporary is removed and the targets Commit had already replaced get their previous contents
+// back (or disappear if they did not exist): a failed run leaves none of its outputs.
+class OutputFiles {
+ public:
+  OutputFiles() = default;
+  OutputFiles(const OutputFiles&) = delete;
+  OutputFiles& operator=(const OutputFiles&) = delete;
+  ~OutputFiles();
+
+  void AddText(const std::string& path, const std::string& contents);
+  // By extension (.obj/.off/.ply), exact doubles; throws if any coordinate is non-finite.
+  void AddMesh(const PolyMesh& mesh, const std::string& path);
+  void Commit();
+
+ private:
+  struct Staged {
+    std::string path, temporary, backup;  // backup: hard link to the replaced file, if any
+    bool moved = false;
+  };
+  void RollBack();
+  std::vector<Staged> staged_;
+  bool committed_ = false;
+};
+
 }  // namespace gproj

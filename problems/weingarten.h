@@ -20,6 +20,7 @@
 #include "constraints/curvature_auxiliaries.h"
 #include "geometry/bspline_surface.h"
 #include "geometry/curvature_diagram.h"
+#include "geometry/mesh_io.h"
 #include "problems/guided_problem.h"
 #include "problems/report_json.h"
 #include "solver/ceres_adapter.h"
@@ -282,8 +283,9 @@ struct WeingartenFiles {
   std::string surface_mesh;  // the result sampled at 4 points per control point and direction
   std::string picture;       // a shaded picture of the result (SVG)
 };
-// Writes each file atomically; throws InputError naming the file that cannot be written.
-void WriteWeingartenFiles(const WeingartenRun& run, const WeingartenFiles& files);
+// Adds each file to `out` (written all or none by OutputFiles::Commit); throws InputError naming
+// the file that cannot be written.
+void AddWeingartenFiles(const WeingartenRun& run, const WeingartenFiles& files, OutputFiles* out);
 // H and K per sample before and after (and the mold of each sample when given) as CSV:
 // "sample,u,v,H_before,K_before,H_after,K_after[,mold]".
 std::string WeingartenCurvatureCsv(const WeingartenRun& run,

@@ -157,21 +157,20 @@ std::string WeingartenDiagramSvg(const WeingartenRun& run) {
                                    d);
 }
 
-void WriteWeingartenFiles(const WeingartenRun& run, const WeingartenFiles& files) {
+void AddWeingartenFiles(const WeingartenRun& run, const WeingartenFiles& files, OutputFiles* out) {
   const BSplineSurface& result = run.result;
-  if (!files.output.empty()) WriteBSplineJson(result, files.output);
+  if (!files.output.empty()) out->AddText(files.output, BSplineToJson(result));
   if (!files.curvature.empty())
-    WriteTextFileAtomically(files.curvature,
-                            WeingartenCurvatureCsv(run, run.molds ? &run.molds->cluster : nullptr));
-  if (!files.diagram.empty()) WriteTextFileAtomically(files.diagram, WeingartenDiagramSvg(run));
+    out->AddText(files.curvature,
+                 WeingartenCurvatureCsv(run, run.molds ? &run.molds->cluster : nullptr));
+  if (!files.diagram.empty()) out->AddText(files.diagram, WeingartenDiagramSvg(run));
   if (!files.surface_mesh.empty())
-    WriteMeshAtomically(SampleSurfaceMesh(result, 4 * result.nu, 4 * result.nv),
-                        files.surface_mesh);
+    out->AddMesh(SampleSurfaceMesh(result, 4 * result.nu, 4 * result.nv), files.surface_mesh);
   if (!files.picture.empty()) {
     SvgOptions svg;
     svg.title = "Weingarten surface (" + std::to_string(result.nu) + " x " +
                 std::to_string(result.nv) + " control points)";
-    WriteTextFileAtomically(files.picture, RenderMeshSvg(SampleSurfaceMesh(result, 60, 60), svg));
+    out->AddText(files.picture, RenderMeshSvg(SampleSurfaceMesh(result, 60, 60), svg));
   }
 }
 

@@ -288,6 +288,61 @@ TEST_F(MeshIoTest, StaleTemporariesOfKilledRunsAreRemoved) {
   EXPECT_EQ(entries, (std::vector<std::string>{other, live, "out.obj"}));
 }
 
+// A stale backup of a replaced file (".out.obj.old-<pid>.obj") goes the same way.
+TEST_F(MeshIoTest, StaleBackupsOfKilledRunsAreRemoved) {
+  std::ofstream(Path(".out.obj.old-999999999.obj")) << "old\n";
+  WriteTextFileAtomically(Path("out.obj"), "# mesh\n");
+  EXPECT_EQ(DirectoryEntries(), std::vector<std::string>{"out.obj"});
+}
+
+// A run's outputs are written all or none: when the third cannot be created, the first two
+// (one new, one replacing an old file) are not written either, and no temporary stays.
+TEST_F(MeshIoTest, OutputFilesWriteNoneWhenOneCannotBeCreated) {
+  std::ofstream(Path("old.json")) << "old report\n";
+  {
+    OutputFiles files;
+    files.AddText(Path("mesh.obj"), "# mesh\n");
+    files.AddText(Path("old.json"), "new report\n");
+    const std::string missing = Path("no-such-folder/picture.svg");
+    EXPECT_THAT(InputErrorMessage([&] { files.AddText(missing, "<svg/>"); }),
+                StartsWith(missing + ": cannot create the temporary file"));
+  }
+  EXPECT_EQ(DirectoryEntries(), std::vector<std::string>{"old.json"});
+  EXPECT_EQ(ReadText(Path("old.json")), "old report\n");
+}
+
+// When a rename fails during Commit (the target is a folder), the targets already replaced
+// get their previous contents back and the new ones disappear.
+TEST_F(MeshIoTest, OutputFilesCommitRollsBackWhenARenameFails) {
+  std::ofstream(Path("old.json")) << "old report\n";
+  fs::create_directory(Path("picture.svg"));
+  std::ofstream(fs::path(Path("picture.svg")) / "inside") << "keeps the folder non-empty\n";
+  OutputFiles files;
+  files.AddText(Path("mesh.obj"), "# mesh\n");
+  files.AddText(Path("old.json"), "new report\n");
+  files.AddText(Path("picture.svg"), "<svg/>");
+  const std::string message = InputErrorMessage([&] { files.Commit(); });
+  EXPECT_THAT(message, StartsWith(Path("picture.svg") + ": cannot move the temporary file"));
+  EXPECT_THAT(message, HasSubstr("no output written"));
+  std::vector<std::string> entries = DirectoryEntries();
+  std::sort(entries.begin(), entries.end());
+  EXPECT_EQ(entries, (std::vector<std::string>{"old.json", "picture.svg"}));
+  EXPECT_EQ(ReadText(Path("old.json")), "old report\n");
+}
+
+TEST_F(MeshIoTest, OutputFilesCommitWritesEveryFile) {
+  std::ofstream(Path("old.json")) << "old report\n";
+  OutputFiles files;
+  files.AddText(Path("old.json"), "new report\n");
+  files.AddMesh(BuildMesh(GridSoup(1, 1), "grid", {}), Path("mesh.off"));
+  files.Commit();
+  std::vector<std::string> entries = DirectoryEntries();
+  std::sort(entries.begin(), entries.end());
+  EXPECT_EQ(entries, (std::vector<std::string>{"mesh.off", "old.json"}));
+  EXPECT_EQ(ReadText(Path("old.json")), "new report\n");
+  EXPECT_EQ(ReadMesh(Path("mesh.off")).n_faces(), 1u);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Reading errors.
 

@@ -17,8 +17,11 @@ TEST(SvgRenderTest, OnePolygonPerFaceAndTheTitle) {
   QuadGridOptions o;
   o.nu = 5;
   o.nv = 4;
-  const std::string svg =
-      RenderMeshSvg(MakeQuadGrid(o), SvgOptions{{0.7, -1.0, 1.6}, {0, 0, 1}, 400, "grid"});
+  SvgOptions svg_options;
+  svg_options.light = {0, 0, 1};
+  svg_options.width = 400;
+  svg_options.title = "grid";
+  const std::string svg = RenderMeshSvg(MakeQuadGrid(o), svg_options);
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
   EXPECT_EQ(Count(svg, "<polygon"), 12);
   EXPECT_NE(svg.find(">grid</text>"), std::string::npos);

@@ -166,8 +166,10 @@ TEST(PQPlanarizationValidityTest, AnAlreadyFoldedInputGetsNoNewFold) {
   pq.Run();
   const std::vector<QuadShape> after = MeasureQuadShapes(pq.Result());
   ASSERT_EQ(after.size(), before.size());
-  for (size_t f = 0; f < before.size(); ++f)
-    if (before[f].convex) EXPECT_TRUE(after[f].convex) << "face " << f;
+  for (size_t f = 0; f < before.size(); ++f) {
+    if (!before[f].convex) continue;
+    EXPECT_TRUE(after[f].convex) << "face " << f;
+  }
   EXPECT_LE(Summarize(after).non_convex, folded);
 }
 
