@@ -32,25 +32,19 @@ Eigen::Vector3d MRevolutionCentre(const InvertArgs& args, nlohmann::json* report
   for (int j = 0; j < 4; ++j)
     quad[j] = Vector3({args.m_revolution.begin() + 3 * j, args.m_revolution.begin() + 3 * j + 3},
                       "--m-revolution point P" + std::to_string(j + 1));
-  const std::vector<Eigen::Vector3d> centres = MRevolutionCentres(quad, args.t);
-  if (args.root >= static_cast<int>(centres.size()))
-    throw InputError("--root " + std::to_string(args.root) +
-                     " asked, but t = " + std::to_string(args.t) + " gives " +
-                     std::to_string(centres.size()) + " centre(s) off the circle");
-  const Eigen::Vector3d centre = centres[args.root];
-  nlohmann::json list = nlohmann::json::array();
-  for (const auto& c : centres) list.push_back({c.x(), c.y(), c.z()});
-  const QuadImage image = InvertQuad(quad, centre, args.ratio);
-  *report = {{"t", args.t},
-             {"centres", list},
-             {"root", args.root},
-             {"image_side_angle", image.side_angle},
-             {"image_diagonals", image.diagonals}};
+  MRevolutionChoice choice;
+  try {
+    choice = ChooseMRevolutionCentre(quad, args.t, args.root, args.ratio);
+  } catch (const InputError& e) {
+    throw InputError(std::string("--m-revolution: ") + e.what());
+  }
+  *report = MRevolutionJson(choice, args.t, args.root);
+  const Eigen::Vector3d& centre = choice.centre;
   std::printf(
       "M-revolution (000 §5.1), t = %g: %zu centre(s); using %d: (%.6g, %.6g, %.6g); "
       "image sides P1'P2', P4'P3' at %.2e rad, diagonals %.6g and %.6g\n",
-      args.t, centres.size(), args.root, centre.x(), centre.y(), centre.z(), image.side_angle,
-      image.diagonals[0], image.diagonals[1]);
+      args.t, choice.centres.size(), args.root, centre.x(), centre.y(), centre.z(),
+      choice.image.side_angle, choice.image.diagonals[0], choice.image.diagonals[1]);
   return centre;
 }
 

@@ -112,4 +112,18 @@ QuadImage InvertQuad(const std::array<Eigen::Vector3d, 4>& quad, const Eigen::Ve
   return image;
 }
 
+MRevolutionChoice ChooseMRevolutionCentre(const std::array<Eigen::Vector3d, 4>& quad, double t,
+                                          int root, double ratio) {
+  MRevolutionChoice choice;
+  choice.centres = MRevolutionCentres(quad, t);
+  if (root < 0 || root >= static_cast<int>(choice.centres.size()))
+    throw InputError("root " + std::to_string(root) + " asked, but t = " + std::to_string(t) +
+                     " gives " + std::to_string(choice.centres.size()) +
+                     " centre(s) off the circle (roots 0.." +
+                     std::to_string(choice.centres.size() - 1) + ")");
+  choice.centre = choice.centres[root];
+  choice.image = InvertQuad(quad, choice.centre, ratio);
+  return choice;
+}
+
 }  // namespace gproj

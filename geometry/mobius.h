@@ -56,4 +56,15 @@ struct QuadImage {
 QuadImage InvertQuad(const std::array<Eigen::Vector3d, 4>& quad, const Eigen::Vector3d& centre,
                      double ratio);
 
+// The inversion centre of an M-revolution (000 §5.1): root `root` (0 or 1) of
+// MRevolutionCentres(quad, t), with all the roots and the quad's image under that inversion.
+// Throws InputError when `root` is not one of the roots found (naming how many there are).
+struct MRevolutionChoice {
+  Eigen::Vector3d centre;
+  std::vector<Eigen::Vector3d> centres;
+  QuadImage image;
+};
+MRevolutionChoice ChooseMRevolutionCentre(const std::array<Eigen::Vector3d, 4>& quad, double t,
+                                          int root, double ratio);
+
 }  // namespace gproj

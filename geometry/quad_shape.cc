@@ -124,22 +124,36 @@ std::vector<double> RelativeFacePlanarity(const PolyMesh& mesh, bool circular) {
   return values;
 }
 
-std::string QuadShapesCsv(const PolyMesh& mesh, bool circular) {
+FaceValues MeasureFaceValues(const PolyMesh& mesh, bool circular) {
   const double mean_edge = MeanEdge(mesh);
-  std::string csv = "face,planarity,planarity_abs,kink_deg,min_angle_deg";
-  csv += circular ? ",concyclicity\n" : "\n";
-  char line[192];
+  FaceValues values;
   Eigen::Vector3d p[4];
   for (auto f : mesh.faces()) {
     if (!QuadPoints(mesh, f, p)) continue;
     const QuadShape s = MeasureQuadShape(p[0], p[1], p[2], p[3]);
-    std::snprintf(line, sizeof(line), "%d,%.6e,%.6e,%.6e,%.6f", f.idx(),
-                  s.diagonal_distance / mean_edge, s.diagonal_distance, s.kink_deg,
-                  s.min_angle_deg);
+    values.face.push_back(f.idx());
+    values.planarity.push_back(s.diagonal_distance / mean_edge);
+    values.planarity_abs.push_back(s.diagonal_distance);
+    values.kink_deg.push_back(s.kink_deg);
+    values.min_angle_deg.push_back(s.min_angle_deg);
+    values.convex.push_back(s.convex);
+    if (circular)
+      values.concyclicity.push_back(QuadConcyclicity({p[0], p[1], p[2], p[3]}) / mean_edge);
+  }
+  return values;
+}
+
+std::string QuadShapesCsv(const PolyMesh& mesh, bool circular) {
+  const FaceValues values = MeasureFaceValues(mesh, circular);
+  std::string csv = "face,planarity,planarity_abs,kink_deg,min_angle_deg";
+  csv += circular ? ",concyclicity\n" : "\n";
+  char line[192];
+  for (std::size_t i = 0; i < values.face.size(); ++i) {
+    std::snprintf(line, sizeof(line), "%d,%.6e,%.6e,%.6e,%.6f", values.face[i], values.planarity[i],
+                  values.planarity_abs[i], values.kink_deg[i], values.min_angle_deg[i]);
     csv += line;
     if (circular) {
-      std::snprintf(line, sizeof(line), ",%.6e",
-                    QuadConcyclicity({p[0], p[1], p[2], p[3]}) / mean_edge);
+      std::snprintf(line, sizeof(line), ",%.6e", values.concyclicity[i]);
       csv += line;
     }
     csv += "\n";

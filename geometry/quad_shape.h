@@ -70,7 +70,18 @@ std::vector<QuadShape> MeasureQuadShapes(const PolyMesh& mesh);
 // vertices to their fitted circle / mean edge). Non-quads get 0.
 std::vector<double> RelativeFacePlanarity(const PolyMesh& mesh, bool circular);
 
-// The table of `--face-values`: one line per face, "face,planarity,planarity_abs,kink_deg,
+// The columns of `--face-values`, one entry per quad (faces of other valences are skipped):
+// face index, planarity (diagonal distance / mean edge), planarity_abs (in the mesh's units),
+// kink_deg, min_angle_deg, convex, and with `circular` concyclicity (distance of the corners to
+// their fitted circle / mean edge; empty otherwise).
+struct FaceValues {
+  std::vector<int> face;
+  std::vector<double> planarity, planarity_abs, kink_deg, min_angle_deg, concyclicity;
+  std::vector<bool> convex;
+};
+FaceValues MeasureFaceValues(const PolyMesh& mesh, bool circular);
+
+// The table of `--face-values`: one line per quad, "face,planarity,planarity_abs,kink_deg,
 // min_angle_deg" (+ ",concyclicity" when `circular`), with a header line.
 std::string QuadShapesCsv(const PolyMesh& mesh, bool circular);
 

@@ -19,17 +19,21 @@ std::string ReadTextFile(const std::string& path) {
   if (!in) throw InputError(path + ": cannot open the file");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw InputError(path + ": read error");
-  if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);
   return text;
 }
 
 }  // namespace
 
 std::vector<TextLine> ReadTextLines(const std::string& path, bool commas_separate) {
-  const std::string text = ReadTextFile(path);
+  return SplitTextLines(ReadTextFile(path), path, commas_separate);
+}
+
+std::vector<TextLine> SplitTextLines(const std::string& text, const std::string& name,
+                                     bool commas_separate) {
+  const std::size_t start = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
   std::vector<TextLine> lines;
   int number = 0;
-  for (std::size_t pos = 0; pos < text.size();) {
+  for (std::size_t pos = start; pos < text.size();) {
     std::size_t end = text.find('\n', pos);
     if (end == std::string::npos) end = text.size();
     // '\r' (of CRLF line ends) is whitespace for the split below.
@@ -45,7 +49,7 @@ std::vector<TextLine> ReadTextLines(const std::string& path, bool commas_separat
     for (std::string word; words >> word;) text_line.words.push_back(word);
     if (!text_line.words.empty()) lines.push_back(std::move(text_line));
   }
-  if (lines.empty()) throw InputError(path + ": the file is empty");
+  if (lines.empty()) throw InputError(name + ": the file is empty");
   return lines;
 }
 

@@ -22,6 +22,10 @@ struct TextLine {
 // commas when `commas_separate`). Throws InputError when the file cannot be read or has no
 // such line.
 std::vector<TextLine> ReadTextLines(const std::string& path, bool commas_separate = false);
+// The same for text held in memory (a leading byte-order mark dropped); `name` stands for the
+// path in messages.
+std::vector<TextLine> SplitTextLines(const std::string& text, const std::string& name,
+                                     bool commas_separate = false);
 
 // "<path>:<line>" for messages.
 std::string TextPlace(const std::string& path, int line);

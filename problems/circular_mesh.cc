@@ -27,4 +27,14 @@ RunReport ConstructionReport(const std::string& solver, const NamedValues& initi
   return report;
 }
 
+nlohmann::json MRevolutionJson(const MRevolutionChoice& choice, double t, int root) {
+  nlohmann::json centres = nlohmann::json::array();
+  for (const Eigen::Vector3d& c : choice.centres) centres.push_back({c.x(), c.y(), c.z()});
+  return {{"t", t},
+          {"centres", centres},
+          {"root", root},
+          {"image_side_angle", choice.image.side_angle},
+          {"image_diagonals", choice.image.diagonals}};
+}
+
 }  // namespace gproj

@@ -3,9 +3,11 @@
 // 000) share: the measures of a circular mesh, and the report of a construction that takes no
 // iterations.
 
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "geometry/mesh_io.h"
+#include "geometry/mobius.h"
 #include "problems/guided_problem.h"
 
 namespace gproj {
@@ -19,5 +21,9 @@ NamedValues MeasureCircularMesh(const PolyMesh& mesh);
 // names it, iterations 0, an empty history, `initial` and `final` its measures.
 RunReport ConstructionReport(const std::string& solver, const NamedValues& initial,
                              const NamedValues& final, bool converged, double seconds);
+
+// The report's "m_revolution" object: t, the centres found, the root used, the image's side
+// angle (radians) and diagonals.
+nlohmann::json MRevolutionJson(const MRevolutionChoice& choice, double t, int root);
 
 }  // namespace gproj

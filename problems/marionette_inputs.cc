@@ -4,9 +4,13 @@
 
 namespace gproj {
 
-MarionetteGuideFile ReadMarionetteGuides(const std::string& path, int num_vertices) {
+namespace {
+
+// A guide file's lines; `path` names it in messages.
+MarionetteGuideFile GuidesFromLines(const std::vector<TextLine>& lines, const std::string& path,
+                                    int num_vertices) {
   MarionetteGuideFile file;
-  for (const TextLine& line : ReadTextLines(path)) {
+  for (const TextLine& line : lines) {
     const std::string where = TextPlace(path, line.number);
     const std::vector<std::string>& w = line.words;
     if (w[0] == "guide" && w.size() >= 5) {
@@ -26,6 +30,17 @@ MarionetteGuideFile ReadMarionetteGuides(const std::string& path, int num_vertic
     }
   }
   return file;
+}
+
+}  // namespace
+
+MarionetteGuideFile ReadMarionetteGuides(const std::string& path, int num_vertices) {
+  return GuidesFromLines(ReadTextLines(path), path, num_vertices);
+}
+
+MarionetteGuideFile ParseMarionetteGuides(const std::string& text, const std::string& name,
+                                          int num_vertices) {
+  return GuidesFromLines(SplitTextLines(text, name), name, num_vertices);
 }
 
 ClosedStripFile ReadClosedStrip(const std::string& path) {

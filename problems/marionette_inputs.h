@@ -23,6 +23,9 @@ struct MarionetteGuideFile {
   std::vector<MarionetteTarget> vertices;
 };
 MarionetteGuideFile ReadMarionetteGuides(const std::string& path, int num_vertices);
+// The same from the file's text; `name` stands for the path in messages.
+MarionetteGuideFile ParseMarionetteGuides(const std::string& text, const std::string& name,
+                                          int num_vertices);
 
 // A closed strip file (002 §2.5): one line "XI YI ZI XO YO" per vertex pair (inner vertex with
 // its height, outer vertex), at least three pairs; quad i is (inner i, outer i, outer i+1,

@@ -26,15 +26,29 @@ std::string Format(const char* format, Args... args) {
   return text;
 }
 
+// The plan view (quads only) and the fit target, from memory or read from their files.
+PolyMesh PlanMesh(const MarionetteRunOptions& options) {
+  if (!options.plan_mesh) return ReadMesh(options.plan, MeshRequirements{true});
+  for (const auto f : options.plan_mesh->faces())
+    if (options.plan_mesh->valence(f) != 4)
+      throw InputError(options.plan + ": face " + std::to_string(f.idx()) + " has " +
+                       std::to_string(options.plan_mesh->valence(f)) +
+                       " vertices; the plan view needs quads");
+  return *options.plan_mesh;
+}
+PolyMesh FitMesh(const MarionetteRunOptions& options) {
+  return options.fit_mesh ? *options.fit_mesh : ReadMesh(options.fit);
+}
+
 // A grid plan lifted from guide curves or fitted to a target's heights.
 class GridRun : public MarionetteRun {
  public:
   explicit GridRun(const MarionetteRunOptions& options) : options_(options) {
-    const PolyMesh mesh = ReadMesh(options.plan, MeshRequirements{true});
+    const PolyMesh mesh = PlanMesh(options);
     warning_ = CheckPlanView(mesh, options.plan, options.allow_folded_plan);
     Eigen::VectorXd target;
-    if (!options.fit.empty()) {
-      const PolyMesh fit = ReadMesh(options.fit);
+    if (!options.fit.empty() || options.fit_mesh) {
+      const PolyMesh fit = FitMesh(options);
       if (fit.n_vertices() != mesh.n_vertices())
         throw InputError(options.fit + ": the target has " + std::to_string(fit.n_vertices()) +
                          " vertices, the plan " + std::to_string(mesh.n_vertices()));
@@ -83,11 +97,13 @@ class GridRun : public MarionetteRun {
 // The prescribed values of a mesh lift: from the guide file, or --row and --column on a grid.
 std::vector<MarionetteTarget> MeshGuideValues(const MarionetteRunOptions& options,
                                               const PolyMesh& mesh) {
-  if (!options.guides.empty()) {
+  if (!options.guides.empty() || options.guides_text) {
     if (!options.row.empty() || !options.column.empty())
       throw InputError("give either --guides or --row/--column, not both");
+    const int n = static_cast<int>(mesh.n_vertices());
     const MarionetteGuideFile file =
-        ReadMarionetteGuides(options.guides, static_cast<int>(mesh.n_vertices()));
+        options.guides_text ? ParseMarionetteGuides(*options.guides_text, options.guides, n)
+                            : ReadMarionetteGuides(options.guides, n);
     return ResolveMarionetteGuides(mesh, file.guides, file.vertices);
   }
   if (options.row.empty() || options.column.empty())
@@ -102,11 +118,11 @@ class MeshRun : public MarionetteRun {
   explicit MeshRun(const MarionetteRunOptions& options) : options_(options) {
     const MarionetteProjectionOptions projection =
         MarionetteProjectionFromValues(options.projection, options.axis, options.centre);
-    if (!options.fit.empty())
+    if (!options.fit.empty() || options.fit_mesh)
       throw InputError("--fit works with the vertical projection and --row/--column only");
     std::string why;
     if (!options.lift.IsValid(&why)) throw InputError("invalid option: " + why);
-    const PolyMesh mesh = ReadMesh(options.plan, MeshRequirements{true});
+    const PolyMesh mesh = PlanMesh(options);
     if (options.projection == "vertical")
       warning_ = CheckPlanView(mesh, options.plan, options.allow_folded_plan);
     lines_ = MakeMarionetteLines(mesh, projection, options.plan);
@@ -249,16 +265,18 @@ RunReport StripRun::Run(const RunCallback&) {
 
 std::unique_ptr<MarionetteRun> MakeMarionetteRun(const MarionetteRunOptions& options) {
   if (!options.closed_strip.empty()) {
-    if (!options.plan.empty()) throw InputError("give either a plan or --closed-strip, not both");
+    if (!options.plan.empty() || options.plan_mesh)
+      throw InputError("give either a plan or --closed-strip, not both");
     if (options.solver != "direct")
       throw InputError("--closed-strip is lifted directly (002 eq. 8): --solver " + options.solver +
                        " does not apply");
     return std::make_unique<StripRun>(options);
   }
-  if (options.plan.empty()) throw InputError("give a plan view (or --closed-strip FILE)");
+  if (options.plan.empty() && !options.plan_mesh)
+    throw InputError("give a plan view (or --closed-strip FILE)");
   if (options.solver != "direct" && options.solver != "gp" && options.solver != "ceres")
     throw InputError("--solver must be direct, gp or ceres, not '" + options.solver + "'");
-  if (!options.guides.empty() || options.projection != "vertical")
+  if (!options.guides.empty() || options.guides_text || options.projection != "vertical")
     return std::make_unique<MeshRun>(options);
   return std::make_unique<GridRun>(options);
 }

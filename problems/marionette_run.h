@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,10 +27,15 @@ namespace gproj {
 //   otherwise                    a grid plan lifted from row and column, or fitted to the heights
 //                                of the mesh `fit` (MarionetteGridProblem).
 struct MarionetteRunOptions {
-  std::string plan;                     // plan view: a quad mesh file
-  std::string guides;                   // guide file (ReadMarionetteGuides)
-  std::string fit;                      // target mesh with the plan's vertex order
-  std::string closed_strip;             // closed strip file (ReadClosedStrip) instead of a plan
+  std::string plan;          // plan view: a quad mesh file
+  std::string guides;        // guide file (ReadMarionetteGuides)
+  std::string fit;           // target mesh with the plan's vertex order
+  std::string closed_strip;  // closed strip file (ReadClosedStrip) instead of a plan
+  // The plan, the fit target and the guide file's text held in memory (a caller such as the
+  // Python module): when set, each replaces reading its file, and `plan`, `fit`, `guides` are
+  // only the names used in messages and in Facts(). The meshes are validated like a file.
+  std::optional<PolyMesh> plan_mesh, fit_mesh;
+  std::optional<std::string> guides_text;
   std::vector<double> row, column;      // guide values of a grid plan's row 0 and column 0
   std::string projection = "vertical";  // vertical, cylindrical or central
   std::vector<double> axis = {0, 0, 0, 0, 0, 1};  // cylindrical: point and direction

@@ -3,6 +3,7 @@
 #include <pybind11/stl.h>
 
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -51,16 +52,32 @@ py::tuple RunCombescure(const py::object& vertices, const py::object& faces,
 }
 
 py::tuple RunInvert(const py::object& vertices, const py::object& faces, const py::object& centre,
-                    double ratio) {
+                    double ratio, const py::object& m_revolution, double t, int root) {
   const auto start = std::chrono::steady_clock::now();
-  const Eigen::Vector3d c = Vector3FromPython(centre, "centre");
+  if (centre.is_none() == m_revolution.is_none())
+    throw InputError("give either centre or m_revolution (4 concyclic points), not both");
+  if (!std::isfinite(t) || t <= 0.0) throw InputError("t must be positive and finite");
+  if (root != 0 && root != 1) throw InputError("root must be 0 or 1");
   const PolyMesh mesh = MeshFromArrays(vertices, faces, false);
+  nlohmann::json extra = {{"input", nullptr}, {"output", nullptr}, {"ratio", ratio}};
+  Eigen::Vector3d c;
+  if (!centre.is_none()) {
+    c = Vector3FromPython(centre, "centre");
+  } else {
+    const std::vector<Eigen::Vector3d> points = PointsFromArray(m_revolution, "m_revolution");
+    if (points.size() != 4)
+      throw InputError("m_revolution needs the 4 points P1, P2, P3, P4, got " +
+                       std::to_string(points.size()));
+    const MRevolutionChoice choice =
+        ChooseMRevolutionCentre({points[0], points[1], points[2], points[3]}, t, root, ratio);
+    c = choice.centre;
+    extra["m_revolution"] = MRevolutionJson(choice, t, root);
+  }
+  extra["centre"] = {c.x(), c.y(), c.z()};
   const PolyMesh out = InvertMesh(mesh, c, ratio);
   const RunReport report = ConstructionReport(
       "none", MeasureCircularMesh(mesh), MeasureCircularMesh(out), true,
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  const nlohmann::json extra = {
-      {"input", nullptr}, {"output", nullptr}, {"ratio", ratio}, {"centre", {c.x(), c.y(), c.z()}}};
   return py::make_tuple(VerticesToArray(out), ReportToPython("invert", report, extra));
 }
 
@@ -126,13 +143,20 @@ to a planar quad grid's, from the edge lengths along row 0 and column 0.
 Returns V_out: (n, 3) float64 and the report dict (the keys of --report).
 )";
 
-const char* const kInvertDoc = R"(invert(V, F, centre, ratio=1.0) -> (V_out, report)
+const char* const kInvertDoc =
+    R"(invert(V, F, centre=None, ratio=1.0, m_revolution=None, t=1.0, root=0) -> (V_out, report)
 
 Inversion (Moebius transformation, `gproj invert`, 000 eq. 1): CM' = k / |CM|^2 CM. Circular
 meshes stay circular.
 
     V: (n, 3) float64, F: (m, k) integer faces (or a list of faces).
-    centre: (3,) centre of inversion.
+    centre: (3,) centre of inversion; or
+    m_revolution: (4, 3) float64, four concyclic points P1..P4: the centre is then the one
+        (000 §5.1, eq. 9) that maps them to an isosceles trapezoid with P1'P2' = t P4'P3', for
+        turning a surface of revolution into an M-revolution surface. The report's
+        "m_revolution" gives both centres found and the image's side angle and diagonals.
+    t: ratio of the trapezoid's parallel sides (> 0).
+    root: which of the (up to) two centres to use, 0 or 1.
     ratio: k (non-zero).
 
 Returns V_out: (n, 3) float64 and the report dict.
@@ -167,7 +191,8 @@ void BindConstructions(py::module_& m) {
         py::arg("column_scale") = 1.0, py::arg("origin") = py::none(),
         py::arg("tolerance") = co.reference_tolerance);
   m.def("invert", &RunInvert, kInvertDoc, py::arg("V"), py::arg("F"), py::kw_only(),
-        py::arg("centre"), py::arg("ratio") = 1.0);
+        py::arg("centre") = py::none(), py::arg("ratio") = 1.0,
+        py::arg("m_revolution") = py::none(), py::arg("t") = 1.0, py::arg("root") = 0);
   const CanalSurfaceOptions ca;
   m.def("canal", &RunCanal, kCanalDoc, py::arg("curve"), py::arg("first_point"), py::kw_only(),
         py::arg("lengths") = py::none(), py::arg("length") = 0.0, py::arg("normal") = py::none(),

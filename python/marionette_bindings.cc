@@ -1,12 +1,8 @@
-// gproj.marionette_lift and gproj.marionette_fit: `gproj marionette` (002) on numpy arrays.
-// The library's Marionette front end (MakeMarionetteRun) reads its inputs from files, so the
-// plan, the fit target and the guides are written to a scratch directory first (exact
-// doubles), and its paths are taken out of messages and reports again.
+// gproj.marionette_lift and gproj.marionette_fit: `gproj marionette` (002) on numpy arrays,
+// through the library's Marionette front end (MakeMarionetteRun) with its inputs in memory.
 #include <pybind11/stl.h>
-#include <stdlib.h>
 
-#include <filesystem>
-#include <fstream>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,39 +15,6 @@
 namespace gproj::python {
 namespace {
 
-namespace fs = std::filesystem;
-
-// A scratch directory removed with its files at the end of the scope.
-class ScratchDirectory {
- public:
-  ScratchDirectory() {
-    std::string pattern = (fs::temp_directory_path() / "gproj-python-XXXXXX").string();
-    if (mkdtemp(pattern.data()) == nullptr)
-      throw InputError("cannot create a scratch directory in " +
-                       fs::temp_directory_path().string());
-    path_ = pattern;
-  }
-  ~ScratchDirectory() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  std::string File(const std::string& name) const { return (fs::path(path_) / name).string(); }
-  const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
-};
-
-// `text` with every scratch path replaced by the argument's name.
-std::string WithoutScratchPaths(std::string text, const ScratchDirectory& scratch) {
-  for (const char* name : {"plan", "fit", "guides"}) {
-    const std::string path = scratch.File(std::string(name) + (name[0] == 'g' ? ".txt" : ".obj"));
-    for (std::size_t at; (at = text.find(path)) != std::string::npos;)
-      text.replace(at, path.size(), name);
-  }
-  return text;
-}
-
 struct MarionetteInputs {
   py::object vertices, faces, fit;
   std::optional<std::string> guides;
@@ -59,30 +22,24 @@ struct MarionetteInputs {
 
 py::tuple RunMarionette(const MarionetteInputs& in, MarionetteRunOptions options,
                         const py::object& callback) {
-  ScratchDirectory scratch;
-  options.plan = scratch.File("plan.obj");
-  WriteMeshAtomically(MeshFromArrays(in.vertices, in.faces, false), options.plan);
+  // The argument names stand for the file names in messages; the report has None for them.
+  options.plan = "plan";
+  options.plan_mesh = MeshFromArrays(in.vertices, in.faces, true);
   if (!in.fit.is_none()) {
-    options.fit = scratch.File("fit.obj");
-    WriteMeshAtomically(MeshFromArrays(in.fit, in.faces, false), options.fit);
+    options.fit = "target";
+    options.fit_mesh = MeshFromArrays(in.fit, in.faces, true);
   }
   if (in.guides) {
-    options.guides = scratch.File("guides.txt");
-    std::ofstream(options.guides) << *in.guides;
+    options.guides = "guides";
+    options.guides_text = *in.guides;
   }
-  std::unique_ptr<MarionetteRun> run;
-  try {
-    run = MakeMarionetteRun(options);
-  } catch (const InputError& e) {
-    throw InputError(WithoutScratchPaths(e.what(), scratch));
-  }
+  const std::unique_ptr<MarionetteRun> run = MakeMarionetteRun(options);
   RunBridge bridge(callback);
   const RunReport report = bridge.Call([&] { return run->Run(bridge.callback()); });
   nlohmann::json extra = run->Facts();
-  extra.update({{"output", nullptr}, {"tolerance", options.lift.tolerance}});
-  for (auto& value : extra)
-    if (value.is_string() && value.get<std::string>().rfind(scratch.path(), 0) == 0)
-      value = nullptr;
+  extra.update({{"output", nullptr}, {"tolerance", options.lift.tolerance}, {"input", nullptr}});
+  if (options.fit_mesh) extra["fit"] = nullptr;
+  if (options.guides_text) extra["guides"] = nullptr;
   return py::make_tuple(report.failed ? py::object(py::none()) : VerticesToArray(run->Result()),
                         ReportToPython("marionette", report, extra));
 }

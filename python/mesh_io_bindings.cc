@@ -1,9 +1,11 @@
-// gproj.read_mesh, gproj.write_mesh and gproj.grid.
+// gproj.read_mesh, gproj.write_mesh, gproj.face_values and gproj.grid.
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "geometry/parametric_grid.h"
 #include "geometry/quad_grid.h"
+#include "geometry/quad_shape.h"
 #include "python/conversions.h"
 #include "python/module.h"
 
@@ -60,6 +62,24 @@ py::tuple Grid(int nu, int nv, const std::string& surface, double a, double b, d
   return MeshToPython(MakeParametricGrid(f, o));
 }
 
+// Per quad: the columns of `--face-values` (MeasureFaceValues), as arrays.
+py::dict FaceValueArrays(const py::object& vertices, const py::object& faces, bool circular) {
+  const FaceValues values = MeasureFaceValues(MeshFromArrays(vertices, faces, true), circular);
+  const auto array = [](const std::vector<double>& v) {
+    return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
+  };
+  py::array_t<bool> convex(static_cast<py::ssize_t>(values.convex.size()));
+  for (std::size_t f = 0; f < values.convex.size(); ++f) convex.mutable_at(f) = values.convex[f];
+  py::dict result;
+  result["planarity"] = array(values.planarity);
+  result["planarity_abs"] = array(values.planarity_abs);
+  result["kink_deg"] = array(values.kink_deg);
+  result["min_angle_deg"] = array(values.min_angle_deg);
+  result["convex"] = convex;
+  if (circular) result["concyclicity"] = array(values.concyclicity);
+  return result;
+}
+
 }  // namespace
 
 void BindMeshIo(py::module_& m) {
@@ -84,6 +104,20 @@ Writes a mesh atomically (temporary file, then rename) with exact double coordin
 
 Raises ValueError for a bad mesh (non-finite coordinate, index out of range, degenerate or
 non-manifold face) or a path that cannot be written.
+)");
+  m.def("face_values", &FaceValueArrays, py::arg("V"), py::arg("F"), py::kw_only(),
+        py::arg("circular") = false, R"(face_values(V, F, circular=False) -> dict
+
+The per-quad measures of `--face-values` (and of the report's maxima), as arrays of shape (m,).
+
+    V: (n, 3) float64, F: (m, 4) integer quads.
+    circular: also give each quad's concyclicity.
+
+Returns {"planarity": distance between the diagonals / the mesh's mean edge length,
+"planarity_abs": that distance in the mesh's units, "kink_deg": the larger angle between the
+two triangles of either diagonal split, "min_angle_deg": the smallest corner angle, "convex":
+bool, and with circular "concyclicity": distance of the corners to their fitted circle / mean
+edge}.
 )");
   const QuadGridOptions g;
   m.def("grid", &Grid, py::kw_only(), py::arg("nu") = g.nu, py::arg("nv") = g.nv,

@@ -190,15 +190,17 @@ py::tuple RunHNet(const py::object& vertices, const py::object& faces, const std
                   const py::object& reference, double min_angle, const py::object& edge_length,
                   bool allow_folds, const py::object& fixed, bool fix_boundary, bool glide_boundary,
                   int rounds, double frame_weight, bool allow_not_simply_connected,
-                  const py::object& callback, int max_iterations, double fairness, double epsilon,
-                  double soft_decay, double soft_floor, const std::string& linear_solver,
-                  int threads) {
+                  int surface_samples, const py::object& callback, int max_iterations,
+                  double fairness, double epsilon, double soft_decay, double soft_floor,
+                  const std::string& linear_solver, int threads) {
   HNetOptions options;
   options.anet = NetOptions(
       star_form, tolerance, tangent, point, fairness_order,
       {max_iterations, fairness, epsilon, soft_decay, soft_floor, linear_solver, threads});
   if (rounds < 1 || rounds > 1000) throw InputError("rounds must be in [1, 1000]");
   if (!(frame_weight > 0.0)) throw InputError("frame_weight must be > 0");
+  if (surface_samples < 0 || surface_samples > 200)
+    throw InputError("surface_samples must be in [0, 200] (0: no surface mesh)");
   options.max_rounds = rounds;
   options.frame_weight = frame_weight;
   options.allow_not_simply_connected = allow_not_simply_connected;
@@ -214,8 +216,12 @@ py::tuple RunHNet(const py::object& vertices, const py::object& faces, const std
   nlohmann::json report = HNet::ReportJson(summary);
   report.update({{"input", nullptr}, {"output", nullptr}});
   const bool usable = !summary.report.failed && !summary.rounds.empty();
-  return py::make_tuple(usable ? JsonToPython(HNetJson(hnet.mesh(), hnet.weights())) : py::none(),
-                        JsonToPython(report));
+  if (!usable) return py::make_tuple(py::none(), JsonToPython(report));
+  py::dict result = JsonToPython(HNetJson(hnet.mesh(), hnet.weights()));
+  if (surface_samples > 0)
+    result["surface"] =
+        MeshToPython(SampleHNetSurface(hnet.mesh(), hnet.weights(), surface_samples));
+  return py::make_tuple(result, JsonToPython(report));
 }
 
 const char* const kHNetDoc = R"(hnet(V, F, ...) -> (hnet, report)
@@ -228,10 +234,14 @@ joined rational bilinear patches (004 §2-3).
     rounds: alternations of weight and vertex updates at most.
     frame_weight: weight of frame-point planarity.
     allow_not_simply_connected: optimise meshes that are not simply connected.
+    surface_samples: when > 0, also sample every patch on a (k + 1) x (k + 1) grid (as
+        `--surface-mesh` with `--samples k`) into result["surface"] = (V: (N, 3) float64,
+        F: (M, 3) int32), a triangle mesh to look at or render.
     callback: as for planarize, with the A-net step's records.
 
 Returns the H-net as a dict (the JSON of `gproj hnet -o`: "vertices" (n, 3), "faces" and four
-corner "weights" per face; None when the run failed) and the report dict.
+corner "weights" per face, plus "surface" when asked; None when the run failed) and the report
+dict.
 )";
 
 }  // namespace
@@ -278,6 +288,7 @@ and fair (004 §3.2).
                                 std::make_tuple(py::arg("rounds") = hn.max_rounds,
                                                 py::arg("frame_weight") = hn.frame_weight,
                                                 py::arg("allow_not_simply_connected") = false,
+                                                py::arg("surface_samples") = 0,
                                                 py::arg("callback") = py::none()),
                                 SolverArgList(hn.anet.solver)));
 }

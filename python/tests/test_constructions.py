@@ -37,6 +37,31 @@ def test_invert_equals_the_command_line(cli):
         gproj.invert(V, F, centre=[0, 0])
 
 
+def test_invert_m_revolution_equals_the_command_line(cli):
+    V, F = gproj.read_mesh(str(DATA / "revolution_13x17.obj"))
+    quad = [[2, 0, 1], [0, 2, 1], [-2, 0, 1], [0, -2, 1]]
+    cli.run("invert", DATA / "revolution_13x17.obj", "-o", cli.path("i.obj"), "--m-revolution",
+            ",".join(str(x) for p in quad for x in p), "--t", 0.5, "--root", 1, "--report",
+            cli.path("r.json"))
+    V_out, report = gproj.invert(V, F, m_revolution=np.array(quad, float), t=0.5, root=1)
+    assert_reports_equal(report, cli.read_report("r.json"))
+    assert_close(V_out, gproj.read_mesh(cli.path("i.obj"))[0])
+    m = report["m_revolution"]
+    assert len(m["centres"]) == 2 and m["root"] == 1
+    assert m["image_side_angle"] < 1e-9  # the image quad's sides P1'P2' and P4'P3' are parallel
+    assert abs(m["image_diagonals"][0] - m["image_diagonals"][1]) < 1e-9
+    with pytest.raises(ValueError, match="not both"):
+        gproj.invert(V, F, centre=[0, 0, 5], m_revolution=quad)
+    with pytest.raises(ValueError, match="not both"):
+        gproj.invert(V, F)
+    with pytest.raises(ValueError, match="4 points"):
+        gproj.invert(V, F, m_revolution=quad[:3])
+    with pytest.raises(ValueError, match="t must be positive"):
+        gproj.invert(V, F, m_revolution=quad, t=-1.0)
+    with pytest.raises(ValueError, match="not coplanar"):
+        gproj.invert(V, F, m_revolution=[[2, 0, 1], [0, 2, 1], [-2, 0, 1.3], [0, -2, 1]])
+
+
 def test_canal_equals_the_command_line(cli):
     curve = np.loadtxt(DATA / "canal_curve.txt")
     cli.run("canal", DATA / "canal_curve.txt", "--first-point", "-0.5,0.5,2", "--length", 2,
@@ -71,6 +96,31 @@ def test_weingarten_equals_the_command_line(cli):
         gproj.weingarten(surface, preset="fig99")
     with pytest.raises(ValueError):
         gproj.weingarten({"degree": [3, 3]})
+
+
+def test_bspline_curvature_equals_the_command_lines_curvature_csv(cli):
+    source = DATA / "freeform_10x10.json"
+    cli.run("weingarten", source, "-o", cli.path("w.json"), "--max-iterations", 2,
+            "--curvature", cli.path("c.csv"), "--samples", 12, 9)
+    csv = np.loadtxt(cli.path("c.csv"), delimiter=",", skiprows=1)
+    with open(source) as f:
+        before = gproj.bspline_curvature(json.load(f), samples=[12, 9])
+    with open(cli.path("w.json")) as f:
+        after = gproj.bspline_curvature(json.load(f), samples=[12, 9])
+    assert before["H"].shape == (12, 9) and before["u"].shape == (12,)
+    # CSV rows are the samples a * NV + b, with u, v, H_before, K_before, H_after, K_after.
+    for column, values in ((1, np.repeat(before["u"], 9)), (2, np.tile(before["v"], 12)),
+                           (3, before["H"].ravel()), (4, before["K"].ravel()),
+                           (5, after["H"].ravel()), (6, after["K"].ravel())):
+        assert np.allclose(csv[:, column], values, rtol=1e-8, atol=1e-10)
+    default = gproj.bspline_curvature({"degree": [3, 3], "knots_u": [0, 0, 0, 0, 1, 1, 1, 1],
+                                       "knots_v": [0, 0, 0, 0, 1, 1, 1, 1],
+                                       "control_points": [[[i / 3, j / 3, 0.0] for j in range(4)]
+                                                          for i in range(4)]})
+    assert default["H"].shape == (8, 8)  # 2 per control point and direction
+    assert np.abs(default["H"]).max() < 1e-12 and np.abs(default["K"]).max() < 1e-12  # a plane
+    with pytest.raises(ValueError, match="samples"):
+        gproj.bspline_curvature(json.load(open(source)), samples=[0, 4])
 
 
 def marionette_guides():

@@ -1,4 +1,5 @@
-"""read_mesh, write_mesh and grid against the command line, and every bad-array case."""
+"""read_mesh, write_mesh, grid and face_values against the command line, and every bad-array
+case."""
 import re
 
 import numpy as np
@@ -18,6 +19,28 @@ def test_grid_equals_the_command_line(cli):
         assert F.dtype == np.int32 and F.shape == (24, 4)
         assert_close(V, Vc, 0.0)
         assert (F == Fc).all()
+
+
+@pytest.mark.parametrize("circular", [False, True])
+def test_face_values_equal_the_command_lines_face_values(cli, circular):
+    V, F = gproj.grid(nu=6, nv=5, noise=0.1, seed=4)
+    source = cli.write_mesh("in.obj", V, F)
+    cli.run("planarize", source, "-o", cli.path("out.obj"), "--max-iterations", 2,
+            "--face-values", cli.path("f.csv"), "--report", cli.path("r.json"),
+            *(["--circular"] if circular else []))
+    csv = np.loadtxt(cli.path("f.csv"), delimiter=",", skiprows=1)
+    values = gproj.face_values(*gproj.read_mesh(cli.path("out.obj")), circular=circular)
+    columns = ["planarity", "planarity_abs", "kink_deg", "min_angle_deg"]
+    columns += ["concyclicity"] if circular else []
+    assert np.array_equal(csv[:, 0], np.arange(len(F)))
+    for k, name in enumerate(columns):
+        assert values[name].shape == (len(F),)
+        assert np.allclose(values[name], csv[:, k + 1], rtol=1e-5, atol=1e-12), name
+    assert values["convex"].dtype == bool and values["convex"].all()
+    assert values["planarity"].max() == pytest.approx(
+        cli.read_report("r.json")["final"]["max_planarity"], rel=1e-12)
+    with pytest.raises(ValueError, match="4 vertices|quad"):
+        gproj.face_values(V, F[:, :3])
 
 
 @pytest.mark.parametrize("extension", ["obj", "off", "ply"])

@@ -170,3 +170,19 @@ def test_hnet_equals_the_command_line(cli):
         expected = json.load(f)
     assert_reports_equal(hnet, expected)
     assert len(hnet["weights"]) == len(F)
+
+
+def test_hnet_surface_equals_the_command_lines_surface_mesh(cli):
+    V, F = gproj.grid(nu=5, nv=5, surface="hypar", noise=0.02)
+    source = cli.write_mesh("in.obj", V, F)
+    cli.run("hnet", source, "-o", cli.path("h.json"), "--surface-mesh", cli.path("s.obj"),
+            "--samples", 3)
+    hnet, report = gproj.hnet(V, F, surface_samples=3)
+    Vs, Fs = hnet["surface"]
+    Ve, Fe = gproj.read_mesh(cli.path("s.obj"))
+    assert Vs.shape == (len(F) * 16, 3) and Fs.shape == (len(F) * 18, 3)
+    assert_close(Vs, Ve)
+    assert (Fs == Fe).all()
+    assert "surface" not in gproj.hnet(V, F, rounds=1)[0]
+    with pytest.raises(ValueError, match="surface_samples"):
+        gproj.hnet(V, F, surface_samples=-1)

@@ -31,6 +31,36 @@ TEST(MarionetteRunTest, RefusesMissingOrConflictingInputs) {
   EXPECT_EQ(ErrorOf(options), "give either --guides or --row/--column, not both");
 }
 
+// The plan and the guides held in memory give the same run as their files; the names stand
+// for the paths in messages.
+TEST(MarionetteRunTest, InputsFromMemoryEqualInputsFromFiles) {
+  MarionetteRunOptions files;
+  files.plan = kData + "marionette_plan_valence6.obj";
+  files.guides = kData + "marionette_valence6_guides.txt";
+  MarionetteRunOptions memory;
+  memory.plan = "plan";
+  memory.plan_mesh = ReadMesh(files.plan);
+  memory.guides = "guides";
+  std::ifstream in(files.guides);
+  memory.guides_text = std::string(std::istreambuf_iterator<char>(in), {});
+  const std::unique_ptr<MarionetteRun> a = MakeMarionetteRun(files);
+  const std::unique_ptr<MarionetteRun> b = MakeMarionetteRun(memory);
+  ASSERT_TRUE(a->Run(nullptr).converged);
+  ASSERT_TRUE(b->Run(nullptr).converged);
+  const PolyMesh ra = a->Result(), rb = b->Result();
+  ASSERT_EQ(ra.n_vertices(), rb.n_vertices());
+  for (const auto v : ra.vertices()) EXPECT_EQ(ra.point(v), rb.point(v)) << "vertex " << v.idx();
+  EXPECT_EQ(b->Facts()["guides"], "guides");
+
+  memory.guides_text = "guide 0 1 nonsense\n";
+  EXPECT_EQ(ErrorOf(memory).rfind("guides:1: ", 0), 0u) << ErrorOf(memory);
+  PolyMesh triangle;
+  triangle.add_face(triangle.add_vertex({0, 0, 0}), triangle.add_vertex({1, 0, 0}),
+                    triangle.add_vertex({0, 1, 0}));
+  memory.plan_mesh = triangle;
+  EXPECT_EQ(ErrorOf(memory), "plan: face 0 has 3 vertices; the plan view needs quads");
+}
+
 TEST(MarionetteRunTest, FoldedPlanViewIsRefusedNamingTheFacesUnlessAllowed) {
   // A 6 × 6 plan grid with vertex 14 = (2, 2) pushed across its neighbours to (3.6, 2.3).
   const auto path = std::filesystem::temp_directory_path() / "gproj_folded_plan.obj";
