@@ -80,6 +80,7 @@ CLI::Validator FiniteWhere(const std::function<bool(double)>& ok, const std::str
         } catch (const std::exception&) {
           used = 0;
         }
+        if (text.empty()) return std::string("an empty value is not allowed");
         if (used != text.size() || !std::isfinite(value)) return text + " is not a finite number";
         return ok(value) ? "" : text + " is not " + rule;
       },
@@ -110,6 +111,15 @@ CLI::Validator Within(double min, double max) {
   const std::string range = "[" + Compact(min) + ", " + Compact(max) + "]";
   return FiniteWhere([min, max](double v) { return v >= min && v <= max; }, "in " + range,
                      "in " + range);
+}
+
+void RefuseEmptyValues(CLI::App* app) {
+  const CLI::Validator non_empty(
+      [](std::string& text) { return text.empty() ? "an empty value is not allowed" : ""; }, "");
+  for (CLI::Option* option : app->get_options())
+    if (option->get_type_size() != 0) option->check(non_empty);
+  for (CLI::App* command : app->get_subcommands([](CLI::App*) { return true; }))
+    RefuseEmptyValues(command);
 }
 
 void CheckMemory(const std::string& what, double bytes) {

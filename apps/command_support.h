@@ -39,6 +39,11 @@ CLI::Validator Positive();                      // finite and > 0
 CLI::Validator NonNegative();                   // finite and ≥ 0
 CLI::Validator Within(double min, double max);  // finite and in [min, max]
 
+// Makes every option of `app` and of its subcommands that takes a value refuse an empty one
+// ("--closeness: an empty value is not allowed"): CLI11 reads '' as 0 for a number, and an
+// empty path would silently mean "not written".
+void RefuseEmptyValues(CLI::App* app);
+
 // Throws InputError when two of the named paths are one file: an output over an input ("--output
 // in.obj is the input file"), or two outputs ("--report and --output are the same file
 // out.obj"). Each entry is (option, path); inputs are named "input" (or their option); empty

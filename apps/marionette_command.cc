@@ -24,7 +24,7 @@ bool WriteOutputs(const MarionetteArgs& args, const MarionetteRun& run, const Ru
   try {
     OutputFiles files;
     if (!report.failed) files.AddMesh(run.Result(), args.output);
-    if (!args.report.empty())
+    if (!report.failed && !args.report.empty())
       files.AddText(args.report, ReportJson("marionette", report, extra).dump(2) + "\n");
     files.Commit();
     return true;

@@ -143,7 +143,7 @@ int RunANet(NetArgs& args) {
                      ANetFaceValuesCsv(result), args.face_values, args.heatmap, args.picture, title,
                      &files);
     }
-    if (!args.report.empty())
+    if (!report.failed && !args.report.empty())
       files.AddText(args.report, ReportJson("anet", report, extra).dump(2) + "\n");
     files.Commit();
   } catch (const InputError& e) {

@@ -73,7 +73,7 @@ int RunPlanarize(PlanarizeArgs args) {
                      QuadShapesCsv(result, options.circular), args.face_values, args.heatmap,
                      args.picture, title, &files);
     }
-    if (!args.report.empty())
+    if (!report.failed && !args.report.empty())
       files.AddText(args.report, ReportJson("planarize", report, extra).dump(2) + "\n");
     files.Commit();
   } catch (const InputError& e) {

@@ -49,7 +49,7 @@ int WriteAndConclude(const std::string& command, const RunReport& report, const 
         files.AddText(outputs.picture, RenderMeshSvg(mesh, svg));
       }
     }
-    if (!outputs.report.empty())
+    if (!report.failed && !outputs.report.empty())
       files.AddText(outputs.report, ReportJson(command, report, extra).dump(2) + "\n");
     files.Commit();
   } catch (const InputError& e) {

@@ -68,7 +68,7 @@ int RunWeingartenCommand(WeingartenArgs args) try {
       {{"input", args.input}, {"output", args.files.output}, {"preset", args.settings.preset}});
   OutputFiles files;
   if (!run.report.failed) AddWeingartenFiles(run, args.files, &files);
-  if (!args.report.empty()) files.AddText(args.report, report.dump(2) + "\n");
+  if (!run.report.failed && !args.report.empty()) files.AddText(args.report, report.dump(2) + "\n");
   files.Commit();
   if (!run.report.failed) std::printf("%s", SummarizeWeingartenRun(run).c_str());
   const WeingartenFiles& f = args.files;
@@ -146,7 +146,7 @@ void RegisterWeingartenCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--tolerance", args->settings.tolerance,
                   "Stop when the misalignment (--linear: max relation residual, input units) is "
                   "<= this, else exit 3. Default: none, the preset's iterations are run")
-      ->check(NonNegative());
+      ->check(Positive());
   cmd->add_option("--molds", args->settings.molds,
                   "Cluster the samples into at most this many molds in the (H, sqrt K) plane")
       ->check(Within(0, 1000000));

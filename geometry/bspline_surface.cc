@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "geometry/bspline_basis.h"
+#include "geometry/text_input.h"
 
 namespace gproj {
 namespace {
@@ -360,6 +361,7 @@ BSplineSurface ReadBSplineJson(const std::string& path) {
                      " bytes; a B-spline JSON file may have at most " +
                      std::to_string(kMaxBSplineJsonBytes) + " (" +
                      std::to_string(kMaxBSplineControlPoints) + " control points at most)");
+  CheckRegularFile(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open file");
   std::ostringstream text;

@@ -13,6 +13,8 @@
 #include <limits>
 #include <system_error>
 
+#include "geometry/text_input.h"
+
 #ifndef _WIN32
 #include <unistd.h>
 #endif
@@ -52,8 +54,7 @@ std::string LowerExtension(const std::string& path) {
 }
 
 std::ifstream OpenForReading(const std::string& path) {
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) Fail(path, 0, "cannot read the file: it is a directory");
+  CheckRegularFile(path);
   errno = 0;
   std::ifstream in(path, std::ios::binary);
   if (!in) {

@@ -1,6 +1,8 @@
 #include "geometry/text_input.h"
 
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -10,11 +12,9 @@ namespace gproj {
 
 namespace {
 
-// The whole file, without a leading UTF-8 byte-order mark.
+// The whole file.
 std::string ReadTextFile(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw InputError(path + ": cannot read the file: it is a directory");
+  CheckRegularFile(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open the file");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -23,6 +23,17 @@ std::string ReadTextFile(const std::string& path) {
 }
 
 }  // namespace
+
+void CheckRegularFile(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (ec || !fs::exists(status) || fs::is_regular_file(status)) return;
+  throw InputError(path + ": cannot read the file: " +
+                   (fs::is_directory(status)
+                        ? std::string("it is a directory")
+                        : std::string("it is not a regular file (a FIFO, device or socket)")));
+}
 
 std::vector<TextLine> ReadTextLines(const std::string& path, bool commas_separate) {
   return SplitTextLines(ReadTextFile(path), path, commas_separate);
@@ -58,14 +69,13 @@ std::string TextPlace(const std::string& path, int line) {
 }
 
 double ParseNumber(const std::string& word, const std::string& where) {
-  size_t used = 0;
-  double value = 0.0;
-  try {
-    value = std::stod(word, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != word.size()) throw InputError(where + ": '" + word + "' is not a number");
+  // strtod, not stod: an underflow to a subnormal or zero is a number (stod throws for it), an
+  // overflow gives ±inf and is refused below.
+  char* end = nullptr;
+  const double value = word.empty() ? 0.0 : std::strtod(word.c_str(), &end);
+  if (word.empty() || end != word.c_str() + word.size() ||
+      std::isspace(static_cast<unsigned char>(word[0])))
+    throw InputError(where + ": '" + word + "' is not a number");
   if (!std::isfinite(value)) throw InputError(where + ": '" + word + "' is not finite");
   return value;
 }

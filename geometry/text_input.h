@@ -27,6 +27,11 @@ std::vector<TextLine> ReadTextLines(const std::string& path, bool commas_separat
 std::vector<TextLine> SplitTextLines(const std::string& text, const std::string& name,
                                      bool commas_separate = false);
 
+// Throws InputError "<path>: cannot read the file: it is a directory" (or "... not a regular
+// file", for a FIFO, device or socket, which can block forever or never end) when `path` exists
+// and is not a regular file. A missing file passes: opening it reports that.
+void CheckRegularFile(const std::string& path);
+
 // "<path>:<line>" for messages.
 std::string TextPlace(const std::string& path, int line);
 

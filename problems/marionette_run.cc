@@ -48,6 +48,8 @@ class GridRun : public MarionetteRun {
     warning_ = CheckPlanView(mesh, options.plan, options.allow_folded_plan);
     Eigen::VectorXd target;
     if (!options.fit.empty() || options.fit_mesh) {
+      if (!options.row.empty() || !options.column.empty())
+        throw InputError("give either --fit or --row/--column, not both");
       const PolyMesh fit = FitMesh(options);
       if (fit.n_vertices() != mesh.n_vertices())
         throw InputError(options.fit + ": the target has " + std::to_string(fit.n_vertices()) +

@@ -50,6 +50,9 @@ WeingartenOptions WeingartenSettings::ToOptions() const {
   Override(fairness, &o.solver.fairness_weight);
   Override(definitions, &o.definition_weight);
   Override(soft_start, &o.soft_start);
+  // A tolerance of 0 would read as "none" (run the preset's iterations) and claim success.
+  if (tolerance && !(*tolerance > 0.0))
+    throw InputError("the tolerance must be > 0 (leave it out to run the preset's iterations)");
   Override(tolerance, &o.tolerance);
   if (!steps.empty()) {
     o.solver.monotone = steps != "plain";

@@ -32,6 +32,13 @@ TEST_F(OptionValidationTest, NonFiniteAndOutOfRangeValuesAreRefusedNamingTheOpti
        "2 is not in [1e-12, 1]"},
       {weingarten + " --max-iterations -1", "--max-iterations", "-1 is not in [1, 100000]"},
       {weingarten + " --epsilon 0", "--epsilon", "0 is not > 0"},
+      {weingarten + " --tolerance 0", "--tolerance", "0 is not > 0"},
+      {"planarize " + grid + " -o " + Path("out.obj") + " --closeness ''", "--closeness",
+       "an empty value is not allowed"},
+      {"planarize " + grid + " -o " + Path("out.obj") + " --max-iterations ''", "--max-iterations",
+       "an empty value is not allowed"},
+      {"planarize " + grid + " -o " + Path("out.obj") + " --report ''", "--report",
+       "an empty value is not allowed"},
       {weingarten + " --alignment nan", "--alignment", "nan is not a finite number"},
       {weingarten + " --boundary nan", "--boundary", "nan is not a finite number"},
       {weingarten + " --soft-start nan", "--soft-start", "nan is not a finite number"},
@@ -62,6 +69,19 @@ TEST_F(OptionValidationTest, NonFiniteAndOutOfRangeValuesAreRefusedNamingTheOpti
   }
   EXPECT_FALSE(Exists("out.obj"));
   EXPECT_FALSE(Exists("out.json"));
+}
+
+// Weights so large that the solve overflows: exit 4 with one line, and none of the outputs
+// (the report included) is written.
+TEST_F(OptionValidationTest, NumericalFailureWritesNothing) {
+  const CommandRun r =
+      Gproj("planarize " + Data("noisy_grid_21x21.obj") + " -o " + Path("out.obj") +
+            " --fairness 1e300 --report " + Path("r.json") + " --picture " + Path("p.svg"));
+  EXPECT_EQ(r.exit_code, 4) << r.err;
+  EXPECT_NE(r.err.find("nothing written"), std::string::npos) << r.err;
+  EXPECT_FALSE(Exists("out.obj"));
+  EXPECT_FALSE(Exists("r.json"));
+  EXPECT_FALSE(Exists("p.svg"));
 }
 
 // An output over an input or over another output is refused before any work, naming both.

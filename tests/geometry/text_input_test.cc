@@ -1,10 +1,14 @@
 #include "geometry/text_input.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <Eigen/Core>
 #include <filesystem>
 #include <fstream>
+
+#include "geometry/bspline_surface.h"
+#include "geometry/mesh_io.h"
 
 namespace gproj {
 namespace {
@@ -56,6 +60,28 @@ TEST(TextInputTest, DirectoryIsRefusedByName) {
   const std::string dir = fs::temp_directory_path().string();
   EXPECT_EQ(MessageOf([&] { ReadTextLines(dir); }),
             dir + ": cannot read the file: it is a directory");
+}
+
+// A FIFO would block the reader forever: it is refused like a directory, and so by every reader.
+TEST(TextInputTest, FifoIsRefusedByName) {
+  const std::string fifo = (fs::temp_directory_path() / "gproj_text_input_fifo.obj").string();
+  fs::remove(fifo);
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const std::string expected = fifo +
+                               ": cannot read the file: it is not a regular file (a FIFO, "
+                               "device or socket)";
+  EXPECT_EQ(MessageOf([&] { ReadTextLines(fifo); }), expected);
+  EXPECT_EQ(MessageOf([&] { ReadMesh(fifo); }), expected);
+  EXPECT_EQ(MessageOf([&] { ReadBSplineJson(fifo); }), expected);
+  fs::remove(fifo);
+}
+
+// Underflow is a number (a subnormal or zero), not an error; overflow is not finite.
+TEST(TextInputTest, TinyNumbersAreNumbers) {
+  EXPECT_EQ(ParseNumber("1.6532732e-316", "f:1"), 1.6532732e-316);
+  EXPECT_EQ(ParseNumber("1e-400", "f:1"), 0.0);
+  EXPECT_EQ(MessageOf([] { ParseNumber("1e400", "f:2"); }), "f:2: '1e400' is not finite");
+  EXPECT_EQ(MessageOf([] { ParseNumber(" 1", "f:3"); }), "f:3: ' 1' is not a number");
 }
 
 TEST(TextInputTest, NumbersAndIndicesAreCheckedWhole) {

@@ -26,6 +26,10 @@ TEST(MarionetteRunTest, RefusesMissingOrConflictingInputs) {
   options.closed_strip = kData + "marionette_closed_strip.txt";
   EXPECT_EQ(ErrorOf(options), "give either a plan or --closed-strip, not both");
   options.closed_strip.clear();
+  options.fit = kData + "marionette_plan_21x21.obj";
+  options.row = {1, 2};
+  EXPECT_EQ(ErrorOf(options), "give either --fit or --row/--column, not both");
+  options.fit.clear();
   options.guides = kData + "marionette_valence6_guides.txt";
   options.row = {1, 2};
   EXPECT_EQ(ErrorOf(options), "give either --guides or --row/--column, not both");
