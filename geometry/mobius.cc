@@ -2,12 +2,23 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
 #include "geometry/circle.h"
 
 namespace gproj {
+namespace {
+
+// t for messages: "%g", never 300 digits or 0.000000.
+std::string TText(double t) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", t);
+  return text;
+}
+
+}  // namespace
 
 Eigen::Vector3d Invert(const Eigen::Vector3d& p, const Eigen::Vector3d& centre, double ratio) {
   const Eigen::Vector3d d = p - centre;
@@ -95,9 +106,9 @@ std::vector<Eigen::Vector3d> MRevolutionCentres(const std::array<Eigen::Vector3d
     centres.push_back(c);
   }
   if (centres.empty())
-    throw InputError("for t = " + std::to_string(t) +
+    throw InputError("for t = " + TText(t) +
                      " every inversion centre lies on the quad's circle (the images would be "
-                     "collinear); choose t > 0");
+                     "collinear); choose another t > 0");
   return centres;
 }
 
@@ -117,8 +128,8 @@ MRevolutionChoice ChooseMRevolutionCentre(const std::array<Eigen::Vector3d, 4>& 
   MRevolutionChoice choice;
   choice.centres = MRevolutionCentres(quad, t);
   if (root < 0 || root >= static_cast<int>(choice.centres.size()))
-    throw InputError("root " + std::to_string(root) + " asked, but t = " + std::to_string(t) +
-                     " gives " + std::to_string(choice.centres.size()) +
+    throw InputError("root " + std::to_string(root) + " asked, but t = " + TText(t) + " gives " +
+                     std::to_string(choice.centres.size()) +
                      " centre(s) off the circle (roots 0.." +
                      std::to_string(choice.centres.size() - 1) + ")");
   choice.centre = choice.centres[root];

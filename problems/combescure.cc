@@ -72,12 +72,13 @@ void CheckCombescureInput(const PolyMesh& reference, const GridShape& shape,
   if (static_cast<int>(lengths.column.size()) != shape.rows)
     throw InputError("the column needs " + std::to_string(shape.rows) + " edge lengths (one per " +
                      "edge (i, 0) → (i + 1, 0)), got " + std::to_string(lengths.column.size()));
+  // A zero length collapses a row or column of edges: every quad along it would be degenerate.
   for (size_t k = 0; k < lengths.row.size(); ++k)
-    if (!std::isfinite(lengths.row[k]))
-      throw InputError("row length " + std::to_string(k) + " is not finite");
+    if (!std::isfinite(lengths.row[k]) || lengths.row[k] == 0.0)
+      throw InputError("row length " + std::to_string(k) + " is not finite and non-zero");
   for (size_t k = 0; k < lengths.column.size(); ++k)
-    if (!std::isfinite(lengths.column[k]))
-      throw InputError("column length " + std::to_string(k) + " is not finite");
+    if (!std::isfinite(lengths.column[k]) || lengths.column[k] == 0.0)
+      throw InputError("column length " + std::to_string(k) + " is not finite and non-zero");
   if (!lengths.origin.allFinite()) throw InputError("the origin is not finite");
   const double mean_edge = MeasurePlanarity(reference, reference).mean_edge_length;
   for (int i = 0; i < shape.rows; ++i)

@@ -17,7 +17,17 @@ double SecondsSince(Clock::time_point start) {
 void Conclude(const GuidedProblem& problem, Clock::time_point start, bool aborted,
               RunReport* report) {
   report->failed = report->failed || !problem.problem().x().allFinite();
-  if (!report->failed) report->final = problem.Measure();
+  if (!report->failed) {
+    report->final = problem.Measure();
+    // Finite unknowns can still give measures that overflow (coordinates near 1e308): that is a
+    // numerical failure, not a result to write.
+    for (const NamedValue& v : report->final)
+      if (!std::isfinite(v.value)) {
+        report->failed = true;
+        report->termination = "FAILURE: the result's " + v.name + " is not finite";
+        break;
+      }
+  }
   report->converged = !report->failed &&
                       (problem.HasTolerance() ? problem.MeetsTolerance(report->final) : !aborted);
   // A solver stop short of the problem's tolerance (a step too small, no lower energy) is a

@@ -207,21 +207,26 @@ class StripRun : public MarionetteRun {
       : options_(options), file_(ReadClosedStrip(options.closed_strip)) {
     if (!std::isfinite(options.outer_height)) throw InputError("--outer-height must be finite");
     lift_ = LiftClosedStrip(file_.strip, file_.inner_heights, options.outer_height);
+    warning_ = CheckPlanView(Result(), options.closed_strip, options.allow_folded_plan);
   }
 
   std::string Description() const override {
     std::string text = Format("gproj marionette: closed strip %s: %d quads\n",
                               options_.closed_strip.c_str(), num_quads());
     if (lift_.a_is_one)
-      return text + Format(
-                        "a = %.12g (= 1 within 1e-9): the inner curve must satisfy V.Z = 0; "
-                        "projected onto it (moved by at most %.3e); the outer start height is "
-                        "free: z0* = %.6g\n",
-                        lift_.a, InnerCurveChange(), lift_.outer_heights[0]);
-    return text + Format(
-                      "a = %.12g (!= 1): one closing lift; inner curve kept; closing height "
-                      "z0* = zN* = V.Z / (1 - a) = %.12g\n",
-                      lift_.a, lift_.outer_heights[0]);
+      return text +
+             Format(
+                 "a = %.12g (= 1 within 1e-9): the inner curve must satisfy V.Z = 0; "
+                 "projected onto it (moved by at most %.3e); the outer start height is "
+                 "free: z0* = %.6g\n",
+                 lift_.a, InnerCurveChange(), lift_.outer_heights[0]) +
+             warning_;
+    return text +
+           Format(
+               "a = %.12g (!= 1): one closing lift; inner curve kept; closing height "
+               "z0* = zN* = V.Z / (1 - a) = %.12g\n",
+               lift_.a, lift_.outer_heights[0]) +
+           warning_;
   }
   RunReport Run(const RunCallback&) override;
   PolyMesh Result() const override { return ClosedStripMesh(file_.strip, lift_); }
@@ -245,6 +250,7 @@ class StripRun : public MarionetteRun {
   MarionetteRunOptions options_;
   ClosedStripFile file_;
   ClosedStripLift lift_;
+  std::string warning_;  // a folded plan view lifted anyway
 };
 
 // The measures of the strip with the given inner heights (initial) and of the lift (final).

@@ -254,10 +254,13 @@ class Minimizer {
     int failures = 0, rejections = 0;
     for (;;) {
       if (!SolveTrial(epsilon)) {
-        if (++failures > options_.max_retries)
-          return Finish(TerminationType::kFailure,
-                        why_ + " (after " + std::to_string(options_.max_retries) +
-                            " increases of epsilon to " + std::to_string(epsilon) + ")");
+        if (++failures > options_.max_retries) {
+          char last[32];
+          std::snprintf(last, sizeof(last), "%g", epsilon);
+          return Finish(TerminationType::kFailure, why_ + " (after " +
+                                                       std::to_string(options_.max_retries) +
+                                                       " increases of epsilon to " + last + ")");
+        }
         epsilon *= options_.epsilon_growth;
         continue;
       }

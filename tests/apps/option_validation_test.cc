@@ -82,6 +82,29 @@ TEST_F(OptionValidationTest, NumericalFailureWritesNothing) {
   EXPECT_FALSE(Exists("out.obj"));
   EXPECT_FALSE(Exists("r.json"));
   EXPECT_FALSE(Exists("p.svg"));
+
+  // Finite inputs whose result overflows the measures: exit 4 as well, not a success or a
+  // degenerate mesh written with exit 3.
+  std::string huge = "1e308";
+  for (int k = 0; k < 20; ++k) huge += "," + std::to_string(0.1 * (k + 1));
+  std::string lengths = "1e300";
+  for (int k = 0; k < 15; ++k) lengths += ",1e300";
+  for (const std::string& args :
+       {"marionette " + Data("marionette_plan_21x21.obj") + " --row " + huge + " --column " + huge +
+            " -o " + Path("out.obj") + " --report " + Path("r.json"),
+        "combescure " + Data("revolution_13x17.obj") + " --row-lengths " + lengths + " -o " +
+            Path("out.obj") + " --report " + Path("r.json")}) {
+    const CommandRun o = Gproj(args);
+    EXPECT_EQ(o.exit_code, 4) << args << "\n" << o.err;
+    EXPECT_NE(o.err.find("is not finite"), std::string::npos) << o.err;
+    EXPECT_FALSE(Exists("out.obj")) << args;
+    EXPECT_FALSE(Exists("r.json")) << args;
+  }
+  const std::string zeros = "0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0";
+  ExpectOneLineError(Gproj("combescure " + Data("revolution_13x17.obj") + " --row-lengths " +
+                           zeros + " -o " + Path("out.obj")),
+                     "row length 0 is not finite and non-zero");
+  EXPECT_FALSE(Exists("out.obj"));
 }
 
 // An output over an input or over another output is refused before any work, naming both.

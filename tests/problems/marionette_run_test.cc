@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -63,6 +64,28 @@ TEST(MarionetteRunTest, InputsFromMemoryEqualInputsFromFiles) {
                     triangle.add_vertex({0, 1, 0}));
   memory.plan_mesh = triangle;
   EXPECT_EQ(ErrorOf(memory), "plan: face 0 has 3 vertices; the plan view needs quads");
+}
+
+// A closed strip whose outer ring runs against the inner one has self-crossing plan quads: refused
+// like a folded grid plan, lifted with a warning when allowed.
+TEST(MarionetteRunTest, FoldedClosedStripIsRefusedUnlessAllowed) {
+  const auto path = std::filesystem::temp_directory_path() / "gproj_folded_strip.txt";
+  {
+    std::ofstream out(path);
+    for (int i = 0; i < 12; ++i) {
+      const double a = 2 * M_PI * i / 12, b = (i < 3 ? -1.0 : 1.0) * a;
+      out << std::cos(a) << " " << std::sin(a) << " " << 0.1 * std::sin(3 * a) << " "
+          << 2 * std::cos(b) << " " << 2 * std::sin(b) << "\n";
+    }
+  }
+  MarionetteRunOptions options;
+  options.closed_strip = path.string();
+  const std::string error = ErrorOf(options);
+  EXPECT_NE(error.find("gproj_folded_strip.txt: "), std::string::npos) << error;
+  EXPECT_NE(error.find("quads of the plan view overlap or are not convex"), std::string::npos)
+      << error;
+  options.allow_folded_plan = true;
+  EXPECT_NE(MakeMarionetteRun(options)->Description().find("warning: "), std::string::npos);
 }
 
 TEST(MarionetteRunTest, FoldedPlanViewIsRefusedNamingTheFacesUnlessAllowed) {
