@@ -1,7 +1,5 @@
 #include "problems/circular_mesh.h"
 
-#include <cmath>
-
 #include "geometry/circle.h"
 #include "problems/pq_planarization.h"
 
@@ -26,15 +24,7 @@ RunReport ConstructionReport(const std::string& solver, const NamedValues& initi
   report.seconds = seconds;
   report.initial = initial;
   report.final = final;
-  // Lengths or positions near 1e308 can overflow the measures of the result: a numerical
-  // failure, not a result to write.
-  for (const NamedValue& v : final)
-    if (!std::isfinite(v.value)) {
-      report.failed = true;
-      report.converged = false;
-      report.termination = "FAILURE: the result's " + v.name + " is not finite";
-      break;
-    }
+  FailOnNonFiniteMeasures(&report);
   return report;
 }
 

@@ -19,14 +19,7 @@ void Conclude(const GuidedProblem& problem, Clock::time_point start, bool aborte
   report->failed = report->failed || !problem.problem().x().allFinite();
   if (!report->failed) {
     report->final = problem.Measure();
-    // Finite unknowns can still give measures that overflow (coordinates near 1e308): that is a
-    // numerical failure, not a result to write.
-    for (const NamedValue& v : report->final)
-      if (!std::isfinite(v.value)) {
-        report->failed = true;
-        report->termination = "FAILURE: the result's " + v.name + " is not finite";
-        break;
-      }
+    FailOnNonFiniteMeasures(report);
   }
   report->converged = !report->failed &&
                       (problem.HasTolerance() ? problem.MeetsTolerance(report->final) : !aborted);
@@ -40,6 +33,16 @@ void Conclude(const GuidedProblem& problem, Clock::time_point start, bool aborte
 }
 
 }  // namespace
+
+void FailOnNonFiniteMeasures(RunReport* report) {
+  for (const NamedValue& v : report->final)
+    if (!std::isfinite(v.value)) {
+      report->failed = true;
+      report->converged = false;
+      report->termination = "FAILURE: the result's " + v.name + " is not finite";
+      return;
+    }
+}
 
 RunRecord ToRunRecord(const IterationRecord& r) {
   RunRecord record;

@@ -57,6 +57,11 @@ struct RunReport {
   SolverSummary summary;  // guided projection's own summary (empty for Ceres)
 };
 
+// Marks `report` failed ("FAILURE: the result's <name> is not finite") when a value of
+// report->final is not finite: finite unknowns can still give measures that overflow
+// (coordinates near 1e308), and such a result must not be written.
+void FailOnNonFiniteMeasures(RunReport* report);
+
 // The factor on the fairness rows' weight (ω_f²) for a start whose target measure (e.g. max
 // planarity, relative to the mean edge) is `start_residual`: 1 for a start far from the target,
 // and start_residual / 1e-2 (not below `floor`) for one within 1e-2 of it. Fairness is there to
