@@ -122,18 +122,6 @@ void RefuseEmptyValues(CLI::App* app) {
     RefuseEmptyValues(command);
 }
 
-void CheckMemory(const std::string& what, double bytes) {
-  const double memory =
-      static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGESIZE));
-  if (memory > 0.0 && bytes > memory) {
-    char text[160];
-    std::snprintf(text, sizeof(text),
-                  " needs about %.3g GB, more than the machine's %.3g GB of memory", bytes / 1e9,
-                  memory / 1e9);
-    throw InputError(what + text);
-  }
-}
-
 void AddSolverOptions(CLI::App* command, SolverOptions* solver, std::string* linear_solver) {
   command->add_option("--max-iterations", solver->max_iterations, "Iterations at most")
       ->check(Within(0, 100000))

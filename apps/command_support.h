@@ -61,10 +61,6 @@ struct OutputPath {
 void CheckOutputPaths(const std::vector<std::pair<std::string, std::string>>& inputs,
                       const std::vector<OutputPath>& outputs);
 
-// Throws InputError "<what> needs about N GB, more than the machine's M GB of memory" when
-// `bytes` (an estimate made before allocating) exceeds the physical memory.
-void CheckMemory(const std::string& what, double bytes);
-
 // Guided projection's options as command-line options (--max-iterations, --epsilon,
 // --soft-decay, --soft-floor, --fairness, --linear-solver, --threads), with the problem's
 // defaults shown in --help. `linear_solver` receives the backend's name; ApplyLinearSolver

@@ -1,5 +1,7 @@
 // `gproj weingarten`: Weingarten surfaces on B-splines (003).
+#include <cctype>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -39,6 +41,12 @@ WeingartenOptions Prepare(WeingartenArgs* args, BSplineSurface* input) {
   for (const Output& o : Outputs(args))
     outputs.push_back({o.option, *o.path, o.path == &args->files.surface_mesh});
   CheckOutputPaths({{"input", args->input}}, outputs);
+  std::string extension = std::filesystem::path(args->files.output).extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (extension != ".json")
+    throw InputError("--output " + args->files.output +
+                     ": the result is a B-spline surface written as JSON, so its name must end "
+                     "in .json (--surface-mesh writes it sampled as a mesh)");
   *input = ReadBSplineJson(args->input);
   return options;
 }

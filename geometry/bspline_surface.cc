@@ -192,12 +192,15 @@ std::vector<double> ParseNumbers(const Json& value, const std::string& name,
 std::string JsonNumber(double x) { return Json(x).dump(); }
 
 // Limits of the B-spline JSON reader, so that a file gproj cannot solve is refused before it
-// takes the memory. `gproj weingarten` (default samples) was measured at about 200 KB per
-// control point, growing faster than linearly (310 MB at 40 × 40, 1.4 GB at 80 × 80), so 40000
-// control points (200 × 200) need about 8 GB or more. Degrees above 32 have no use and make the
-// basis evaluation quadratic in the degree; the file size bounds the text held at once.
+// takes the memory. `gproj weingarten` (default samples, bicubic) was measured at about 200 KB
+// per control point, growing faster than linearly (310 MB at 40 × 40, 1.4 GB at 80 × 80), so
+// 40000 control points (200 × 200) need about 8 GB or more. Degrees above 11 are rare in
+// design data and costly here: every sample's rows touch
+// (du + 1)(dv + 1) control points, so memory grows with the square of the degree and the time
+// per iteration with its fourth power (33 × 33 control points: 1.7 s at bi-degree 3, 16 s at
+// 8, 90 s and 2 GB at 16). The file size bounds the text held at once.
 constexpr long long kMaxBSplineControlPoints = 40000;
-constexpr int kMaxBSplineDegree = 32;
+constexpr int kMaxBSplineDegree = 11;
 constexpr std::uintmax_t kMaxBSplineJsonBytes = 64u << 20;
 // Every number and array of the file: control points take four each, knots one.
 constexpr long long kMaxBSplineJsonValues = 8 * kMaxBSplineControlPoints;

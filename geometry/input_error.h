@@ -6,6 +6,7 @@
 // The command line prints it and exits 1 with nothing written.
 
 #include <stdexcept>
+#include <string>
 
 namespace gproj {
 
@@ -13,5 +14,10 @@ class InputError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// Throws InputError "<what> needs about N GB of memory, more than the M GB this machine has"
+// when `bytes` (an estimate made before allocating) exceeds the physical memory; no check where
+// that cannot be queried.
+void CheckMemory(const std::string& what, double bytes);
 
 }  // namespace gproj

@@ -16,7 +16,6 @@
 #include "geometry/text_input.h"
 
 #ifndef _WIN32
-#include <unistd.h>
 #endif
 
 namespace gproj {
@@ -103,29 +102,8 @@ void CheckTokensFit(const std::string& path, int line, const std::string& what, 
   }
 }
 
-namespace {
-
-// Physical memory in bytes; 0 when unknown.
-double PhysicalMemory() {
-#if defined(_SC_PHYS_PAGES) && defined(_SC_PAGE_SIZE)
-  const long pages = sysconf(_SC_PHYS_PAGES);
-  const long page_size = sysconf(_SC_PAGE_SIZE);
-  if (pages > 0 && page_size > 0) return static_cast<double>(pages) * page_size;
-#endif
-  return 0.0;
-}
-
-}  // namespace
-
 void CheckMemory(const std::string& path, int line, const std::string& what, double bytes) {
-  const double available = PhysicalMemory();
-  if (available > 0.0 && bytes > available) {
-    char buffer[160];
-    std::snprintf(buffer, sizeof(buffer),
-                  " needs about %.3g GB of memory, more than the %.3g GB this machine has",
-                  bytes / 1e9, available / 1e9);
-    Fail(path, line, what + buffer);
-  }
+  gproj::CheckMemory(Where(path, line) + what, bytes);
 }
 
 double MeshMemoryEstimate(double vertices, double faces, double corners) {

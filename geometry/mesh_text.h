@@ -62,8 +62,7 @@ std::string_view WithoutByteOrderMark(std::string_view text);
 // least N bytes, but the file has only B bytes <after>" otherwise.
 void CheckTokensFit(const std::string& path, int line, const std::string& what, double tokens,
                     std::size_t available, const std::string& after);
-// Fails with "<what> needs about N GB of memory, more than the M GB this machine has" when
-// `bytes` exceeds the physical memory (no check where that cannot be queried).
+// gproj::CheckMemory with the place: "<path>:<line>: <what> needs about N GB of memory, …".
 void CheckMemory(const std::string& path, int line, const std::string& what, double bytes);
 // Bytes to read and build a mesh: the polygon soup, the OpenMesh mesh and the edge map of the
 // validation, per vertex, face and face corner (rounded up; an estimate for CheckMemory).

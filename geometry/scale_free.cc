@@ -1,5 +1,7 @@
 #include "geometry/scale_free.h"
 
+#include <cmath>
+
 namespace gproj {
 
 double MeanEdgeLength(const PolyMesh& mesh) {
@@ -10,6 +12,15 @@ double MeanEdgeLength(const PolyMesh& mesh) {
     sum += Eigen::Vector3d(b[0] - a[0], b[1] - a[1], b[2] - a[2]).stableNorm();
   }
   return mesh.n_edges() > 0 ? sum / static_cast<double>(mesh.n_edges()) : 0.0;
+}
+
+PolyMesh UnitScaleCopy(const PolyMesh& mesh) {
+  PolyMesh copy = mesh;
+  const double length = MeanEdgeLength(mesh);
+  if (!(length > 0.0) || !std::isfinite(length) || copy.n_vertices() == 0) return copy;
+  const PolyMesh::Point origin = mesh.point(*mesh.vertices_begin());
+  for (auto v : copy.vertices()) copy.set_point(v, (mesh.point(v) - origin) / length);
+  return copy;
 }
 
 double NormalizePolygon(Eigen::Vector3d* p, int n) {

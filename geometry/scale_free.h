@@ -12,6 +12,10 @@ namespace gproj {
 // The mean edge length of `mesh`, 0 without edges.
 double MeanEdgeLength(const PolyMesh& mesh);
 
+// `mesh` moved by −(its first vertex) and divided by its mean edge length, for measures that
+// are scale-free (angles, ratios) on any finite input; unchanged when it has no edge length.
+PolyMesh UnitScaleCopy(const PolyMesh& mesh);
+
 // Moves p[0..n) by −p[0] and divides by the largest coordinate difference; returns that factor
 // (0 when the points coincide, which leaves them at 0). Lengths measured on the result are
 // multiplied by it to come back to the input's units; angles need nothing.

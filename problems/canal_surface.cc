@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "problems/circular_mesh.h"
@@ -116,7 +117,8 @@ bool BuildStripT(const std::vector<Eigen::Vector3d>& curve, const Eigen::Vector3
   for (int k = 0; k < n; ++k) {
     const Vec3<T> pk = Cast<T>(curve[k]), pk1 = Cast<T>(curve[k + 1]);
     const CircleT<T> circle = CircleThrough<T>(pk, pk1, (*q)[k]);
-    if (!(circle.radius == circle.radius) || !(circle.radius < T(1e12))) {
+    // Collinear (to 1e-12): the circle through them is wider than 1e12 chords.
+    if (!(circle.radius == circle.radius) || !(circle.radius < T(1e12) * (pk1 - pk).norm())) {
       *error = "P_" + std::to_string(k) + ", P_" + std::to_string(k + 1) + " and Q_" +
                std::to_string(k) + " are collinear";
       return false;
@@ -274,9 +276,19 @@ class RecordingCallback final : public ceres::IterationCallback {
   RecordingCallback(std::function<double()> energy, const RunCallback& callback,
                     std::vector<RunRecord>* history)
       : energy_(std::move(energy)), callback_(callback), history_(history) {}
+  // Before each solve: its iterations are numbered after `offset` earlier ones; a restart's
+  // iteration 0 (the previous solve's last iterate) is not recorded again.
+  void Restart(int offset, bool skip_first) {
+    offset_ = offset;
+    skip_first_ = skip_first;
+    calls_ = 0;
+  }
+  int recorded() const { return calls_; }  // iterates of the current solve seen so far
+
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
+    if (calls_++ == 0 && skip_first_) return ceres::SOLVER_CONTINUE;
     RunRecord record;
-    record.iteration = s.iteration;
+    record.iteration = offset_ + s.iteration;
     record.energy = s.cost;
     record.step = s.step_norm;
     record.max_constraint = NAN;  // no constraint rows
@@ -290,6 +302,8 @@ class RecordingCallback final : public ceres::IterationCallback {
   std::function<double()> energy_;
   const RunCallback& callback_;
   std::vector<RunRecord>* history_;
+  int offset_ = 0, calls_ = 0;
+  bool skip_first_ = false;
 };
 
 // The mean edge length of the strip, which makes the objective scale-free.
@@ -437,33 +451,68 @@ CanalSmoothingSummary SmoothCanalStrip(const CircularStripInput& input, const Fr
   std::string why;
   if (!options.IsValid(&why)) throw InputError("canal smoothing: " + why);
   const CircularStrip strip = BuildCircularStrip(input);  // validates the input
-  std::vector<double> x = Pack(input, angles, options);
+  // BFGS runs on the strip moved to P_0 and divided by its mean edge length ℓ, where lengths
+  // and angles are both of order 1 whatever the input's units (on a curve of size 1e-20 the
+  // line search failed at the first step); lengths and F are scaled back (F by 1 / ℓ²).
+  const double scale = MeanEdgeLength(strip);
+  CircularStripInput unit = input;
+  for (Eigen::Vector3d& p : unit.curve) p = (p - input.curve[0]) / scale;
+  unit.first_point = (input.first_point - input.curve[0]) / scale;
+  for (double& l : unit.lengths) l /= scale;
+  std::vector<double> x = Pack(unit, angles, options);
   ceres::GradientProblem problem(  // takes ownership
-      new CanalObjective(input, angles, options, MeanEdgeLength(strip)));
+      new CanalObjective(unit, angles, options, MeanEdgeLength(BuildCircularStrip(unit))));
   ceres::GradientProblemSolver::Options ceres_options;
   ceres_options.line_search_direction_type = ceres::BFGS;
   ceres_options.max_num_iterations = options.max_iterations;
   ceres_options.function_tolerance = options.function_tolerance;
   ceres_options.update_state_every_iteration = true;
   CanalSmoothingSummary out;
-  RecordingCallback recording([&] { return EnergyAt(x.data(), options, input, angles); }, callback,
-                              &out.history);
+  // F in the input's units: the lengths scaled back (as for the result).
+  const auto input_energy = [&] {
+    std::vector<double> y = x;
+    if (options.optimize_lengths)
+      for (size_t k = 0; k < input.lengths.size(); ++k) y[k] *= scale;
+    return EnergyAt(y.data(), options, input, angles);
+  };
+  RecordingCallback recording(input_energy, callback, &out.history);
   ceres_options.callbacks.push_back(&recording);
+  // When the line search finds no step (Ceres then reports its parameter tolerance met, with a
+  // zero step), BFGS restarts from there with a fresh Hessian estimate, while that lowers the
+  // objective. A run whose last restart could not lower it has not converged.
   ceres::GradientProblemSolver::Summary summary;
-  ceres::Solve(ceres_options, problem, x.data(), &summary);
-  // Ceres calls no callback on the iterate where it stops by a tolerance; record it too.
-  if (out.history.size() < summary.iterations.size()) recording(summary.iterations.back());
-
-  out.converged = summary.termination_type == ceres::CONVERGENCE;
-  out.iterations = static_cast<int>(summary.iterations.size()) - 1;
-  out.termination = std::string("ceres-bfgs ") +
-                    ceres::TerminationTypeToString(summary.termination_type) + ": " +
-                    summary.message;
+  bool stalled = false;
+  int restarts = 0;
+  for (int round = 0;; ++round) {
+    const double start_cost =
+        round == 0 ? std::numeric_limits<double>::infinity() : out.history.back().energy;
+    recording.Restart(out.iterations, round > 0);
+    ceres_options.max_num_iterations = options.max_iterations - out.iterations;
+    ceres::Solve(ceres_options, problem, x.data(), &summary);
+    // Ceres calls no callback on the iterate where it stops by a tolerance; record it too.
+    if (recording.recorded() < static_cast<int>(summary.iterations.size()))
+      recording(summary.iterations.back());
+    out.iterations += static_cast<int>(summary.iterations.size()) - 1;
+    stalled = summary.termination_type == ceres::CONVERGENCE &&
+              summary.iterations.back().step_norm == 0.0;
+    const bool lowered = summary.final_cost < start_cost * (1.0 - options.function_tolerance);
+    if (!stalled || out.iterations >= options.max_iterations || !lowered) break;
+    ++restarts;
+  }
+  out.converged = summary.termination_type == ceres::CONVERGENCE && !stalled;
+  out.termination =
+      stalled
+          ? "ceres-bfgs NO_CONVERGENCE: the line search found no lower point (BFGS restarted " +
+                std::to_string(restarts) + " times)"
+          : std::string("ceres-bfgs ") + ceres::TerminationTypeToString(summary.termination_type) +
+                ": " + (restarts > 0 ? "after " + std::to_string(restarts) + " restart(s), " : "") +
+                summary.message;
   out.message = summary.BriefReport();
   out.initial_energy = MakeCyclidicStrip(strip, angles).energy;
   CircularStripInput result = input;
   out.angles = angles;
   Unpack(x.data(), options, &result, &out.angles);
+  for (double& l : result.lengths) l = options.optimize_lengths ? l * scale : l;
   out.lengths = result.lengths;
   out.final_energy = MakeCyclidicStrip(BuildCircularStrip(result), out.angles).energy;
   return out;

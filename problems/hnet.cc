@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "constraints/frame_point_planarity.h"
+#include "geometry/scale_free.h"
 
 namespace gproj {
 namespace {
@@ -238,8 +239,10 @@ Eigen::Vector3d NormalOnEdge(const PolyMesh& mesh, PolyMesh::FaceHandle f,
 }
 }  // namespace
 
-double MaxTangentPlaneAngle(const PolyMesh& mesh, const std::vector<std::array<double, 4>>& weights,
-                            int samples) {
+double MaxTangentPlaneAngle(const PolyMesh& input,
+                            const std::vector<std::array<double, 4>>& weights, int samples) {
+  // At unit scale: the patch normals' cross products neither overflow nor underflow.
+  const PolyMesh mesh = UnitScaleCopy(input);
   double worst = 0.0;
   for (auto e : mesh.edges()) {
     if (mesh.is_boundary(e)) continue;

@@ -6,6 +6,7 @@
 #include "constraints/marionette_planarity.h"
 #include "constraints/scalar_target.h"
 #include "geometry/quad_grid.h"
+#include "geometry/scale_free.h"
 #include "problems/panel_bounds.h"
 
 namespace gproj {
@@ -44,9 +45,12 @@ std::vector<int> FoldedPlanFaces(const PolyMesh& mesh) {
   int positive = 0, negative = 0;
   for (auto f : mesh.faces()) {
     if (mesh.valence(f) != 4) continue;
-    Eigen::Vector2d p[4];
+    Eigen::Vector3d q[4];  // the plan quad at unit extent (any finite scale)
     int k = 0;
-    for (auto v : mesh.fv_range(f)) p[k++] = Eigen::Vector2d(mesh.point(v)[0], mesh.point(v)[1]);
+    for (auto v : mesh.fv_range(f)) q[k++] = Eigen::Vector3d(mesh.point(v)[0], mesh.point(v)[1], 0);
+    NormalizePolygon(q, 4);
+    Eigen::Vector2d p[4];
+    for (k = 0; k < 4; ++k) p[k] = q[k].head<2>();
     int plus = 0, minus = 0;
     bool degenerate = false;  // collinear corners: refused with their own message
     for (int i = 0; i < 4; ++i) {

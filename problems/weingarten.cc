@@ -40,7 +40,7 @@ double MeanAbsPrincipalCurvature(const std::vector<double>& h, const std::vector
 }
 
 double BoundingBoxDiagonal(const Eigen::MatrixX3d& points) {
-  return (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
+  return (points.colwise().maxCoeff() - points.colwise().minCoeff()).stableNorm();
 }
 
 }  // namespace
@@ -191,9 +191,12 @@ int WeingartenVariableCount(int nu, int nv, int su, int sv, bool geodesic_parall
   return 3 * nu * nv + (geodesic_parallel ? 20 : 12) * su * sv;
 }
 
-void SampleCurvatures(const BSplineSurface& surface, const SampleMaps& maps, std::vector<double>* h,
-                      std::vector<double>* k) {
-  const auto d = SampleDerivatives(maps, surface.control);
+double SampleUnitCurvatures(const BSplineSurface& surface, const SampleMaps& maps,
+                            std::vector<double>* h, std::vector<double>* k) {
+  double unit = BoundingBoxDiagonal(surface.control);
+  if (!(unit > 0.0) || !std::isfinite(unit)) unit = 1.0;
+  const Eigen::MatrixX3d control = (surface.control.rowwise() - surface.control.row(0)) / unit;
+  const auto d = SampleDerivatives(maps, control);
   h->resize(d.size());
   k->resize(d.size());
   for (size_t s = 0; s < d.size(); ++s) {
@@ -201,14 +204,24 @@ void SampleCurvatures(const BSplineSurface& surface, const SampleMaps& maps, std
     (*h)[s] = a[kH];
     (*k)[s] = a[kK];
   }
+  return unit;
+}
+
+void SampleCurvatures(const BSplineSurface& surface, const SampleMaps& maps, std::vector<double>* h,
+                      std::vector<double>* k) {
+  const double unit = SampleUnitCurvatures(surface, maps, h, k);
+  for (double& x : *h) x /= unit;
+  for (double& x : *k) x = x / unit / unit;
 }
 
 WeingartenMeasures MeasureWeingarten(const BSplineSurface& surface, const BSplineSurface& reference,
                                      int su, int sv) {
   const SampleMaps maps = MakeSampleMaps(surface, su, sv);
   WeingartenMeasures m;
-  SampleCurvatures(surface, maps, &m.h, &m.k);
-  m.mean_abs_principal_curvature = MeanAbsPrincipalCurvature(m.h, m.k);
+  // The misalignment is scale-free: measured at unit scale, where its products of gradients
+  // neither overflow nor underflow; H and K are then brought to the surface's units.
+  const double unit = SampleUnitCurvatures(surface, maps, &m.h, &m.k);
+  m.mean_abs_principal_curvature = MeanAbsPrincipalCurvature(m.h, m.k) / unit;
   double num = 0.0, den = 0.0;
   for (int a = 1; a + 1 < su; ++a)
     for (int b = 1; b + 1 < sv; ++b) {
@@ -223,10 +236,12 @@ WeingartenMeasures MeasureWeingarten(const BSplineSurface& surface, const BSplin
       den += GradientNormProduct(gh, gk);
     }
   m.misalignment = den > 0.0 ? num / den : 0.0;
+  for (double& x : m.h) x /= unit;
+  for (double& x : m.k) x = x / unit / unit;
   const SampleMaps ref_maps = MakeSampleMaps(reference, su, sv);
   const Eigen::MatrixX3d p = maps.d[0] * surface.control, q = ref_maps.d[0] * reference.control;
   const Eigen::VectorXd deviation =
-      (p - q).rowwise().norm() / std::max(BoundingBoxDiagonal(q), 1e-300);
+      (p - q).rowwise().stableNorm() / std::max(BoundingBoxDiagonal(q), 1e-300);
   m.max_deviation = deviation.maxCoeff(&m.worst_sample);
   m.mean_deviation = deviation.mean();
   return m;
@@ -275,8 +290,8 @@ void WeingartenProblem::ScaleToTargetCurvature() {
   const WeingartenOptions& options = options_;
   const int sv = maps_.sv;
 
-  std::vector<double> h0, k0;
-  SampleCurvatures(input, maps_, &h0, &k0);
+  std::vector<double> h0, k0;  // at unit scale: the input divided by `unit`
+  const double unit = SampleUnitCurvatures(input, maps_, &h0, &k0);
   for (int s = 0; s < maps_.num_samples(); ++s)
     if (!std::isfinite(h0[s]) || !std::isfinite(k0[s]))
       throw InputError("the surface is degenerate (s_u × s_v = 0) at sample " + std::to_string(s) +
@@ -284,9 +299,7 @@ void WeingartenProblem::ScaleToTargetCurvature() {
                        ", v = " + std::to_string(maps_.v[s % sv]) + ")");
   const double mean = MeanAbsPrincipalCurvature(h0, k0);
   centre_ = input.control.colwise().mean().transpose();
-  const double diagonal = BoundingBoxDiagonal(input.control);
-  scale_ = mean > 1e-12 / std::max(diagonal, 1e-300) ? mean / options.target_mean_curvature
-                                                     : 1.0 / std::max(diagonal, 1e-300);
+  scale_ = (mean > 1e-12 ? mean / options.target_mean_curvature : 1.0) / unit;
   scaled_ = input;
   scaled_.control = (input.control.rowwise() - centre_.transpose()) * scale_;
 }

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "geometry/mesh_io.h"
+#include "geometry/mesh_text.h"
 #include "geometry/svg_render.h"
 #include "problems/weingarten.h"
 
@@ -31,11 +32,43 @@ void AppendLevel(int level, const RunReport& level_report, WeingartenRun* run) {
   report.summary = level_report.summary;
 }
 
+// Control points along one direction after `levels` uniform refinements (a knot inserted in
+// every non-empty span, which doubles the spans).
+double RefinedCount(const std::vector<double>& knots, int count, int levels) {
+  double spans = 0.0, n = count;
+  for (size_t k = 0; k + 1 < knots.size(); ++k) spans += knots[k + 1] > knots[k] ? 1.0 : 0.0;
+  for (int level = 0; level < levels; ++level, spans *= 2.0) n += spans;
+  return n;
+}
+
 }  // namespace
+
+WeingartenFootprint WeingartenMemoryEstimate(const BSplineSurface& input,
+                                             const WeingartenOptions& options) {
+  const int levels = options.refine_levels;
+  const double nu = RefinedCount(input.knots_u, input.nu, levels);
+  const double nv = RefinedCount(input.knots_v, input.nv, levels);
+  WeingartenFootprint f;
+  f.su = options.samples_u > 0 ? options.samples_u : options.samples_per_control * nu;
+  f.sv = options.samples_v > 0 ? options.samples_v : options.samples_per_control * nv;
+  const double stencil = (input.degree_u + 1.0) * (input.degree_v + 1.0);
+  f.bytes = f.su * f.sv * (25e3 + 1.6e3 * stencil);
+  return f;
+}
 
 WeingartenRun RunWeingarten(const BSplineSurface& input, const WeingartenOptions& options,
                             bool use_ceres, int molds, const RunCallback& on_iteration,
                             const std::function<void(int, const WeingartenProblem&)>& on_level) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("invalid Weingarten options: " + why);
+  const WeingartenFootprint footprint = WeingartenMemoryEstimate(input, options);
+  char what[200];
+  std::snprintf(what, sizeof(what),
+                "a Weingarten run with %d level(s), %.0f x %.0f samples at the finest, at "
+                "bi-degree (%d, %d)",
+                options.refine_levels + 1, footprint.su, footprint.sv, input.degree_u,
+                input.degree_v);
+  CheckMemory(what, footprint.bytes);
   WeingartenRun run;
   BSplineSurface current = input;
   bool stopped = false;

@@ -149,6 +149,12 @@ TEST_F(WeingartenCommandTest, ChecksEveryOutputPathBeforeOptimising) {
                                 Path("out.json") + " --surface-mesh " + Path("s.stl"));
   EXPECT_EQ(mesh.exit_code, 1);
   EXPECT_NE(mesh.err.find("--surface-mesh"), std::string::npos) << mesh.err;
+  // The result is a B-spline (JSON), not a mesh.
+  ExpectOneLineError(Gproj("weingarten " + Data("freeform_10x10.json") + " -o " + Path("out.obj")),
+                     "--output " + Path("out.obj") +
+                         ": the result is a B-spline surface written as JSON, so its name must "
+                         "end in .json");
+  EXPECT_FALSE(Exists("out.obj"));
 }
 
 TEST_F(WeingartenCommandTest, RefusesBadSplinesAndPresets) {

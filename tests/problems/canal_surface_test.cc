@@ -127,6 +127,30 @@ TEST(CanalSurfaceTest, RunReportsTheSmoothingWithNamedMeasures) {
   EXPECT_EQ(canal.Mesh().n_faces(), 8u * 6u);
 }
 
+// The strip, its diagnoses and its smoothing are scale-free: the input moved and scaled by
+// 1e-20 or 1e20 builds, smooths in the same iterations and ends at the same shape (at 1e-20 the
+// line search used to fail at the first step and report convergence; at 1e20 the strip was
+// refused as collinear).
+TEST(CanalSurfaceTest, SmoothingIsTheSameAtEveryScale) {
+  const FrameAngles angles = AnglesFromNormal(Eigen::Vector3d(0.2, -0.5, 1.0));
+  CanalSmoothingOptions options;
+  const CanalSmoothingSummary unit = SmoothCanalStrip(Input(), angles, options);
+  ASSERT_TRUE(unit.converged) << unit.termination;
+  for (double scale : {1e-20, 1e20}) {
+    CircularStripInput in = Input();
+    const Eigen::Vector3d shift(2.0, -1.0, 0.5);
+    for (Eigen::Vector3d& p : in.curve) p = (p + shift) * scale;
+    in.first_point = (in.first_point + shift) * scale;
+    for (double& l : in.lengths) l *= scale;
+    const CanalSmoothingSummary s = SmoothCanalStrip(in, angles, options);
+    EXPECT_TRUE(s.converged) << "scale " << scale << ": " << s.termination;
+    EXPECT_EQ(s.iterations, unit.iterations) << "scale " << scale;
+    EXPECT_NEAR(s.final_energy * scale * scale / unit.final_energy, 1.0, 1e-6) << scale;
+    for (size_t k = 0; k < in.lengths.size(); ++k)
+      EXPECT_NEAR(s.lengths[k] / scale, unit.lengths[k], 1e-6) << "scale " << scale << ", " << k;
+  }
+}
+
 TEST(CanalSurfaceTest, SmoothingCutShortIsNotConvergedAndWithoutSmoothingNothingRuns) {
   CanalSurfaceOptions options;
   options.smooth = true;

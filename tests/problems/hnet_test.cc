@@ -45,6 +45,23 @@ TEST(HNetTest, HyperboloidRulingGridJoinsSmoothly) {
   EXPECT_TRUE(EquitwistViolations(mesh, colour).empty());
 }
 
+// The angle is scale-free, and so is its measure: the same mesh moved and scaled from 1e-99 to
+// 1e100 gives the same angle (the patch normals used to overflow or underflow to 0 there).
+TEST(HNetTest, TangentPlaneAngleIsTheSameAtEveryScale) {
+  const PolyMesh mesh = Grid("hyperboloid", 7);
+  const std::vector<int> colour = TwoColourVertices(mesh);
+  const std::vector<std::array<double, 4>> ones =
+      AllCornerWeights(mesh, colour, std::vector<double>(mesh.n_faces(), 1.0));
+  const double angle = MaxTangentPlaneAngle(mesh, ones);
+  ASSERT_GT(angle, 0.01);
+  for (double scale : {1e-99, 1e-40, 1e40, 1e80, 1e100}) {
+    PolyMesh scaled = mesh;
+    for (auto v : scaled.vertices())
+      scaled.set_point(v, (mesh.point(v) + PolyMesh::Point(3, -1, 2)) * scale);
+    EXPECT_NEAR(MaxTangentPlaneAngle(scaled, ones), angle, 1e-9 * angle) << "scale " << scale;
+  }
+}
+
 // A planar star of valence n around the origin with free vertices alternately above and below.
 PolyMesh Star(int n, double tilt) {
   PolyMesh mesh;

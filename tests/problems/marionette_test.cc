@@ -227,6 +227,26 @@ TEST(MarionetteClosedStripTest, ConcentricCirclesLeaveEveryInnerCurveFree) {
   EXPECT_LE(StripPlanarity(strip, lift), 1e-12);
 }
 
+// a and the lift are scale-free, and so are their computation and the degeneracy test: the
+// plan scaled by 1e±300 (heights with it) gives the same a and heights (it used to be refused
+// as collinear, the cross products overflowing or underflowing).
+TEST(MarionetteClosedStripTest, LiftIsTheSameAtEveryScale) {
+  const ClosedStrip strip = Ring(16, 0.08);
+  Eigen::VectorXd z(16);
+  for (int i = 0; i < 16; ++i) z[i] = 0.3 * std::sin(2 * M_PI * i / 16);
+  const ClosedStripLift unit = LiftClosedStrip(strip, z);
+  for (double scale : {1e-300, 1e300}) {
+    ClosedStrip scaled = strip;
+    for (auto* curve : {&scaled.inner, &scaled.outer})
+      for (Eigen::Vector2d& p : *curve) p *= scale;
+    ASSERT_EQ(DegenerateClosedStripQuad(scaled), -1) << scale;
+    const ClosedStripLift lift = LiftClosedStrip(scaled, z * scale);
+    EXPECT_NEAR(lift.a, unit.a, 1e-12) << scale;
+    for (int i = 0; i < 16; ++i)
+      EXPECT_NEAR(lift.outer_heights[i] / scale, unit.outer_heights[i], 1e-12) << scale;
+  }
+}
+
 TEST(MarionetteClosedStripTest, RefusesDegenerateQuads) {
   ClosedStrip strip = Ring(8, 0.0);
   strip.outer[3] = strip.inner[3] + 0.5 * (strip.inner[4] - strip.inner[3]);

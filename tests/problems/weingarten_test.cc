@@ -38,6 +38,68 @@ TEST(WeingartenTest, VariableCountsOfTable2) {
   }
 }
 
+// The estimate counts the finest level's control points as knot insertion makes them (here
+// with a double interior knot along u, whose empty span gets no knot).
+TEST(WeingartenTest, MemoryEstimateFollowsRefinementAndDegree) {
+  BSplineSurface s = Freeform(9, 7, 3);
+  s.knots_u = {0, 0, 0, 0, 0.25, 0.5, 0.5, 0.75, 1, 1, 1, 1, 1};
+  ASSERT_EQ(s.knots_u.size(), static_cast<size_t>(s.nu + s.degree_u + 1));
+  s.knots_u.erase(s.knots_u.end() - 1);
+  s.knots_u.insert(s.knots_u.begin() + 4, 0.1);
+  WeingartenOptions o = WeingartenPreset("fig1");
+  o.refine_levels = 2;
+  const BSplineSurface fine = InsertKnotsUniform(InsertKnotsUniform(s, 1), 1);
+  const double per_sample = 25e3 + 1.6e3 * 16;
+  const WeingartenFootprint refined = WeingartenMemoryEstimate(s, o);
+  EXPECT_EQ(refined.su, 2.0 * fine.nu);
+  EXPECT_EQ(refined.sv, 2.0 * fine.nv);
+  EXPECT_DOUBLE_EQ(refined.bytes, (2.0 * fine.nu) * (2.0 * fine.nv) * per_sample);
+  o.refine_levels = 0;
+  o.samples_u = 30;
+  o.samples_v = 20;
+  EXPECT_DOUBLE_EQ(WeingartenMemoryEstimate(s, o).bytes, 600 * per_sample);
+  // Each sample's rows touch (du + 1)(dv + 1) control points.
+  EXPECT_DOUBLE_EQ(WeingartenMemoryEstimate(Freeform(12, 12, 8), o).bytes,
+                   600 * (25e3 + 1.6e3 * 81));
+}
+
+TEST(WeingartenTest, RunNeedingMoreThanTheMachineIsRefusedBeforeItStarts) {
+  WeingartenOptions o = WeingartenPreset("fig1");
+  o.refine_levels = 10;  // 20 x 20 control points become about 17000 x 17000
+  int levels_started = 0;
+  try {
+    RunWeingarten(Freeform(20, 20, 3), o, false, 0, nullptr,
+                  [&](int, const WeingartenProblem&) { ++levels_started; });
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("a Weingarten run with 11 level(s), 34822 x 34822 "
+                                         "samples at the finest, at bi-degree (3, 3) needs about "),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("GB of memory, more than the "), std::string::npos);
+  }
+  EXPECT_EQ(levels_started, 0);
+}
+
+// Curvatures are measured at unit scale: a surface scaled by 1e±150 or 1e-300 is not called
+// degenerate (s_u × s_v used to overflow or underflow), its misalignment is the same, and H, K
+// come in its units where they are representable.
+TEST(WeingartenTest, MeasuresAndProblemHoldAtEveryScale) {
+  const BSplineSurface surface = Freeform(8, 8, 3);
+  const WeingartenMeasures unit = MeasureWeingarten(surface, surface, 16, 16);
+  for (double scale : {1e-300, 1e-150, 1e150, 1e154}) {
+    BSplineSurface scaled = surface;
+    scaled.control = (surface.control.array() + 2.0).matrix() * scale;
+    EXPECT_NO_THROW(WeingartenProblem(scaled, WeingartenPreset("fig1"))) << scale;
+    const WeingartenMeasures m = MeasureWeingarten(scaled, scaled, 16, 16);
+    EXPECT_NEAR(m.misalignment, unit.misalignment, 1e-9 * unit.misalignment) << scale;
+    EXPECT_NEAR(m.mean_abs_principal_curvature * scale / unit.mean_abs_principal_curvature, 1.0,
+                1e-9)
+        << scale;
+    EXPECT_NEAR(m.h[37] * scale / unit.h[37], 1.0, 1e-9) << scale;
+  }
+}
+
 TEST(WeingartenTest, AuxiliariesStartConsistentAndScaleGivesMeanCurvatureFive) {
   WeingartenOptions o = WeingartenPreset("fig1");
   o.solver.max_iterations = 1;
