@@ -98,7 +98,7 @@ std::vector<Eigen::Vector3d> ReadPoints(const std::string& path, int min_points)
                        std::to_string(line.words.size()));
     Eigen::Vector3d p;
     for (int i = 0; i < 3; ++i) p[i] = ParseNumber(line.words[i], where);
-    if (!points.empty() && (p - points.back()).norm() == 0.0)
+    if (!points.empty() && p == points.back())
       throw InputError(where + ": repeats the previous point");
     points.push_back(p);
   }

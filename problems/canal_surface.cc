@@ -3,8 +3,10 @@
 #include <ceres/ceres.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
 
@@ -70,6 +72,31 @@ double ScalarValue(const ceres::Jet<T, N>& value) {
   return value.a;
 }
 
+// Scale-free constructions: the strip, the net and the mesh are computed on the input divided
+// by a power of two near its largest coordinate. That is exact (the same results at ordinary
+// scales) and keeps squares and cross products from overflowing or underflowing at any finite
+// scale, where the construction's relative tests would otherwise give false diagnoses.
+int ScaleExponent(const std::vector<Eigen::Vector3d>& a,
+                  const std::vector<Eigen::Vector3d>& b = {}) {
+  double largest = 0.0;
+  for (const auto* points : {&a, &b})
+    for (const Eigen::Vector3d& p : *points) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+  return largest > 0.0 && std::isfinite(largest) ? std::ilogb(largest) : 0;
+}
+Eigen::Vector3d Scaled(const Eigen::Vector3d& p, int exponent) {
+  return {std::ldexp(p.x(), exponent), std::ldexp(p.y(), exponent), std::ldexp(p.z(), exponent)};
+}
+std::vector<Eigen::Vector3d> Scaled(std::vector<Eigen::Vector3d> points, int exponent) {
+  for (Eigen::Vector3d& p : points) p = Scaled(p, exponent);
+  return points;
+}
+CircularStrip Scaled(const CircularStrip& strip, int exponent) {
+  return {Scaled(strip.p, exponent), Scaled(strip.q, exponent)};
+}
+Circle Scaled(const Circle& c, int exponent) {
+  return {Scaled(c.centre, exponent), c.normal, std::ldexp(c.radius, exponent)};
+}
+
 // Reflection in the plane perpendicular to `edge`.
 template <typename T>
 Vec3<T> Reflect(const Vec3<T>& x, const Vec3<T>& edge) {
@@ -84,9 +111,15 @@ T InverseRadiusSquared(const Vec3<T>& t, const Vec3<T>& chord) {
 }
 
 // Q_0..Q_n by propagation (see the header). On failure returns false with a message.
+// `unit`: the input's length unit, for the lengths in messages.
 template <typename T>
 bool BuildStripT(const std::vector<Eigen::Vector3d>& curve, const Eigen::Vector3d& first,
-                 const T* lengths, std::vector<Vec3<T>>* q, std::string* error) {
+                 const T* lengths, std::vector<Vec3<T>>* q, std::string* error, double unit = 1.0) {
+  const auto number = [unit](double x) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.6g", x * unit);
+    return std::string(text);
+  };
   const int n = static_cast<int>(curve.size()) - 1;
   q->assign(n + 1, Vec3<T>::Zero());
   const CircleT<T> first_circle =
@@ -94,9 +127,9 @@ bool BuildStripT(const std::vector<Eigen::Vector3d>& curve, const Eigen::Vector3
   auto point_at_chord = [&](const CircleT<T>& circle, const Vec3<T>& from, const T& length, int k,
                             T* angle) {
     if (!(length > T(0)) || !(length < T(2) * circle.radius)) {
-      *error = "length " + std::to_string(k) + " (" + std::to_string(ScalarValue(length)) +
+      *error = "length " + std::to_string(k) + " (" + number(ScalarValue(length)) +
                ") must be positive and shorter than the circle's diameter " +
-               std::to_string(2 * ScalarValue(circle.radius));
+               number(2 * ScalarValue(circle.radius));
       return false;
     }
     *angle = T(2) * asin(length / (T(2) * circle.radius));
@@ -311,9 +344,10 @@ double MeanEdgeLength(const CircularStrip& strip) {
   double edge_sum = 0.0;
   const int n = static_cast<int>(strip.p.size()) - 1;
   for (int k = 0; k <= n; ++k) {
-    edge_sum += (strip.q[k] - strip.p[k]).norm();
+    edge_sum += (strip.q[k] - strip.p[k]).stableNorm();
     if (k < n)
-      edge_sum += (strip.p[k + 1] - strip.p[k]).norm() + (strip.q[k + 1] - strip.q[k]).norm();
+      edge_sum +=
+          (strip.p[k + 1] - strip.p[k]).stableNorm() + (strip.q[k + 1] - strip.q[k]).stableNorm();
   }
   return edge_sum / (3 * n + 1);
 }
@@ -329,14 +363,22 @@ CircularStrip BuildCircularStrip(const CircularStripInput& input) {
   for (int k = 0; k <= n; ++k)
     if (!input.curve[k].allFinite())
       throw InputError("curve point " + std::to_string(k) + " is not finite");
-  const Eigen::Vector3d a = input.curve[1] - input.curve[0], b = input.first_point - input.curve[0];
+  if (!input.first_point.allFinite()) throw InputError("the first point is not finite");
+  const int exponent = ScaleExponent(input.curve, {input.first_point});
+  const std::vector<Eigen::Vector3d> curve = Scaled(input.curve, -exponent);
+  const Eigen::Vector3d first = Scaled(input.first_point, -exponent);
+  std::vector<double> lengths = input.lengths;
+  for (double& l : lengths) l = std::ldexp(l, -exponent);
+  const Eigen::Vector3d a = curve[1] - curve[0], b = first - curve[0];
   if (!(a.cross(b).norm() > 1e-12 * a.norm() * b.norm()))
     throw InputError("P_0, P_1 and the first point are collinear: they do not fix a circle");
   CircularStrip strip;
   strip.p = input.curve;
   std::string error;
-  if (!BuildStripT<double>(input.curve, input.first_point, input.lengths.data(), &strip.q, &error))
+  if (!BuildStripT<double>(curve, first, lengths.data(), &strip.q, &error,
+                           std::ldexp(1.0, exponent)))
     throw InputError(error);
+  strip.q = Scaled(strip.q, exponent);
   return strip;
 }
 
@@ -364,6 +406,13 @@ Eigen::Vector3d NormalOf(const FrameAngles& angles) {
 }
 
 CyclidicStrip MakeCyclidicStrip(const CircularStrip& strip, const FrameAngles& angles) {
+  if (const int e = ScaleExponent(strip.p, strip.q); e != 0) {
+    CyclidicStrip net = MakeCyclidicStrip(Scaled(strip, -e), angles);
+    net.strip = strip;
+    for (Circle& c : net.circles) c = Scaled(c, e);
+    net.energy = std::ldexp(net.energy, -2 * e);  // F = Σ 1 / R²
+    return net;
+  }
   CyclidicStrip net;
   net.strip = strip;
   const double a[3] = {angles.lambda, angles.theta, angles.psi};
@@ -391,6 +440,18 @@ CyclidicStrip MakeCyclidicStrip(const CircularStrip& strip, const FrameAngles& a
 
 PolyMesh MeshCanalSurface(const CyclidicStrip& net, int m) {
   if (m < 1) throw InputError("the canal mesh needs at least one segment per circle");
+  if (const int e = ScaleExponent(net.strip.p, net.strip.q); e != 0) {
+    CyclidicStrip unit = net;
+    unit.strip = Scaled(net.strip, -e);
+    for (Circle& c : unit.circles) c = Scaled(c, -e);
+    PolyMesh mesh = MeshCanalSurface(unit, m);
+    for (auto v : mesh.vertices()) {
+      const PolyMesh::Point x = mesh.point(v);
+      mesh.set_point(
+          v, PolyMesh::Point(std::ldexp(x[0], e), std::ldexp(x[1], e), std::ldexp(x[2], e)));
+    }
+    return mesh;
+  }
   const int n = static_cast<int>(net.strip.p.size()) - 1;
   std::vector<std::vector<Eigen::Vector3d>> rows(n + 1, std::vector<Eigen::Vector3d>(m + 1));
   {
@@ -518,7 +579,9 @@ CanalSmoothingSummary SmoothCanalStrip(const CircularStripInput& input, const Fr
   return out;
 }
 
-Eigen::Vector3d DefaultCanalNormal(const CircularStrip& strip) {
+Eigen::Vector3d DefaultCanalNormal(const CircularStrip& input) {
+  // A direction: computed at unit scale.
+  const CircularStrip strip = Scaled(input, -ScaleExponent(input.p, input.q));
   const Eigen::Vector3d along = (strip.p[1] - strip.p[0]).normalized();
   const Eigen::Vector3d across = strip.q[0] - strip.p[0];
   return across - across.dot(along) * along;
@@ -579,6 +642,7 @@ RunReport CanalSurface::Smooth(const RunCallback& callback) {
   report.iterations = s.iterations;
   report.history = s.history;
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  FailOnNonFiniteMeasures(&report);
   return report;
 }
 

@@ -105,6 +105,8 @@ TEST(TextInputTest, PointsNeedThreeFiniteDistinctCoordinates) {
               ReadPoints(WriteTemp("r.txt", "0 0 0\n0 0 0\n"));
             }).find("r.txt:2: repeats the previous point"),
             std::string::npos);
+  // Distinct points 1e-300 apart are distinct (their distance used to underflow to 0).
+  EXPECT_EQ(ReadPoints(WriteTemp("t.txt", "1e-300 0 0\n2e-300 0 0\n")).size(), 2u);
   EXPECT_NE(MessageOf([] {
               ReadPoints(WriteTemp("s.txt", "0 0 0\n"));
             }).find("needs at least 2 points, got 1"),

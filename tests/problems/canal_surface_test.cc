@@ -127,27 +127,38 @@ TEST(CanalSurfaceTest, RunReportsTheSmoothingWithNamedMeasures) {
   EXPECT_EQ(canal.Mesh().n_faces(), 8u * 6u);
 }
 
-// The strip, its diagnoses and its smoothing are scale-free: the input moved and scaled by
-// 1e-20 or 1e20 builds, smooths in the same iterations and ends at the same shape (at 1e-20 the
-// line search used to fail at the first step and report convergence; at 1e20 the strip was
-// refused as collinear).
-TEST(CanalSurfaceTest, SmoothingIsTheSameAtEveryScale) {
+// The strip, its diagnoses, its smoothing and the mesh are scale-free: the input moved and
+// scaled by 1e±20 or 1e±150 builds, smooths in the same iterations and ends at the same shape
+// (at 1e-20 the line search used to fail at the first step and report convergence; from 1e20
+// the strip was refused as collinear, from 1e150 the mesh as degenerate).
+TEST(CanalSurfaceTest, SmoothingAndMeshAreTheSameAtEveryScale) {
   const FrameAngles angles = AnglesFromNormal(Eigen::Vector3d(0.2, -0.5, 1.0));
-  CanalSmoothingOptions options;
-  const CanalSmoothingSummary unit = SmoothCanalStrip(Input(), angles, options);
-  ASSERT_TRUE(unit.converged) << unit.termination;
-  for (double scale : {1e-20, 1e20}) {
+  CanalSurfaceOptions options;
+  options.smooth = true;
+  CanalSurface unit(Input(), angles, options);
+  const RunReport unit_run = unit.Run();
+  ASSERT_TRUE(unit_run.converged) << unit_run.termination;
+  const double unit_energy = ValueOf(unit_run.final, "smoothness_energy");
+  for (double scale : {1e-150, 1e-20, 1e20, 1e150}) {
     CircularStripInput in = Input();
     const Eigen::Vector3d shift(2.0, -1.0, 0.5);
     for (Eigen::Vector3d& p : in.curve) p = (p + shift) * scale;
     in.first_point = (in.first_point + shift) * scale;
     for (double& l : in.lengths) l *= scale;
-    const CanalSmoothingSummary s = SmoothCanalStrip(in, angles, options);
-    EXPECT_TRUE(s.converged) << "scale " << scale << ": " << s.termination;
-    EXPECT_EQ(s.iterations, unit.iterations) << "scale " << scale;
-    EXPECT_NEAR(s.final_energy * scale * scale / unit.final_energy, 1.0, 1e-6) << scale;
+    CanalSurface canal(in, angles, options);
+    const RunReport run = canal.Run();
+    EXPECT_TRUE(run.converged) << "scale " << scale << ": " << run.termination;
+    EXPECT_EQ(run.iterations, unit_run.iterations) << "scale " << scale;
+    EXPECT_NEAR(ValueOf(run.final, "smoothness_energy") * scale * scale / unit_energy, 1.0, 1e-6)
+        << scale;
+    EXPECT_LT(ValueOf(run.final, "max_concyclicity"), 1e-10) << scale;
     for (size_t k = 0; k < in.lengths.size(); ++k)
-      EXPECT_NEAR(s.lengths[k] / scale, unit.lengths[k], 1e-6) << "scale " << scale << ", " << k;
+      EXPECT_NEAR(canal.input().lengths[k] / scale, unit.input().lengths[k], 1e-6) << scale;
+    const PolyMesh mesh = canal.Mesh(), unit_mesh = unit.Mesh();
+    for (auto v : mesh.vertices()) {
+      const PolyMesh::Point back = mesh.point(v) / scale - PolyMesh::Point(2.0, -1.0, 0.5);
+      EXPECT_LT((back - unit_mesh.point(v)).norm(), 1e-6) << scale << ", vertex " << v.idx();
+    }
   }
 }
 
