@@ -1,12 +1,16 @@
 // Benchmarks of PQ planarisation on noisy doubly curved grids of n × n vertices.
 //   BM_PlanarizationIteration/n/s   guided-projection iterations (s = 1: normals eliminated by
 //                                   a Schur complement, 0: direct), split into
-//                                   update+assembly / numeric factorisation / solve
+//                                   update+assembly / numeric factorisation / solve; the
+//                                   factorisation's rate (factor_gflops, from CHOLMOD's flop
+//                                   count) next to dense dgemm's in the same run (dgemm_gflops;
+//                                   the BLAS library is in the context line "blas")
 //   BM_PlanarizeToTolerance/n/0|1   a full solve to max planarity ≤ 1e-6 (0: gproj, 1: Ceres)
 #include <benchmark/benchmark.h>
 
 #include <chrono>
 
+#include "dense_rate.h"
 #include "geometry/quad_grid.h"
 #include "problems/pq_planarization.h"
 #include "solver_counters.h"
@@ -52,6 +56,10 @@ void BM_PlanarizationIteration(benchmark::State& state) {
   const double iteration = (wall - summary.analysis_seconds) / steps;
   state.counters["iteration_ms"] = 1e3 * iteration;
   state.counters["iteration_over_factor_solve"] = iteration / (m.factorization + m.solve);
+  state.counters["factor_gflops"] = summary.factor_flops / m.factorization / 1e9;
+  static const double dgemm = DgemmGflops();  // once per run
+  state.counters["dgemm_gflops"] = dgemm;
+  state.counters["factor_over_dgemm"] = summary.factor_flops / m.factorization / 1e9 / dgemm;
   state.SetLabel(eliminate ? "schur" : "direct");
 }
 BENCHMARK(BM_PlanarizationIteration)
@@ -86,4 +94,11 @@ BENCHMARK(BM_PlanarizeToTolerance)
 }  // namespace
 }  // namespace gproj
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  benchmark::AddCustomContext("blas", gproj::BlasLibrary());
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -36,6 +36,7 @@ class CholmodCholesky : public SparseCholesky {
     cholmod_sparse view = View(a);
     if (factor_ != nullptr) cholmod_free_factor(&factor_, &common_);
     factor_ = cholmod_analyze(&view, &common_);
+    flops_ = common_.fl;  // Cholesky flops of the chosen ordering
     if (factor_ == nullptr || common_.status != CHOLMOD_OK) {
       *message = "CHOLMOD analysis failed (status " + std::to_string(common_.status) + ")";
       return false;
@@ -72,6 +73,8 @@ class CholmodCholesky : public SparseCholesky {
     return true;
   }
 
+  double FactorFlops() const override { return factor_ != nullptr ? flops_ : 0.0; }
+
   int64_t FactorNonZeros() const override {
     if (factor_ == nullptr) return 0;
     return factor_->is_super ? static_cast<int64_t>(factor_->xsize)
@@ -100,6 +103,7 @@ class CholmodCholesky : public SparseCholesky {
 
   cholmod_common common_;
   cholmod_factor* factor_ = nullptr;
+  double flops_ = 0.0;
   cholmod_dense* b_ = nullptr;
   cholmod_dense* x_ = nullptr;
   cholmod_dense* y_ = nullptr;

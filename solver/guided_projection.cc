@@ -278,6 +278,7 @@ class Minimizer {
     }
     record_.retries = failures + rejections;
     summary_.factor_nonzeros = steps_->FactorNonZeros();
+    summary_.factor_flops = steps_->FactorFlops();
     record_.epsilon = epsilon;
     record_.step_norm = (trial_ - x_).lpNorm<Eigen::Infinity>();
     x_.swap(trial_);

@@ -100,6 +100,7 @@ struct SolverSummary {
   int num_rows = 0;
   int64_t jacobian_nonzeros = 0;
   int64_t factor_nonzeros = 0;
+  double factor_flops = 0.0;     // of one numeric factorisation (CHOLMOD's count; 0 if unknown)
   int eliminated_variables = 0;  // removed by the Schur complement before factorising
   std::string elimination_note;  // why no elimination happened, when it did not
   double analysis_seconds = 0.0;

@@ -49,6 +49,9 @@ class SparseCholesky {
   virtual bool Solve(const double* rhs, double* x, std::string* message) = 0;
   // Stored entries of the factor L (0 before the first factorisation).
   virtual int64_t FactorNonZeros() const = 0;
+  // Floating-point operations of one numeric factorisation, as counted by the analysis (0 when
+  // the backend does not count them).
+  virtual double FactorFlops() const { return 0.0; }
 };
 
 std::unique_ptr<SparseCholesky> CreateSparseCholesky(LinearSolverType type, int num_threads);

@@ -37,6 +37,7 @@ class StepSolver {
 
   const Eigen::VectorXd& rhs() const { return rhs_; }
   int64_t FactorNonZeros() const { return cholesky_->FactorNonZeros(); }
+  double FactorFlops() const { return cholesky_->FactorFlops(); }
 
  private:
   LinearizedSystem* system_;

@@ -102,5 +102,31 @@ TEST(SparseCholeskyBackendsTest, CholmodAndEigenGiveTheSameStep) {
   EXPECT_LT((x[0] - x[1]).norm() / x[1].norm(), 1e-10);
 }
 
+// CHOLMOD's flop count of the factorisation (the bench's factor_gflops): for a dense n × n
+// factor it is Σ_j (column count)² = n(n + 1)(2n + 1)/6 ≈ n³/3; a diagonal matrix costs n.
+TEST(SparseCholeskyBackendsTest, CholmodCountsTheFactorisationFlops) {
+  const int n = 50;
+  CscMatrix dense = RandomCsc(n, 3 * n, n, 5);  // every column full: A Aᵀ is dense
+  auto cholesky = CreateSparseCholesky(LinearSolverType::kCholmod, 1);
+  std::string message;
+  EXPECT_EQ(cholesky->FactorFlops(), 0.0);
+  ASSERT_TRUE(cholesky->Analyze(dense, MatrixForm::kAAt, &message)) << message;
+  EXPECT_GE(cholesky->FactorFlops(), n * n * n / 3.0);
+  EXPECT_LE(cholesky->FactorFlops(), n * (n + 1.0) * (2.0 * n + 1.0) / 6.0 + 2.0 * n * n);
+  auto sparse = CreateSparseCholesky(LinearSolverType::kCholmod, 1);
+  CscMatrix identity;
+  identity.num_rows = identity.num_cols = n;
+  for (int c = 0; c < n; ++c) {
+    identity.col_begin.push_back(c);
+    identity.row_index.push_back(c);
+    identity.values.push_back(1.0);
+  }
+  identity.col_begin.push_back(n);
+  ASSERT_TRUE(sparse->Analyze(identity, MatrixForm::kSymmetric, &message)) << message;
+  EXPECT_LE(sparse->FactorFlops(), 2.0 * n);
+  EXPECT_GT(sparse->FactorFlops(), 0.0);
+  EXPECT_LT(sparse->FactorFlops(), cholesky->FactorFlops() / 100.0);
+}
+
 }  // namespace
 }  // namespace gproj
