@@ -5,6 +5,8 @@
 //                                   factorisation's rate (factor_gflops, from CHOLMOD's flop
 //                                   count) next to dense dgemm's in the same run (dgemm_gflops;
 //                                   the BLAS library is in the context line "blas")
+//   BM_PlanarizationOrdering/n/o    the same with the fill-reducing ordering o (0 auto, 1 AMD,
+//                                   2 METIS, 3 NESDIS): analysis time, fill, flops
 //   BM_PlanarizeToTolerance/n/0|1   a full solve to max planarity ≤ 1e-6 (0: gproj, 1: Ceres)
 #include <benchmark/benchmark.h>
 
@@ -64,6 +66,29 @@ void BM_PlanarizationIteration(benchmark::State& state) {
 }
 BENCHMARK(BM_PlanarizationIteration)
     ->ArgsProduct({{51, 101, 201}, {1, 0}})
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
+
+void BM_PlanarizationOrdering(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const auto ordering = static_cast<FillOrdering>(state.range(1));
+  const PolyMesh mesh = NoisyGrid(n);
+  PQPlanarizationOptions options;
+  options.solver.max_iterations = 2;
+  options.solver.ordering = ordering;
+  options.tolerance = 1e-300;
+  SolverSummary summary;
+  for (auto _ : state) {
+    PQPlanarization pq(mesh, options);
+    summary = Solve(options.solver, &pq.problem());
+  }
+  const PhaseMeans m = SetSolverCounters(summary, &state);
+  state.counters["factor_gflop"] = summary.factor_flops / 1e9;
+  state.counters["factor_gflops"] = summary.factor_flops / m.factorization / 1e9;
+  state.SetLabel(FillOrderingName(ordering));
+}
+BENCHMARK(BM_PlanarizationOrdering)
+    ->ArgsProduct({{101, 201}, {0, 1, 2, 3}})
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond);
 

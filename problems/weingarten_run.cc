@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "geometry/input_error.h"
 #include "geometry/mesh_io.h"
-#include "geometry/mesh_text.h"
 #include "geometry/svg_render.h"
 #include "problems/weingarten.h"
 

@@ -14,12 +14,18 @@ namespace {
 
 class CholmodCholesky : public SparseCholesky {
  public:
-  explicit CholmodCholesky(int num_threads) {
+  CholmodCholesky(int num_threads, FillOrdering ordering) {
     cholmod_start(&common_);
     common_.supernodal = CHOLMOD_SUPERNODAL;
     common_.final_ll = 1;
     common_.print = 0;
     common_.error_handler = nullptr;
+    if (ordering != FillOrdering::kAuto) {
+      common_.nmethods = 1;
+      common_.method[0].ordering = ordering == FillOrdering::kAmd     ? CHOLMOD_AMD
+                                   : ordering == FillOrdering::kMetis ? CHOLMOD_METIS
+                                                                      : CHOLMOD_NESDIS;
+    }
     if (num_threads > 0) openblas_set_num_threads(num_threads);
   }
   ~CholmodCholesky() override {
@@ -114,8 +120,8 @@ class CholmodCholesky : public SparseCholesky {
 
 }  // namespace
 
-std::unique_ptr<SparseCholesky> CreateCholmodCholesky(int num_threads) {
-  return std::make_unique<CholmodCholesky>(num_threads);
+std::unique_ptr<SparseCholesky> CreateCholmodCholesky(int num_threads, FillOrdering ordering) {
+  return std::make_unique<CholmodCholesky>(num_threads, ordering);
 }
 
 }  // namespace gproj

@@ -59,6 +59,8 @@ struct SolverOptions {
   bool eliminate_auxiliaries = true;
   // Threads for the BLAS under CHOLMOD (0: leave the library default).
   int num_threads = 0;
+  // The fill-reducing ordering of the one symbolic analysis.
+  FillOrdering ordering = FillOrdering::kAuto;
 
   bool IsValid(std::string* why) const;
 };

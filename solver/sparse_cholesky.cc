@@ -2,7 +2,24 @@
 
 namespace gproj {
 
-std::unique_ptr<SparseCholesky> CreateCholmodCholesky(int num_threads);
+std::unique_ptr<SparseCholesky> CreateCholmodCholesky(int num_threads, FillOrdering ordering);
+
+namespace {
+constexpr const char* kFillOrderingNames[] = {"auto", "amd", "metis", "nesdis"};
+}  // namespace
+
+const char* FillOrderingName(FillOrdering ordering) {
+  return kFillOrderingNames[static_cast<int>(ordering)];
+}
+
+bool ParseFillOrdering(const std::string& name, FillOrdering* ordering) {
+  for (int k = 0; k < 4; ++k)
+    if (name == kFillOrderingNames[k]) {
+      *ordering = static_cast<FillOrdering>(k);
+      return true;
+    }
+  return false;
+}
 std::unique_ptr<SparseCholesky> CreateEigenCholesky();
 
 const char* LinearSolverTypeName(LinearSolverType type) {
@@ -21,9 +38,10 @@ bool ParseLinearSolverType(const std::string& name, LinearSolverType* type) {
   return false;
 }
 
-std::unique_ptr<SparseCholesky> CreateSparseCholesky(LinearSolverType type, int num_threads) {
+std::unique_ptr<SparseCholesky> CreateSparseCholesky(LinearSolverType type, int num_threads,
+                                                     FillOrdering ordering) {
   if (type == LinearSolverType::kEigen) return CreateEigenCholesky();
-  return CreateCholmodCholesky(num_threads);
+  return CreateCholmodCholesky(num_threads, ordering);
 }
 
 }  // namespace gproj

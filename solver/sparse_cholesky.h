@@ -26,6 +26,18 @@ enum class LinearSolverType {
   kEigen,    // Eigen SimplicialLLT on the explicitly formed matrix (fallback, test oracle)
 };
 
+// The fill-reducing ordering of the symbolic analysis (CHOLMOD; the Eigen backend always uses
+// its AMD).
+enum class FillOrdering {
+  kAuto,              // CHOLMOD's default: AMD, and METIS as well when AMD's fill is high
+  kAmd,               // approximate minimum degree (on the pattern of A Aᵀ for kAAt)
+  kMetis,             // METIS nested dissection
+  kNestedDissection,  // CHOLMOD's own nested dissection (NESDIS, METIS's partitioner)
+};
+const char* FillOrderingName(FillOrdering ordering);
+// Parses "auto" / "amd" / "metis" / "nesdis"; returns false for anything else.
+bool ParseFillOrdering(const std::string& name, FillOrdering* ordering);
+
 const char* LinearSolverTypeName(LinearSolverType type);
 // Parses "cholmod" / "eigen"; returns false for anything else.
 bool ParseLinearSolverType(const std::string& name, LinearSolverType* type);
@@ -54,6 +66,7 @@ class SparseCholesky {
   virtual double FactorFlops() const { return 0.0; }
 };
 
-std::unique_ptr<SparseCholesky> CreateSparseCholesky(LinearSolverType type, int num_threads);
+std::unique_ptr<SparseCholesky> CreateSparseCholesky(LinearSolverType type, int num_threads,
+                                                     FillOrdering ordering = FillOrdering::kAuto);
 
 }  // namespace gproj

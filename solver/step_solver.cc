@@ -21,7 +21,8 @@ StepSolver::StepSolver(const SolverOptions& options, const VariableLayout& layou
     : system_(system),
       layout_(layout),
       try_elimination_(options.eliminate_auxiliaries),
-      cholesky_(CreateSparseCholesky(options.linear_solver, options.num_threads)) {}
+      cholesky_(
+          CreateSparseCholesky(options.linear_solver, options.num_threads, options.ordering)) {}
 
 bool StepSolver::Analyze(SolverSummary* summary, std::string* why) {
   const auto t = Clock::now();

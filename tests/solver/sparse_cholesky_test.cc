@@ -128,5 +128,33 @@ TEST(SparseCholeskyBackendsTest, CholmodCountsTheFactorisationFlops) {
   EXPECT_LT(sparse->FactorFlops(), cholesky->FactorFlops() / 100.0);
 }
 
+// Every fill-reducing ordering gives the same solution; they differ in fill. The names parse
+// back to the orderings.
+TEST(SparseCholeskyBackendsTest, EveryOrderingGivesTheSameStep) {
+  const int n = 300, m = 900;
+  const CscMatrix a = RandomCsc(n, m, 3, 31);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+  Eigen::VectorXd reference;
+  std::set<int64_t> fills;
+  for (FillOrdering ordering : {FillOrdering::kAuto, FillOrdering::kAmd, FillOrdering::kMetis,
+                                FillOrdering::kNestedDissection}) {
+    FillOrdering parsed = FillOrdering::kAuto;
+    ASSERT_TRUE(ParseFillOrdering(FillOrderingName(ordering), &parsed));
+    EXPECT_EQ(parsed, ordering);
+    auto cholesky = CreateSparseCholesky(LinearSolverType::kCholmod, 1, ordering);
+    std::string message;
+    ASSERT_TRUE(cholesky->Analyze(a, MatrixForm::kAAt, &message)) << message;
+    ASSERT_TRUE(cholesky->Factorize(a, 1e-6, &message)) << message;
+    Eigen::VectorXd x(n);
+    ASSERT_TRUE(cholesky->Solve(b.data(), x.data(), &message)) << message;
+    if (reference.size() == 0) reference = x;
+    EXPECT_LT((x - reference).norm() / reference.norm(), 1e-10) << FillOrderingName(ordering);
+    fills.insert(cholesky->FactorNonZeros());
+  }
+  EXPECT_GE(fills.size(), 2u);  // the orderings were applied
+  FillOrdering parsed;
+  EXPECT_FALSE(ParseFillOrdering("colamd", &parsed));
+}
+
 }  // namespace
 }  // namespace gproj
