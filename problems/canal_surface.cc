@@ -521,8 +521,8 @@ CanalSmoothingSummary SmoothCanalStrip(const CircularStripInput& input, const Fr
   unit.first_point = (input.first_point - input.curve[0]) / scale;
   for (double& l : unit.lengths) l /= scale;
   std::vector<double> x = Pack(unit, angles, options);
-  ceres::GradientProblem problem(  // takes ownership
-      new CanalObjective(unit, angles, options, MeanEdgeLength(BuildCircularStrip(unit))));
+  // The unit strip's mean edge length is 1 by construction: no second build to measure it.
+  ceres::GradientProblem problem(new CanalObjective(unit, angles, options, 1.0));  // owns it
   ceres::GradientProblemSolver::Options ceres_options;
   ceres_options.line_search_direction_type = ceres::BFGS;
   ceres_options.max_num_iterations = options.max_iterations;
