@@ -142,9 +142,21 @@ void AddSolverOptions(CLI::App* command, SolverOptions* solver, std::string* lin
       ->check(Within(0.0, 1.0))
       ->capture_default_str();
   command
+      ->add_option("--soft-residual", solver->soft_weight_residual_factor,
+                   "... and, when > 0, also by this times the max constraint residual of the "
+                   "iteration (the soft weights vanish as the constraints converge)")
+      ->check(NonNegative())
+      ->capture_default_str();
+  command
       ->add_option("--epsilon", solver->epsilon,
                    "epsilon: weight of the proximal term eps^2 |x - x^k|^2")
       ->check(Positive())
+      ->capture_default_str();
+  command
+      ->add_option("--epsilon-min", solver->epsilon_min,
+                   "When > 0, epsilon follows the constraint residual down to this (quadratic "
+                   "convergence near the solution)")
+      ->check(NonNegative())
       ->capture_default_str();
   command
       ->add_option("--linear-solver", *linear_solver,

@@ -57,6 +57,10 @@ bool SolverOptions::IsValid(std::string* why) const {
     return fail("soft_weight_decay must be in (0, 1]");
   if (!(soft_weight_floor >= 0.0 && soft_weight_floor <= 1.0))
     return fail("soft_weight_floor must be in [0, 1]");
+  if (!(epsilon_min >= 0.0) || !std::isfinite(epsilon_min))
+    return fail("epsilon_min must be finite and >= 0");
+  if (!(soft_weight_residual_factor >= 0.0) || !std::isfinite(soft_weight_residual_factor))
+    return fail("soft_weight_residual_factor must be finite and >= 0");
   if (!(initial_soft_scale >= 0.0 && initial_soft_scale <= 1.0))
     return fail("initial_soft_scale must be in [0, 1]");
   if (!(epsilon_growth > 1.0) || !std::isfinite(epsilon_growth))
@@ -240,16 +244,25 @@ class Minimizer {
     const double gain = predicted > 0.0 ? (energy - trial_energy) / predicted : -1.0;
     // Nielsen's update of the damping ε² from the gain ratio.
     const double factor = std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * std::max(gain, 0.0) - 1.0, 3));
-    damping_ = std::max(options_.epsilon, epsilon * std::sqrt(factor));
+    damping_ = epsilon * std::sqrt(factor);
     growth_ = 2.0;
     return true;
+  }
+
+  // The smallest ε of a step from x^k with constraint residual r_k: options_.epsilon, or with
+  // epsilon_min > 0 the residual itself clamped to [epsilon_min, epsilon].
+  double EpsilonFloor(double residual) const {
+    if (!(options_.epsilon_min > 0.0)) return options_.epsilon;
+    return std::clamp(residual, std::min(options_.epsilon_min, options_.epsilon), options_.epsilon);
   }
 
   // Moves x to the next iterate; false when the run ends (failure, or no lower energy).
   bool TakeStep() {
     steps_->SetRhs();
     const double energy = step_energy_;
-    double epsilon = options_.monotone ? damping_ : options_.epsilon;
+    const double residual_at_start = record_.max_constraint;
+    const double floor = EpsilonFloor(residual_at_start);
+    double epsilon = options_.monotone ? std::max(floor, damping_) : floor;
     record_ = IterationRecord();
     int failures = 0, rejections = 0;
     for (;;) {
@@ -282,7 +295,10 @@ class Minimizer {
     record_.epsilon = epsilon;
     record_.step_norm = (trial_ - x_).lpNorm<Eigen::Infinity>();
     x_.swap(trial_);
-    soft_scale_ = std::max(soft_scale_ * options_.soft_weight_decay, options_.soft_weight_floor);
+    double decay = options_.soft_weight_decay;
+    if (options_.soft_weight_residual_factor > 0.0)
+      decay = std::min(decay, options_.soft_weight_residual_factor * residual_at_start);
+    soft_scale_ = std::max(soft_scale_ * decay, options_.soft_weight_floor);
     return true;
   }
 

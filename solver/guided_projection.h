@@ -26,10 +26,21 @@ struct SolverOptions {
   double fairness_weight = 0.1;
   // ε: the proximal term ε²‖x − x^k‖² that keeps every normal matrix positive definite.
   double epsilon = 1e-3;
+  // With epsilon_min > 0, ε follows the kConstraint residual r_k of the iterate:
+  // ε_k = clamp(r_k, epsilon_min, epsilon) (Levenberg–Marquardt with μ = ‖φ‖², which
+  // converges quadratically even where the constraint Jacobian is rank deficient; Yamashita &
+  // Fukushima 2001). A fixed ε slows the last steps to a linear rate along the directions the
+  // constraints barely constrain.
+  double epsilon_min = 0.0;
   // Soft schedule: kSoft and kFairness weights are multiplied by max(decay^k, floor) at
   // iteration k (decay 1: fixed weights, a fixed point minimises the weighted objective).
   double soft_weight_decay = 1.0;
   double soft_weight_floor = 0.0;
+  // Residual-tied schedule (0: off): the factor also falls with the constraints' own progress,
+  // by min(decay, soft_weight_residual_factor · r_k) at iteration k, r_k the max |φ| of the
+  // kConstraint rows at x^k. Once the constraints are nearly met the soft weights then vanish
+  // superlinearly and the steps converge like Gauss–Newton on the constraints alone.
+  double soft_weight_residual_factor = 0.0;
   // Soft-weight factor at iteration 0 (e.g. small when continuing from a converged state).
   double initial_soft_scale = 1.0;
   // On a failed factorisation or a non-finite step ε is multiplied by this and the iteration
@@ -61,6 +72,9 @@ struct SolverOptions {
   int num_threads = 0;
   // The fill-reducing ordering of the one symbolic analysis.
   FillOrdering ordering = FillOrdering::kAuto;
+  // Order the graph of the items (a vertex's 3 coordinates as one node) rather than of the
+  // scalars: the same fill, a fraction of the ordering time.
+  bool block_ordering = true;
 
   bool IsValid(std::string* why) const;
 };

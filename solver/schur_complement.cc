@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <cstdint>
 
 namespace gproj {
 namespace {
@@ -10,13 +11,6 @@ using SmallMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen:
                                   SchurComplement::kMaxItemDim, SchurComplement::kMaxItemDim>;
 using SmallVector =
     Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, SchurComplement::kMaxItemDim, 1>;
-
-// Position of entry (row, col) in an upper-triangular CSC pattern that contains it.
-int Position(const CscMatrix& s, int row, int col) {
-  const auto begin = s.row_index.begin() + s.col_begin[col];
-  const auto end = s.row_index.begin() + s.col_begin[col + 1];
-  return static_cast<int>(std::lower_bound(begin, end, row) - s.row_index.begin());
-}
 
 }  // namespace
 
@@ -145,44 +139,71 @@ void SchurComplement::GroupColumnsByItem(int m) {
 }
 
 // Pattern of S (upper triangle): the diagonal, kept pairs of every column, item cliques; and the
-// positions in S that each column pair and each clique entry adds to.
+// positions in S that each column pair and each clique entry adds to. Every entry S receives is
+// bucketed by its column of S (a counting sort); each bucket is deduplicated and sorted into
+// S's column, then overwritten with the positions of its entries, which a last pass in the
+// same order hands out.
 void SchurComplement::BuildPattern(int m) {
   const int num_kept = static_cast<int>(kept_var_.size());
-  std::vector<std::vector<int>> rows(num_kept);
-  for (int j = 0; j < num_kept; ++j) rows[j].push_back(j);
+  // Calls visit(row, col), row ≤ col, for every entry S receives (with repeats), in the order
+  // of pair_pos_ and then clique_pos_ after the diagonal.
+  auto for_each_entry = [&](auto&& diagonal, auto&& column_pair, auto&& clique_pair) {
+    for (int j = 0; j < num_kept; ++j) diagonal(j);
+    for (int c = 0; c < m; ++c)  // A's row indices are sorted, so kept_idx_ is within a column
+      for (int p = col_kept_begin_[c]; p < col_kept_begin_[c + 1]; ++p)
+        for (int q = p; q < col_kept_begin_[c + 1]; ++q) column_pair(kept_idx_[p], kept_idx_[q]);
+    for (const Item& item : items_)  // K_e is sorted
+      for (int p = item.kept_begin; p < item.kept_end; ++p)
+        for (int q = p; q < item.kept_end; ++q) clique_pair(kept_vars_[p], kept_vars_[q]);
+  };
+  auto pairs = [](int k) { return k * (k + 1) / 2; };
+  col_pair_begin_.assign(m + 1, 0);
   for (int c = 0; c < m; ++c)
-    for (int p = col_kept_begin_[c]; p < col_kept_begin_[c + 1]; ++p)
-      for (int q = p; q < col_kept_begin_[c + 1]; ++q) rows[kept_idx_[q]].push_back(kept_idx_[p]);
-  for (const Item& item : items_)
-    for (int p = item.kept_begin; p < item.kept_end; ++p)
-      for (int q = p; q < item.kept_end; ++q) rows[kept_vars_[q]].push_back(kept_vars_[p]);
+    col_pair_begin_[c + 1] =
+        col_pair_begin_[c] + pairs(col_kept_begin_[c + 1] - col_kept_begin_[c]);
+  int num_clique_pairs = 0;
+  for (Item& item : items_) {
+    item.clique_begin = num_clique_pairs;
+    num_clique_pairs += pairs(item.kept_end - item.kept_begin);
+  }
+  std::vector<int64_t> bucket(num_kept + 1, 0);
+  auto count = [&](int, int col) { ++bucket[col + 1]; };
+  for_each_entry([&](int j) { ++bucket[j + 1]; }, count, count);
+  for (int j = 0; j < num_kept; ++j) bucket[j + 1] += bucket[j];
+  std::vector<int> entries(bucket.back());  // rows, then positions in S
+  std::vector<int64_t> next(bucket.begin(), bucket.end() - 1);
+  auto place = [&](int row, int col) { entries[next[col]++] = row; };
+  for_each_entry([&](int j) { entries[next[j]++] = j; }, place, place);
+
   s_ = CscMatrix();
   s_.num_rows = s_.num_cols = num_kept;
   s_.col_begin.assign(1, 0);
-  for (auto& r : rows) {
-    std::sort(r.begin(), r.end());
-    r.erase(std::unique(r.begin(), r.end()), r.end());
-    s_.row_index.insert(s_.row_index.end(), r.begin(), r.end());
-    s_.col_begin.push_back(static_cast<int>(s_.row_index.size()));
-    std::vector<int>().swap(r);
+  std::vector<int> seen(num_kept, -1);  // the last column each row was added to
+  std::vector<int> position(num_kept);  // of each row in the current column
+  for (int j = 0; j < num_kept; ++j) {
+    const int first = static_cast<int>(s_.row_index.size());
+    for (int64_t k = bucket[j]; k < bucket[j + 1]; ++k) {
+      const int row = entries[k];
+      if (seen[row] == j) continue;
+      seen[row] = j;
+      s_.row_index.push_back(row);
+    }
+    std::sort(s_.row_index.begin() + first, s_.row_index.end());
+    const int last = static_cast<int>(s_.row_index.size());
+    for (int k = first; k < last; ++k) position[s_.row_index[k]] = k;
+    for (int64_t k = bucket[j]; k < bucket[j + 1]; ++k) entries[k] = position[entries[k]];
+    s_.col_begin.push_back(last);
   }
   s_.values.assign(s_.row_index.size(), 0.0);
 
-  col_pair_begin_.assign(1, 0);
+  std::copy(bucket.begin(), bucket.end() - 1, next.begin());
   pair_pos_.clear();
-  for (int c = 0; c < m; ++c) {
-    for (int p = col_kept_begin_[c]; p < col_kept_begin_[c + 1]; ++p)
-      for (int q = p; q < col_kept_begin_[c + 1]; ++q)
-        pair_pos_.push_back(Position(s_, kept_idx_[p], kept_idx_[q]));
-    col_pair_begin_.push_back(static_cast<int>(pair_pos_.size()));
-  }
+  pair_pos_.reserve(col_pair_begin_.back());
   clique_pos_.clear();
-  for (Item& item : items_) {
-    item.clique_begin = static_cast<int>(clique_pos_.size());
-    for (int p = item.kept_begin; p < item.kept_end; ++p)
-      for (int q = p; q < item.kept_end; ++q)
-        clique_pos_.push_back(Position(s_, kept_vars_[p], kept_vars_[q]));
-  }
+  clique_pos_.reserve(num_clique_pairs);
+  for_each_entry([&](int j) { ++next[j]; },
+                 [&](int, int col) { pair_pos_.push_back(entries[next[col]++]); },
+                 [&](int, int col) { clique_pos_.push_back(entries[next[col]++]); });
 }
 
 bool SchurComplement::Form(const CscMatrix& a, double beta, std::string* message) {

@@ -26,6 +26,8 @@ class SchurComplement {
   bool Init(const VariableLayout& layout, const CscMatrix& a, std::string* message);
 
   int num_kept() const { return s_.num_rows; }
+  // Global variable of each kept index (increasing).
+  const std::vector<int>& kept_variables() const { return kept_var_; }
   int num_eliminated() const { return num_eliminated_; }
   // Upper triangle of S without the β I term (the factorisation adds it): n_k × n_k.
   const CscMatrix& s() const { return s_; }

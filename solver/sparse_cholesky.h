@@ -51,6 +51,11 @@ enum class MatrixForm {
 class SparseCholesky {
  public:
   virtual ~SparseCholesky() = default;
+  // Declares groups of consecutive variables that share their pattern (the 3 coordinates of a
+  // vertex): group g is [group_begin[g], group_begin[g + 1]), from 0 to n. The ordering is then
+  // computed on the graph of the groups, which is smaller by their size, and each group is kept
+  // together. Call before Analyze; empty: order the scalars. Backends may ignore it.
+  virtual void SetGroups(std::vector<int> group_begin) { (void)group_begin; }
   // Symbolic analysis (ordering, elimination tree) for the pattern of `a`. False (and
   // `message`) on failure.
   virtual bool Analyze(const CscMatrix& a, MatrixForm form, std::string* message) = 0;
@@ -61,6 +66,9 @@ class SparseCholesky {
   virtual bool Solve(const double* rhs, double* x, std::string* message) = 0;
   // Stored entries of the factor L (0 before the first factorisation).
   virtual int64_t FactorNonZeros() const = 0;
+  // The fill-reducing permutation of the analysis: entry k is the variable eliminated k-th
+  // (empty when the backend does not expose it).
+  virtual std::vector<int> FillPermutation() const { return {}; }
   // Floating-point operations of one numeric factorisation, as counted by the analysis (0 when
   // the backend does not count them).
   virtual double FactorFlops() const { return 0.0; }

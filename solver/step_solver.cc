@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <vector>
 
 #include "solver/guided_projection.h"
 
@@ -14,6 +15,22 @@ double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+// Groups of consecutive variables (all of them, or the kept ones when `kept` is given) that
+// belong to one item of the layout.
+std::vector<int> ItemGroups(const VariableLayout& layout, const std::vector<int>* kept) {
+  const int n = kept != nullptr ? static_cast<int>(kept->size()) : layout.num_variables();
+  std::vector<int> begin;
+  int item = 0, last_item = -1;
+  for (int i = 0; i < n; ++i) {
+    const int var = kept != nullptr ? (*kept)[i] : i;  // increasing
+    while (layout.ItemOffset(item + 1) <= var) ++item;
+    if (item != last_item) begin.push_back(i);
+    last_item = item;
+  }
+  begin.push_back(n);
+  return begin;
+}
+
 }  // namespace
 
 StepSolver::StepSolver(const SolverOptions& options, const VariableLayout& layout,
@@ -21,6 +38,7 @@ StepSolver::StepSolver(const SolverOptions& options, const VariableLayout& layou
     : system_(system),
       layout_(layout),
       try_elimination_(options.eliminate_auxiliaries),
+      block_ordering_(options.block_ordering),
       cholesky_(
           CreateSparseCholesky(options.linear_solver, options.num_threads, options.ordering)) {}
 
@@ -32,6 +50,8 @@ bool StepSolver::Analyze(SolverSummary* summary, std::string* why) {
   } else {
     summary->elimination_note = "disabled by options";
   }
+  if (block_ordering_)
+    cholesky_->SetGroups(ItemGroups(layout_, eliminate_ ? &schur_.kept_variables() : nullptr));
   const bool analysed = eliminate_ ? cholesky_->Analyze(schur_.s(), MatrixForm::kSymmetric, why)
                                    : cholesky_->Analyze(system_->a(), MatrixForm::kAAt, why);
   if (!analysed) return false;

@@ -43,6 +43,7 @@ class StepSolver {
   LinearizedSystem* system_;
   const VariableLayout& layout_;
   bool try_elimination_;
+  bool block_ordering_;
   bool eliminate_ = false;
   std::unique_ptr<SparseCholesky> cholesky_;
   SchurComplement schur_;

@@ -33,6 +33,41 @@ TEST(PQPlanarizationTest, ShippedNoisyGridReachesPlanarity1e9) {
   EXPECT_DOUBLE_EQ(ValueOf(report.history.back().measures, "max_planarity"), after.max_planarity);
 }
 
+// The default schedule ties the soft weights and ε to the measured residual: once the quads are
+// nearly planar the steps converge quadratically, where a fixed decay of the weights (and a
+// fixed ε) gives exactly one digit per iteration. The result is the same mesh to the eye.
+TEST(PQPlanarizationTest, ResidualTiedScheduleConvergesQuadratically) {
+  QuadGridOptions grid;
+  grid.nu = grid.nv = 31;
+  grid.noise = 0.05;
+  grid.seed = 3;
+  const PolyMesh mesh = MakeQuadGrid(grid);
+  PQPlanarizationOptions options;
+  options.tolerance = 1e-12;
+  PQPlanarization tied(mesh, options);
+  const RunReport fast = tied.Run();
+  ASSERT_TRUE(fast.converged) << fast.summary.FullReport();
+  PQPlanarizationOptions fixed_options = options;
+  fixed_options.solver.soft_weight_residual_factor = 0.0;
+  fixed_options.solver.epsilon_min = 0.0;
+  PQPlanarization fixed(mesh, fixed_options);
+  const RunReport slow = fixed.Run();
+  ASSERT_TRUE(slow.converged) << slow.summary.FullReport();
+  EXPECT_LE(fast.iterations, 10);
+  EXPECT_GE(slow.iterations, fast.iterations + 4);
+  // The last steps: far faster than the weights' one digit per iteration.
+  auto planarity = [&](int k) { return ValueOf(fast.history[k].measures, "max_planarity"); };
+  const int n = fast.iterations;
+  EXPECT_LT(planarity(n - 1), 1e-3 * planarity(n - 2));
+  EXPECT_LT(planarity(n), 1e-2 * planarity(n - 1));
+  // The same result: displacement and corner angles as with the fixed schedule.
+  const PlanarityMeasures a = MeasurePlanarity(tied.Result(), mesh);
+  const PlanarityMeasures b = MeasurePlanarity(fixed.Result(), mesh);
+  EXPECT_NEAR(a.max_displacement, b.max_displacement, 0.05 * b.max_displacement);
+  EXPECT_NEAR(a.shape.min_angle_deg, b.shape.min_angle_deg, 1.0);
+  EXPECT_EQ(a.shape.non_convex, 0);
+}
+
 // Fixed soft weights as strong as at the start: the steps stall far above the tolerance. That
 // is not convergence, whatever the solver's stop is called.
 TEST(PQPlanarizationTest, AStallShortOfTheToleranceIsNotConvergence) {

@@ -262,6 +262,14 @@ TEST(GuidedProjectionFailureTest, InvalidOptionsAreRejected) {
   rejections.max_rejections = -1;
   EXPECT_FALSE(rejections.IsValid(&why));
   EXPECT_NE(why.find("max_rejections"), std::string::npos);
+  SolverOptions tied;
+  tied.epsilon_min = -1e-6;
+  EXPECT_FALSE(tied.IsValid(&why));
+  EXPECT_NE(why.find("epsilon_min"), std::string::npos);
+  tied.epsilon_min = 0.0;
+  tied.soft_weight_residual_factor = NAN;
+  EXPECT_FALSE(tied.IsValid(&why));
+  EXPECT_NE(why.find("soft_weight_residual_factor"), std::string::npos);
   const SolverSummary summary = Solve(options, &problem);
   EXPECT_EQ(summary.termination, TerminationType::kFailure);
   EXPECT_NE(summary.message.find("invalid options"), std::string::npos);

@@ -156,5 +156,89 @@ TEST(SparseCholeskyBackendsTest, EveryOrderingGivesTheSameStep) {
   EXPECT_FALSE(ParseFillOrdering("colamd", &parsed));
 }
 
+// A matrix over `groups` groups of 3 variables whose every column touches whole groups (two
+// vertices' coordinates, as a planarity or fairness row does), like A of a mesh problem.
+CscMatrix GroupedCsc(int groups, int m, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> group(0, groups - 1);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  CscMatrix a;
+  a.num_rows = 3 * groups;
+  a.num_cols = m;
+  a.col_begin.push_back(0);
+  for (int c = 0; c < m; ++c) {
+    std::set<int> touched = {group(rng), group(rng)};
+    for (int g : touched)
+      for (int d = 0; d < 3; ++d) {
+        a.row_index.push_back(3 * g + d);
+        a.values.push_back(value(rng));
+      }
+    a.col_begin.push_back(a.nnz());
+  }
+  return a;
+}
+
+// The upper triangle of A Aᵀ.
+CscMatrix UpperNormal(const CscMatrix& a) {
+  const Eigen::MatrixXd n = Dense(a) * Dense(a).transpose();
+  CscMatrix s;
+  s.num_rows = s.num_cols = a.num_rows;
+  s.col_begin.push_back(0);
+  for (int c = 0; c < a.num_rows; ++c) {
+    for (int r = 0; r <= c; ++r)
+      if (n(r, c) != 0.0 || r == c) {
+        s.row_index.push_back(r);
+        s.values.push_back(n(r, c));
+      }
+    s.col_begin.push_back(s.nnz());
+  }
+  return s;
+}
+
+// Ordering the graph of the groups (a vertex's coordinates as one node): every ordering keeps
+// each group's variables together, the step is the one of the scalar ordering, for A Aᵀ and
+// for a symmetric matrix alike; a grouping that does not cover the matrix is ignored.
+TEST(SparseCholeskyBackendsTest, GroupedOrderingKeepsGroupsTogetherAndTheStep) {
+  const int groups = 200;
+  const CscMatrix a = GroupedCsc(groups, 700, 41);
+  const CscMatrix s = UpperNormal(a);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(3 * groups, -1.0, 2.0);
+  std::vector<int> group_begin;
+  for (int g = 0; g <= groups; ++g) group_begin.push_back(3 * g);
+  for (MatrixForm form : {MatrixForm::kAAt, MatrixForm::kSymmetric}) {
+    const CscMatrix& m = form == MatrixForm::kAAt ? a : s;
+    Eigen::VectorXd reference;
+    for (FillOrdering ordering : {FillOrdering::kAuto, FillOrdering::kAmd, FillOrdering::kMetis,
+                                  FillOrdering::kNestedDissection}) {
+      for (bool grouped : {false, true}) {
+        auto cholesky = CreateSparseCholesky(LinearSolverType::kCholmod, 1, ordering);
+        if (grouped) cholesky->SetGroups(group_begin);
+        std::string message;
+        ASSERT_TRUE(cholesky->Analyze(m, form, &message)) << message;
+        ASSERT_TRUE(cholesky->Factorize(m, 1e-6, &message)) << message;
+        Eigen::VectorXd x(3 * groups);
+        ASSERT_TRUE(cholesky->Solve(b.data(), x.data(), &message)) << message;
+        if (reference.size() == 0) reference = x;
+        EXPECT_LT((x - reference).norm() / reference.norm(), 1e-9) << FillOrderingName(ordering);
+        const std::vector<int> perm = cholesky->FillPermutation();
+        ASSERT_EQ(perm.size(), 3u * groups);
+        int split = 0;  // groups whose variables are not consecutive in the elimination order
+        for (int k = 0; k < 3 * groups; k += 3)
+          if (perm[k] / 3 != perm[k + 1] / 3 || perm[k] / 3 != perm[k + 2] / 3) ++split;
+        if (grouped)
+          EXPECT_EQ(split, 0) << FillOrderingName(ordering);
+        else if (ordering == FillOrdering::kAmd)
+          EXPECT_GT(split, 0);  // AMD on the scalars interleaves the groups
+        EXPECT_GT(cholesky->FactorFlops(), 0.0);
+      }
+    }
+  }
+  auto cholesky = CreateSparseCholesky(LinearSolverType::kCholmod, 1);
+  cholesky->SetGroups({0, 3, 6});  // covers 6 variables of 600: ignored
+  std::string message;
+  ASSERT_TRUE(cholesky->Analyze(a, MatrixForm::kAAt, &message)) << message;
+  ASSERT_TRUE(cholesky->Factorize(a, 1e-6, &message)) << message;
+}
+
 }  // namespace
 }  // namespace gproj
