@@ -54,6 +54,10 @@ SolverOptions ANetSolverDefaults() {
   s.fairness_weight = 0.5;
   s.soft_weight_decay = 0.1;
   s.soft_weight_floor = 1e-12;
+  // Tied to the residual as for planarisation: 9 iterations instead of 13 on a noisy 61 × 61
+  // Enneper net, with less displacement.
+  s.soft_weight_residual_factor = 1.0;
+  s.epsilon_min = 1e-6;
   s.monotone = true;
   return s;
 }

@@ -296,7 +296,7 @@ class Minimizer {
     record_.step_norm = (trial_ - x_).lpNorm<Eigen::Infinity>();
     x_.swap(trial_);
     double decay = options_.soft_weight_decay;
-    if (options_.soft_weight_residual_factor > 0.0)
+    if (options_.soft_weight_residual_factor > 0.0 && decay < 1.0)
       decay = std::min(decay, options_.soft_weight_residual_factor * residual_at_start);
     soft_scale_ = std::max(soft_scale_ * decay, options_.soft_weight_floor);
     return true;
