@@ -171,6 +171,10 @@ class Minimizer {
         for (int c = 0; c < layout.ItemDim(item); ++c) held_.push_back(layout.ItemOffset(item) + c);
     soft_scale_ = options_.initial_soft_scale;
     damping_ = options_.epsilon;
+    for (int f = 0; f < problem_->num_families(); ++f)
+      if (problem_->family(f).role() == FamilyRole::kConstraint &&
+          problem_->family(f).num_elements() > 0)
+        has_constraint_rows_ = true;
     return true;
   }
 
@@ -296,7 +300,7 @@ class Minimizer {
     record_.step_norm = (trial_ - x_).lpNorm<Eigen::Infinity>();
     x_.swap(trial_);
     double decay = options_.soft_weight_decay;
-    if (options_.soft_weight_residual_factor > 0.0 && decay < 1.0)
+    if (options_.soft_weight_residual_factor > 0.0 && decay < 1.0 && has_constraint_rows_)
       decay = std::min(decay, options_.soft_weight_residual_factor * residual_at_start);
     soft_scale_ = std::max(soft_scale_ * decay, options_.soft_weight_floor);
     return true;
@@ -315,8 +319,9 @@ class Minimizer {
   IterationRecord record_;
   std::string why_;
   double soft_scale_ = 1.0;
-  double damping_ = 0.0;  // ε of the next step when options_.monotone
-  double growth_ = 2.0;   // growth of ε² on the next rejection
+  double damping_ = 0.0;              // ε of the next step when options_.monotone
+  bool has_constraint_rows_ = false;  // the residual-tied schedule needs some
+  double growth_ = 2.0;               // growth of ε² on the next rejection
   double schur_seconds_ = 0.0;
   double step_energy_ = 0.0;  // energy at x^k that a monotone step must lower
 };

@@ -36,11 +36,11 @@ struct SolverOptions {
   // iteration k (decay 1: fixed weights, a fixed point minimises the weighted objective).
   double soft_weight_decay = 1.0;
   double soft_weight_floor = 0.0;
-  // Residual-tied schedule (0: off; no effect with decay 1, fixed weights): the factor also
-  // falls with the constraints' own progress, by min(decay, soft_weight_residual_factor · r_k)
-  // at iteration k, r_k the max |φ| of the kConstraint rows at x^k. Once the constraints are
-  // nearly met the soft weights then vanish superlinearly and the steps converge like
-  // Gauss–Newton on the constraints alone.
+  // Residual-tied schedule (0: off; no effect with decay 1, fixed weights, or without
+  // kConstraint rows): the factor also falls with the constraints' own progress, by
+  // min(decay, soft_weight_residual_factor · r_k) at iteration k, r_k the max |φ| of the
+  // kConstraint rows at x^k. Once the constraints are nearly met the soft weights then vanish
+  // superlinearly and the steps converge like Gauss–Newton on the constraints alone.
   double soft_weight_residual_factor = 0.0;
   // Soft-weight factor at iteration 0 (e.g. small when continuing from a converged state).
   double initial_soft_scale = 1.0;

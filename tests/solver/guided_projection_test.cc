@@ -107,6 +107,40 @@ TEST_P(GuidedProjectionTest, FadingSoftWeightsDriveConstraintsToZero) {
               std::max(std::pow(0.1, summary.num_steps()), 1e-14), 1e-20);
 }
 
+// The residual-tied schedule: the soft factor falls by min(decay, κ r_k) per iteration, r_k the
+// constraint residual of the iterate the step starts from; with fixed weights (decay 1) or
+// without constraint rows it is the plain decay.
+TEST(GuidedProjectionScheduleTest, SoftWeightsFollowTheConstraintResidual) {
+  SolverOptions options;
+  options.soft_weight_decay = 0.5;
+  options.soft_weight_residual_factor = 2.0;
+  options.max_iterations = 6;
+  options.residual_tolerance = 0.0;
+  Problem problem = MakeCircleProblem(20, 1.0);
+  const SolverSummary summary = Solve(options, &problem);
+  ASSERT_EQ(summary.num_steps(), 6) << summary.FullReport();
+  bool faster = false;  // some iteration fell by more than the plain decay
+  for (int k = 0; k < 6; ++k) {
+    const IterationRecord& r = summary.iterations[k];
+    const double factor = std::min(0.5, 2.0 * r.max_constraint);
+    EXPECT_DOUBLE_EQ(summary.iterations[k + 1].soft_scale, r.soft_scale * factor) << k;
+    faster = faster || factor < 0.5;
+  }
+  EXPECT_TRUE(faster);
+  SolverOptions fixed = options;
+  fixed.soft_weight_decay = 1.0;
+  Problem same = MakeCircleProblem(20, 1.0);
+  EXPECT_EQ(Solve(fixed, &same).iterations.back().soft_scale, 1.0);
+  // Anchors and smoothing only: no constraint residual to follow.
+  Problem soft_only;
+  const int block = soft_only.layout().AddBlock("points", 3, 2);
+  soft_only.ResizeToLayout();
+  auto* anchor = soft_only.AddFamily<Anchor>(1.0);
+  for (int i = 0; i < 3; ++i) anchor->Add(soft_only.layout().Item(block, i), i, 0.5 * i);
+  const SolverSummary plain = Solve(options, &soft_only);
+  EXPECT_DOUBLE_EQ(plain.iterations.back().soft_scale, std::pow(0.5, plain.num_steps()));
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, GuidedProjectionTest,
                          ::testing::Values(LinearSolverType::kCholmod, LinearSolverType::kEigen),
                          [](const ::testing::TestParamInfo<LinearSolverType>& info) {
