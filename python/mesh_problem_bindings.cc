@@ -67,15 +67,16 @@ py::tuple Planarize(const py::object& vertices, const py::object& faces, double 
                     const py::object& fixed, bool fix_boundary, bool glide_boundary,
                     const py::object& reference, const std::string& solver,
                     const py::object& callback, int max_iterations, double fairness, double epsilon,
-                    double soft_decay, double soft_floor, const std::string& linear_solver,
-                    int threads) {
+                    double soft_decay, double soft_floor, double soft_residual, double epsilon_min,
+                    const std::string& linear_solver, int threads) {
   PQPlanarizationOptions options;
   options.tolerance = tolerance;
   options.circular = circular;
   options.closeness_weight = closeness;
   options.fairness_order = fairness_order;
   options.ceres_soft_scale = ceres_soft_scale;
-  SolverArgs{max_iterations, fairness, epsilon, soft_decay, soft_floor, linear_solver, threads}
+  SolverArgs{max_iterations, fairness,    epsilon,       soft_decay, soft_floor,
+             soft_residual,  epsilon_min, linear_solver, threads}
       .ApplyTo(&options.solver);
   CheckSolverName(solver);
   std::string why;
@@ -166,11 +167,11 @@ py::tuple RunANet(const py::object& vertices, const py::object& faces, const std
                   const py::object& reference, double min_angle, const py::object& edge_length,
                   bool allow_folds, const py::object& fixed, bool fix_boundary, bool glide_boundary,
                   const py::object& callback, int max_iterations, double fairness, double epsilon,
-                  double soft_decay, double soft_floor, const std::string& linear_solver,
-                  int threads) {
-  ANetOptions options = NetOptions(
-      star_form, tolerance, tangent, point, fairness_order,
-      {max_iterations, fairness, epsilon, soft_decay, soft_floor, linear_solver, threads});
+                  double soft_decay, double soft_floor, double soft_residual, double epsilon_min,
+                  const std::string& linear_solver, int threads) {
+  ANetOptions options = NetOptions(star_form, tolerance, tangent, point, fairness_order,
+                                   {max_iterations, fairness, epsilon, soft_decay, soft_floor,
+                                    soft_residual, epsilon_min, linear_solver, threads});
   const PolyMesh mesh = MeshFromArrays(vertices, faces, true);
   CheckANetTopology(mesh, "mesh");
   ApplyMeshControl(min_angle, edge_length, allow_folds, fixed, fix_boundary, glide_boundary,
@@ -192,11 +193,12 @@ py::tuple RunHNet(const py::object& vertices, const py::object& faces, const std
                   int rounds, double frame_weight, bool allow_not_simply_connected,
                   int surface_samples, const py::object& callback, int max_iterations,
                   double fairness, double epsilon, double soft_decay, double soft_floor,
-                  const std::string& linear_solver, int threads) {
+                  double soft_residual, double epsilon_min, const std::string& linear_solver,
+                  int threads) {
   HNetOptions options;
-  options.anet = NetOptions(
-      star_form, tolerance, tangent, point, fairness_order,
-      {max_iterations, fairness, epsilon, soft_decay, soft_floor, linear_solver, threads});
+  options.anet = NetOptions(star_form, tolerance, tangent, point, fairness_order,
+                            {max_iterations, fairness, epsilon, soft_decay, soft_floor,
+                             soft_residual, epsilon_min, linear_solver, threads});
   if (rounds < 1 || rounds > 1000) throw InputError("rounds must be in [1, 1000]");
   if (!(frame_weight > 0.0)) throw InputError("frame_weight must be > 0");
   if (surface_samples < 0 || surface_samples > 200)

@@ -178,10 +178,12 @@ void AddPythonTerm(PyProblem& p, const std::string& name, const py::function& fu
 
 py::dict Solve(PyProblem& p, const std::string& solver, const py::object& callback,
                int max_iterations, double fairness, double epsilon, double soft_decay,
-               double soft_floor, double residual_tolerance, double step_tolerance,
-               const std::string& linear_solver, int threads, double soft_scale) {
+               double soft_floor, double soft_residual, double epsilon_min,
+               double residual_tolerance, double step_tolerance, const std::string& linear_solver,
+               int threads, double soft_scale) {
   GenericSolveArgs args;
-  SolverArgs{max_iterations, fairness, epsilon, soft_decay, soft_floor, linear_solver, threads}
+  SolverArgs{max_iterations, fairness,    epsilon,       soft_decay, soft_floor,
+             soft_residual,  epsilon_min, linear_solver, threads}
       .ApplyTo(&args.gp);
   args.gp.residual_tolerance = residual_tolerance;
   args.gp.step_tolerance = step_tolerance;
@@ -230,8 +232,8 @@ Solves in place (x holds the result afterwards).
         weights fixed: soft and fairness rows times soft_scale).
     callback: None or callback(record: dict) with the keys of a report's history entries;
         returning False stops the solve. Ctrl-C stops it and raises KeyboardInterrupt.
-    max_iterations, fairness (omega_f), epsilon, soft_decay, soft_floor, linear_solver,
-        threads: as for planarize (SolverOptions).
+    max_iterations, fairness (omega_f), epsilon, soft_decay, soft_floor, soft_residual,
+        epsilon_min, linear_solver, threads: as for planarize (SolverOptions).
     residual_tolerance: gp converges when every constraint row has |phi| <= this.
     step_tolerance: gp converges when the step's max norm <= this.
     soft_scale: ceres only, factor on the soft and fairness weights.
@@ -297,6 +299,8 @@ void BindGenericProblem(py::module_& m) {
            py::arg("callback") = py::none(), py::arg("max_iterations") = d.max_iterations,
            py::arg("fairness") = d.fairness_weight, py::arg("epsilon") = d.epsilon,
            py::arg("soft_decay") = d.soft_weight_decay, py::arg("soft_floor") = d.soft_weight_floor,
+           py::arg("soft_residual") = d.soft_weight_residual_factor,
+           py::arg("epsilon_min") = d.epsilon_min,
            py::arg("residual_tolerance") = d.residual_tolerance,
            py::arg("step_tolerance") = d.step_tolerance,
            py::arg("linear_solver") = std::string(LinearSolverTypeName(d.linear_solver)),

@@ -15,6 +15,8 @@ void SolverArgs::ApplyTo(SolverOptions* options) const {
   options->epsilon = epsilon;
   options->soft_weight_decay = soft_decay;
   options->soft_weight_floor = soft_floor;
+  options->soft_weight_residual_factor = soft_residual;
+  options->epsilon_min = epsilon_min;
   options->num_threads = threads;
   std::string why;
   if (!options->IsValid(&why)) throw InputError("invalid option: " + why);
@@ -28,6 +30,10 @@ Guided projection (defaults: the problem's, as on the command line):
     soft_decay: closeness and fairness weights are multiplied by this each iteration
         (--soft-decay) ...
     soft_floor: ... down to this fraction of their initial value (--soft-floor).
+    soft_residual: ... and by this times the max constraint residual of the iteration
+        (--soft-residual; 0: off).
+    epsilon_min: when > 0, epsilon follows the constraint residual down to this
+        (--epsilon-min).
     linear_solver: "cholmod" (supernodal) or "eigen" (--linear-solver).
     threads: threads for BLAS / Ceres, 0: the library default (--threads).
 )";

@@ -1,7 +1,8 @@
 #pragma once
 // Guided projection's options as keyword arguments, shared by every problem function: the
 // command line's --max-iterations, --fairness, --epsilon, --soft-decay, --soft-floor,
-// --linear-solver and --threads, with the problem's own defaults in the signature.
+// --soft-residual, --epsilon-min, --linear-solver and --threads, with the problem's own defaults in
+// the signature.
 
 #include <pybind11/pybind11.h>
 
@@ -17,6 +18,7 @@ namespace py = pybind11;
 struct SolverArgs {
   int max_iterations = 0;
   double fairness = 0.0, epsilon = 0.0, soft_decay = 0.0, soft_floor = 0.0;
+  double soft_residual = 0.0, epsilon_min = 0.0;
   std::string linear_solver;
   int threads = 0;
   // Sets the options; InputError for a value the command line would refuse.
@@ -30,6 +32,8 @@ inline auto SolverArgList(const SolverOptions& defaults) {
       py::arg("fairness") = defaults.fairness_weight, py::arg("epsilon") = defaults.epsilon,
       py::arg("soft_decay") = defaults.soft_weight_decay,
       py::arg("soft_floor") = defaults.soft_weight_floor,
+      py::arg("soft_residual") = defaults.soft_weight_residual_factor,
+      py::arg("epsilon_min") = defaults.epsilon_min,
       py::arg("linear_solver") = std::string(LinearSolverTypeName(defaults.linear_solver)),
       py::arg("threads") = defaults.num_threads);
 }

@@ -19,7 +19,7 @@ def compare_with_command_line(cli, command, V, F, python_kwargs, args, output="o
     return result, report
 
 
-@pytest.mark.parametrize("variant", ["gp", "ceres", "circular", "options", "control"])
+@pytest.mark.parametrize("variant", ["gp", "ceres", "circular", "options", "control", "schedule"])
 def test_planarize_equals_the_command_line(cli, variant):
     V, F = gproj.grid(nu=7, nv=6, noise=0.05)
     kwargs, args = {
@@ -35,13 +35,17 @@ def test_planarize_equals_the_command_line(cli, variant):
                     ["--fixed", cli.write_text("fixed.txt", "0 41\n"), "--glide-boundary",
                      "--min-angle", 10, "--edge-length", "0.01,5", "--reference",
                      cli.write_mesh("ref.obj", *gproj.grid(nu=15, nv=15, noise=0.0))]),
+        "schedule": ({"soft_residual": 0.0, "epsilon_min": 0.0},
+                     ["--soft-residual", 0, "--epsilon-min", 0]),
     }[variant]
     V_out, report = compare_with_command_line(cli, "planarize", V, F, kwargs, args)
     Vc, _ = gproj.read_mesh(cli.path("out.obj"))
     assert_close(V_out, Vc)
     assert V_out.shape == V.shape and V_out.dtype == np.float64
-    if variant in ("gp", "circular", "control"):
+    if variant in ("gp", "circular", "control", "schedule"):
         assert report["converged"]
+    if variant == "schedule":  # the fixed schedule: more iterations than the residual-tied one
+        assert report["iterations"] > gproj.planarize(V, F)[1]["iterations"]
     if variant == "control":
         assert np.array_equal(V_out[[0, 41]], V[[0, 41]])  # held bit for bit
         assert report["final"]["max_glide_distance"] <= 1e-9
