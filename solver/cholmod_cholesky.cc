@@ -162,6 +162,7 @@ class CholmodCholesky : public SparseCholesky {
     common_.nmethods = 1;
     common_.method[0].ordering = CHOLMOD_GIVEN;
     cholmod_factor* best = nullptr;
+    double best_flops = 0.0, best_lnz = 0.0;
     auto try_ordering = [&](FillOrdering ordering) {
       bool ordered = false;
       if (ordering == FillOrdering::kMetis) {
@@ -179,25 +180,28 @@ class CholmodCholesky : public SparseCholesky {
         for (int v = group_begin_[g]; v < group_begin_[g + 1]; ++v) perm[k++] = v;
       cholmod_factor* factor = cholmod_analyze_p(view, perm.data(), nullptr, 0, &common_);
       if (factor == nullptr || common_.status != CHOLMOD_OK) return;
-      if (best == nullptr || common_.fl < flops_) {
+      if (best == nullptr || common_.fl < best_flops) {
         if (best != nullptr) cholmod_free_factor(&best, &common_);
         best = factor;
-        flops_ = common_.fl;
-        lnz_ = common_.lnz;
+        best_flops = common_.fl;
+        best_lnz = common_.lnz;
       } else {
         cholmod_free_factor(&factor, &common_);
       }
     };
     if (ordering_ == FillOrdering::kAuto) {
       try_ordering(FillOrdering::kAmd);
-      if (best == nullptr || (flops_ / lnz_ >= 500.0 && lnz_ >= 5.0 * a.num_rows))
+      if (best == nullptr || (best_flops / best_lnz >= 500.0 && best_lnz >= 5.0 * a.num_rows))
         try_ordering(FillOrdering::kMetis);
     } else {
       try_ordering(ordering_);
     }
     common_.nmethods = saved_nmethods;
     common_.method[0].ordering = saved_ordering;
-    if (best != nullptr) common_.status = CHOLMOD_OK;
+    if (best != nullptr) {
+      common_.status = CHOLMOD_OK;
+      flops_ = best_flops;
+    }
     return best;
   }
 
@@ -225,7 +229,6 @@ class CholmodCholesky : public SparseCholesky {
   FillOrdering ordering_;
   std::vector<int> group_begin_;  // SetGroups
   double flops_ = 0.0;
-  double lnz_ = 0.0;
   cholmod_dense* b_ = nullptr;
   cholmod_dense* x_ = nullptr;
   cholmod_dense* y_ = nullptr;
