@@ -17,10 +17,10 @@ Eigen::Matrix3d CrossMatrix(const Eigen::Vector3d& a) {
 
 }  // namespace
 
-int CurvatureAuxiliaries::AddSample(int aux, const std::vector<int>& control_items,
+int CurvatureAuxiliaries::AddSample(int forms, int curvature, const std::vector<int>& control_items,
                                     const SampleStencil& stencil,
                                     const std::array<double, 12>* row_scale) {
-  std::vector<int> items = {aux};
+  std::vector<int> items = {forms, curvature};
   items.insert(items.end(), control_items.begin(), control_items.end());
   weights_.push_back(stencil.weights);
   std::array<double, 12> inverse;
@@ -160,9 +160,9 @@ bool CurvatureAuxiliaries::RowTouches(int, int row, int local) const {
 
 void CurvatureAuxiliaries::Update(const VariableLayout& layout, const Eigen::VectorXd& x) {
   for (int e = 0; e < num_elements(); ++e) {
-    const int aux = element_items(e)[0];
-    const double e_ = AuxiliaryValue(layout, x, aux, kE), f = AuxiliaryValue(layout, x, aux, kF),
-                 g = AuxiliaryValue(layout, x, aux, kG);
+    const int forms = element_items(e)[0];
+    const double e_ = AuxiliaryValue(layout, x, forms, kE),
+                 f = AuxiliaryValue(layout, x, forms, kF), g = AuxiliaryValue(layout, x, forms, kG);
     sqrt_delta_[e] = std::sqrt(std::max(e_ * g - f * f, 1e-300));
   }
 }

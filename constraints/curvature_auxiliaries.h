@@ -1,8 +1,11 @@
 #pragma once
 // Curvature auxiliaries of a B-spline surface (003 §3.1); shared by the Weingarten families
 // (isoline_alignment.h, geodesic_parallel_isolines.h, curvature_relations.h).
-// Per sample point one auxiliary item a (dimension 12) holds
-//   n (3), E, F, G, Δ, L, M, N, K, H          (indices kN..kH below)
+// Per sample point two auxiliary items hold twelve unknowns:
+//   the forms item f (dimension 10): n (3), E, F, G, Δ, L, M, N   (indices kN..kNn below),
+//   the curvature item c (dimension 2): K, H                       (kCurvatureK, kCurvatureH).
+// Only the sample's own definition rows touch f, so the solver eliminates it by a Schur
+// complement; c is shared with the neighbours' alignment and relation rows. They are
 // defined by twelve rows (003 §3.1.2; s_u, s_v, s_uu, s_uv, s_vv are linear in the control
 // points through fixed weights):
 //   n − s_u × s_v = 0,  E − s_u·s_u = 0,  F − s_u·s_v = 0,  G − s_v·s_v = 0,
@@ -32,7 +35,8 @@ inline double GradientNormProduct(const Eigen::Vector2d& a, const Eigen::Vector2
   return std::hypot(a.x(), a.y()) * std::hypot(b.x(), b.y());
 }
 
-// Offsets inside the curvature auxiliary item.
+// Offsets inside the forms item, and of K and H in the twelve values of one sample (the local
+// layout of a CurvatureAuxiliaries element and of ExactAuxiliary: f, then c).
 enum CurvatureAux {
   kN = 0,
   kE = 3,
@@ -42,10 +46,16 @@ enum CurvatureAux {
   kL = 7,
   kM = 8,
   kNn = 9,
+  kFormsDim = 10,
   kK = 10,
   kH = 11,
   kCurvatureAuxDim = 12
 };
+// Offsets inside the curvature item.
+enum CurvatureValue { kCurvatureK = 0, kCurvatureH = 1, kCurvatureDim = 2 };
+static_assert(kK == kFormsDim + kCurvatureK && kH == kFormsDim + kCurvatureH &&
+                  kCurvatureAuxDim == kFormsDim + kCurvatureDim,
+              "a sample's twelve values are its forms item followed by its curvature item");
 
 // Derivative weights of one sample: s_d = Σ_j w[d][j] c_j for d = u, v, uu, uv, vv.
 struct SampleStencil {
@@ -58,11 +68,12 @@ class CurvatureAuxiliaries : public ConstraintFamily {
   explicit CurvatureAuxiliaries(double weight = 1.0, std::string name = "curvature definitions")
       : ConstraintFamily(std::move(name), 12, FamilyRole::kConstraint, weight) {}
 
-  // `aux` the sample's auxiliary item; `control_items` the items of stencil.control.
+  // `forms` and `curvature` the sample's two auxiliary items; `control_items` the items of
+  // stencil.control. Local layout of the element: f (10) | c (2) | control points (3 each).
   // `row_scale` (12 values, optional) divides each row, e.g. by the row's natural magnitude at
   // the start so that every definition is weighed as a relative error.
-  int AddSample(int aux, const std::vector<int>& control_items, const SampleStencil& stencil,
-                const std::array<double, 12>* row_scale = nullptr);
+  int AddSample(int forms, int curvature, const std::vector<int>& control_items,
+                const SampleStencil& stencil, const std::array<double, 12>* row_scale = nullptr);
   // Natural magnitudes of the twelve rows for auxiliary values `a` and a curvature scale κ:
   // |n|, E + G (three rows), Δ, √Δ κ (E + G) (three rows), Δ κ², 2 Δ κ.
   static std::array<double, 12> RowMagnitudes(const Eigen::Matrix<double, 12, 1>& a,

@@ -25,19 +25,18 @@ double LinearWeingarten::RowScale(const Eigen::Vector3d& abc, double curvature_s
 }
 
 void LinearWeingarten::EvaluateElement(int, const double* x, double* phi, double* jac) const {
-  std::fill(jac, jac + 12, 0.0);
   const double f = RowScale();
-  phi[0] = f * (abc_[0] * x[kH] + abc_[1] * x[kK] + abc_[2]);
-  jac[kH] = f * abc_[0];
-  jac[kK] = f * abc_[1];
+  phi[0] = f * (abc_[0] * x[kCurvatureH] + abc_[1] * x[kCurvatureK] + abc_[2]);
+  jac[kCurvatureH] = f * abc_[0];
+  jac[kCurvatureK] = f * abc_[1];
 }
 
 void LinearWeingarten::Update(const VariableLayout& layout, const Eigen::VectorXd& x) {
   if (fixed_ || num_elements() < 2) return;
   std::vector<double> h, k;
   for (int e = 0; e < num_elements(); ++e) {
-    h.push_back(AuxiliaryValue(layout, x, element_items(e)[0], kH));
-    k.push_back(AuxiliaryValue(layout, x, element_items(e)[0], kK));
+    h.push_back(AuxiliaryValue(layout, x, element_items(e)[0], kCurvatureH));
+    k.push_back(AuxiliaryValue(layout, x, element_items(e)[0], kCurvatureK));
   }
   abc_ = FitLine(h, k);
 }
@@ -204,20 +203,19 @@ CurvatureCurveRelation::CurvatureCurveRelation(double weight, int curve_control_
 
 void CurvatureCurveRelation::EvaluateElement(int e, const double* x, double* phi,
                                              double* jac) const {
-  std::fill(jac, jac + 12, 0.0);
   const Eigen::Vector2d& q = foot_[e];
   const Eigen::Vector2d& nrm = normal_[e];
-  phi[0] = nrm[0] * (x[kH] - q[0]) + nrm[1] * (x[kK] - q[1]);
-  jac[kH] = nrm[0];
-  jac[kK] = nrm[1];
+  phi[0] = nrm[0] * (x[kCurvatureH] - q[0]) + nrm[1] * (x[kCurvatureK] - q[1]);
+  jac[kCurvatureH] = nrm[0];
+  jac[kCurvatureK] = nrm[1];
 }
 
 void CurvatureCurveRelation::Update(const VariableLayout& layout, const Eigen::VectorXd& x) {
   const int n = num_elements();
   std::vector<double> h(n), k(n);
   for (int e = 0; e < n; ++e) {
-    h[e] = AuxiliaryValue(layout, x, element_items(e)[0], kH);
-    k[e] = AuxiliaryValue(layout, x, element_items(e)[0], kK);
+    h[e] = AuxiliaryValue(layout, x, element_items(e)[0], kCurvatureH);
+    k[e] = AuxiliaryValue(layout, x, element_items(e)[0], kCurvatureK);
   }
   const Curve curve = FitCurve(h, k, curve_control_points_);
   foot_.resize(n);

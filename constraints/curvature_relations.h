@@ -12,7 +12,7 @@
 
 namespace gproj {
 
-// a H + b K + c = 0 per sample; items {a (curvature item)}.
+// a H + b K + c = 0 per sample; items {c (the sample's curvature item: K, H)}.
 class LinearWeingarten : public ConstraintFamily {
  public:
   // fixed: use `coefficients` (a, b, c) throughout; otherwise fit them at every Update.
@@ -20,9 +20,8 @@ class LinearWeingarten : public ConstraintFamily {
   // they are relative errors like the auxiliary definitions.
   LinearWeingarten(double weight, bool fixed, const Eigen::Vector3d& coefficients,
                    double curvature_scale = 1.0, std::string name = "linear relation");
-  int AddSample(int aux) { return AddElement({aux}); }
+  int AddSample(int curvature) { return AddElement({curvature}); }
   void EvaluateElement(int e, const double* x, double* phi, double* jac) const override;
-  bool RowTouches(int e, int row, int local) const override { return local == kH || local == kK; }
   void Update(const VariableLayout& layout, const Eigen::VectorXd& x) override;
   const Eigen::Vector3d& coefficients() const { return abc_; }
   // 1 / (|a| κ + |b| κ²), the factor that makes a row a relative error (1 if a = b = 0).
@@ -56,14 +55,14 @@ class SurfaceLinearWeingarten : public ConstraintFamily {
   std::vector<std::array<std::vector<double>, 5>> weights_;
 };
 
-// (H, K) held to the tangent line of a fitted curve γ at its closest point (frozen at x^k).
+// (H, K) held to the tangent line of a fitted curve γ at its closest point (frozen at x^k);
+// items {c (the sample's curvature item)}.
 class CurvatureCurveRelation : public ConstraintFamily {
  public:
   explicit CurvatureCurveRelation(double weight, int curve_control_points = 6,
                                   std::string name = "B-spline relation");
-  int AddSample(int aux) { return AddElement({aux}); }
+  int AddSample(int curvature) { return AddElement({curvature}); }
   void EvaluateElement(int e, const double* x, double* phi, double* jac) const override;
-  bool RowTouches(int e, int row, int local) const override { return local == kH || local == kK; }
   void Update(const VariableLayout& layout, const Eigen::VectorXd& x) override;
 
   // A uniform clamped cubic B-spline curve in the (H, K) plane fitted to the points by least

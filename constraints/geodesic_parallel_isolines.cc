@@ -5,25 +5,27 @@
 
 namespace gproj {
 
-int GeodesicAuxiliaries::AddSample(int g, int a, int up, int um, int vp, int vm, double inv_du,
+int GeodesicAuxiliaries::AddSample(int g, int forms, int up, int um, int vp, int vm, double inv_du,
                                    double inv_dv) {
   inv_.push_back({inv_du, inv_dv});
   delta_.push_back(1.0);
-  return AddElement({g, a, up, um, vp, vm});
+  return AddElement({g, forms, up, um, vp, vm});
 }
 
-// Local layout: g (8) | a own (12) | a(a+1,b) | a(a−1,b) | a(a,b+1) | a(a,b−1) (12 each).
+// Local layout: g (8) | f own (10) | c(a+1,b) | c(a−1,b) | c(a,b+1) | c(a,b−1) (2 each).
 void GeodesicAuxiliaries::EvaluateElement(int e, const double* x, double* phi, double* jac) const {
-  constexpr int kDim = 8 + 5 * 12;
+  constexpr int kOwn = kGeodesicAuxDim, kNeighbours = kOwn + kFormsDim;
+  constexpr int kDim = kNeighbours + 4 * kCurvatureDim;
   std::fill(jac, jac + 8 * kDim, 0.0);
   const double cu = inv_[e][0], cv = inv_[e][1];
   const double* g = x;
-  const double* own = x + 8;
-  const int up = 20, um = 32, vp = 44, vm = 56;
+  const double* own = x + kOwn;
+  constexpr int up = kNeighbours, um = up + kCurvatureDim, vp = um + kCurvatureDim,
+                vm = vp + kCurvatureDim;
   auto J = [&](int row, int local) -> double& { return jac[row * kDim + local]; };
   const double E = own[kE], F = own[kF], G = own[kG];
   for (int p = 0; p < 2; ++p) {  // p = 0: K, p = 1: H
-    const int off = p == 0 ? kK : kH;
+    const int off = p == 0 ? kCurvatureK : kCurvatureH;
     const double su = cu * inverse_sqrt_scale_[p], sv = cv * inverse_sqrt_scale_[p];
     const double du = su * (x[up + off] - x[um + off]);
     const double dv = sv * (x[vp + off] - x[vm + off]);
@@ -48,22 +50,23 @@ void GeodesicAuxiliaries::EvaluateElement(int e, const double* x, double* phi, d
     J(row, r0) = -G;
     J(row, r0 + 1) = 2.0 * F;
     J(row, r0 + 2) = -E;
-    J(row, 8 + kG) = -g[r0];
-    J(row, 8 + kF) = 2.0 * g[r0 + 1];
-    J(row, 8 + kE) = -g[r0 + 2];
+    J(row, kOwn + kG) = -g[r0];
+    J(row, kOwn + kF) = 2.0 * g[r0 + 1];
+    J(row, kOwn + kE) = -g[r0 + 2];
   }
 }
 
 bool GeodesicAuxiliaries::RowTouches(int, int row, int local) const {
+  constexpr int kOwn = kGeodesicAuxDim, kNeighbours = kOwn + kFormsDim;
   if (row < 6) {
-    if (local < 8) return local == row;
-    if (local < 20) return false;
-    return (local - 20) % 12 == (row < 3 ? kK : kH);
+    if (local < kOwn) return local == row;
+    if (local < kNeighbours) return false;
+    return (local - kNeighbours) % kCurvatureDim == (row < 3 ? kCurvatureK : kCurvatureH);
   }
   const int p = row - 6;
-  if (local < 8)
+  if (local < kOwn)
     return local == (p == 0 ? kGradK : kGradH) || (local >= 3 * p && local < 3 * p + 3);
-  if (local < 20) return local - 8 == kE || local - 8 == kF || local - 8 == kG;
+  if (local < kNeighbours) return local - kOwn == kE || local - kOwn == kF || local - kOwn == kG;
   return false;
 }
 
@@ -72,17 +75,17 @@ void GeodesicAuxiliaries::Update(const VariableLayout& layout, const Eigen::Vect
     delta_[e] = std::max(AuxiliaryValue(layout, x, element_items(e)[1], kDelta), 1e-300);
 }
 
-int GeodesicParallelIsolines::AddSample(const std::array<int, 4>& g, const std::array<int, 4>& a,
+int GeodesicParallelIsolines::AddSample(const std::array<int, 4>& g, const std::array<int, 4>& c,
                                         double inv_du, double inv_dv) {
   inv_.push_back({inv_du, inv_dv});
   row_scale_.push_back({1.0, 1.0});
-  return AddElement({g[0], g[1], g[2], g[3], a[0], a[1], a[2], a[3]});
+  return AddElement({g[0], g[1], g[2], g[3], c[0], c[1], c[2], c[3]});
 }
 
 void GeodesicParallelIsolines::Update(const VariableLayout& layout, const Eigen::VectorXd& x) {
   const int n = num_elements();
   for (int p = 0; p < 2; ++p) {
-    const int grad = p == 0 ? kGradK : kGradH, off = p == 0 ? kK : kH;
+    const int grad = p == 0 ? kGradK : kGradH, off = p == 0 ? kCurvatureK : kCurvatureH;
     std::vector<double> product(n);
     double sum = 0.0;
     for (int e = 0; e < n; ++e) {
@@ -101,16 +104,19 @@ void GeodesicParallelIsolines::Update(const VariableLayout& layout, const Eigen:
   }
 }
 
-// Local layout: g(a+1,b) g(a−1,b) g(a,b+1) g(a,b−1) (8 each) | a(a+1,b) … (12 each).
+// Local layout: g(a+1,b) g(a−1,b) g(a,b+1) g(a,b−1) (8 each) | c(a+1,b) … (2 each).
 void GeodesicParallelIsolines::EvaluateElement(int e, const double* x, double* phi,
                                                double* jac) const {
-  constexpr int kDim = 4 * 8 + 4 * 12;
+  constexpr int kCurvatures = 4 * kGeodesicAuxDim, kDim = kCurvatures + 4 * kCurvatureDim;
   std::fill(jac, jac + 2 * kDim, 0.0);
   for (int p = 0; p < 2; ++p) {
     const double cu = inv_[e][0] * row_scale_[e][p], cv = inv_[e][1] * row_scale_[e][p];
-    const int grad = p == 0 ? kGradK : kGradH, off = p == 0 ? kK : kH;
-    const int gi[4] = {grad, 8 + grad, 16 + grad, 24 + grad};
-    const int ai[4] = {32 + off, 44 + off, 56 + off, 68 + off};
+    const int grad = p == 0 ? kGradK : kGradH, off = p == 0 ? kCurvatureK : kCurvatureH;
+    int gi[4], ai[4];
+    for (int j = 0; j < 4; ++j) {
+      gi[j] = j * kGeodesicAuxDim + grad;
+      ai[j] = kCurvatures + j * kCurvatureDim + off;
+    }
     // One factor of the row scale: q carries it, p uses the plain differences.
     const double qu = cu * (x[gi[0]] - x[gi[1]]), qv = cv * (x[gi[2]] - x[gi[3]]);
     const double pu = inv_[e][0] * (x[ai[0]] - x[ai[1]]), pv = inv_[e][1] * (x[ai[2]] - x[ai[3]]);
@@ -128,8 +134,9 @@ void GeodesicParallelIsolines::EvaluateElement(int e, const double* x, double* p
 }
 
 bool GeodesicParallelIsolines::RowTouches(int, int row, int local) const {
-  if (local < 32) return local % 8 == (row == 0 ? kGradK : kGradH);
-  return (local - 32) % 12 == (row == 0 ? kK : kH);
+  constexpr int kCurvatures = 4 * kGeodesicAuxDim;
+  if (local < kCurvatures) return local % kGeodesicAuxDim == (row == 0 ? kGradK : kGradH);
+  return (local - kCurvatures) % kCurvatureDim == (row == 0 ? kCurvatureK : kCurvatureH);
 }
 
 }  // namespace gproj

@@ -28,12 +28,13 @@ enum GeodesicAux {
 };
 
 // Definitions of the geodesic-parallel auxiliaries at an inner sample; items
-// {g (own), a (own), a(a+1,b), a(a−1,b), a(a,b+1), a(a,b−1)}. Eight rows.
+// {g (own), f (own forms), c(a+1,b), c(a−1,b), c(a,b+1), c(a,b−1)} (c: curvature items). Eight
+// rows.
 class GeodesicAuxiliaries : public ConstraintFamily {
  public:
   explicit GeodesicAuxiliaries(double weight = 1.0, std::string name = "gradient definitions")
       : ConstraintFamily(std::move(name), 8, FamilyRole::kConstraint, weight) {}
-  int AddSample(int g, int a, int up, int um, int vp, int vm, double inv_du, double inv_dv);
+  int AddSample(int g, int forms, int up, int um, int vp, int vm, double inv_du, double inv_dv);
   // Typical |∇K|² and |∇H|² (default 1). The auxiliaries are stored in these units
   // (K_u² / scale, …, ‖∇K‖² / scale), so they are O(1) like the other unknowns and the
   // proximal term ε² treats them alike.
@@ -51,13 +52,13 @@ class GeodesicAuxiliaries : public ConstraintFamily {
 };
 
 // (‖∇ψ‖²)_u ψ_v − (‖∇ψ‖²)_v ψ_u = 0 for ψ = K (row 0) and H (row 1); items
-// {g(a+1,b), g(a−1,b), g(a,b+1), g(a,b−1), a(a+1,b), a(a−1,b), a(a,b+1), a(a,b−1)}.
+// {g(a+1,b), g(a−1,b), g(a,b+1), g(a,b−1), c(a+1,b), c(a−1,b), c(a,b+1), c(a,b−1)}.
 // Rows are divided by |∇‖∇ψ‖²| |∇ψ| at x^k (+ δ, as for IsolineAlignment).
 class GeodesicParallelIsolines : public ConstraintFamily {
  public:
   explicit GeodesicParallelIsolines(double weight, std::string name = "geodesic parallel")
       : ConstraintFamily(std::move(name), 2, FamilyRole::kConstraint, weight) {}
-  int AddSample(const std::array<int, 4>& g, const std::array<int, 4>& a, double inv_du,
+  int AddSample(const std::array<int, 4>& g, const std::array<int, 4>& c, double inv_du,
                 double inv_dv);
   void EvaluateElement(int e, const double* x, double* phi, double* jac) const override;
   bool RowTouches(int e, int row, int local) const override;

@@ -24,7 +24,7 @@ void IsolineAlignment::Update(const VariableLayout& layout, const Eigen::VectorX
                              AuxiliaryValue(layout, x, it[2], off),
                              AuxiliaryValue(layout, x, it[3], off), inv_[e][0], inv_[e][1]);
     };
-    product[e] = GradientNormProduct(gradient(kH), gradient(kK));
+    product[e] = GradientNormProduct(gradient(kCurvatureH), gradient(kCurvatureK));
     sum += product[e] * product[e];
   }
   const double delta = n > 0 ? 0.1 * std::sqrt(sum / n) : 0.0;
@@ -33,31 +33,25 @@ void IsolineAlignment::Update(const VariableLayout& layout, const Eigen::VectorX
 }
 
 void IsolineAlignment::EvaluateElement(int e, const double* x, double* phi, double* jac) const {
-  constexpr int kDim = 48;
+  constexpr int kDim = 4 * kCurvatureDim;
   std::fill(jac, jac + kDim, 0.0);
   double cu = inv_[e][0], cv = inv_[e][1];
-  const double* up = x;
-  const double* um = x + 12;
-  const double* vp = x + 24;
-  const double* vm = x + 36;
-  const double hu = cu * (up[kH] - um[kH]), ku = cu * (up[kK] - um[kK]);
-  const double hv = cv * (vp[kH] - vm[kH]), kv = cv * (vp[kK] - vm[kK]);
+  constexpr int up = 0, um = kCurvatureDim, vp = 2 * kCurvatureDim, vm = 3 * kCurvatureDim;
+  constexpr int h = kCurvatureH, k = kCurvatureK;
+  const double hu = cu * (x[up + h] - x[um + h]), ku = cu * (x[up + k] - x[um + k]);
+  const double hv = cv * (x[vp + h] - x[vm + h]), kv = cv * (x[vp + k] - x[vm + k]);
   const double f = row_scale_[e];
   phi[0] = f * (hu * kv - hv * ku);
   cu *= f;
   cv *= f;
-  jac[kH] = cu * kv;
-  jac[12 + kH] = -cu * kv;
-  jac[kK] = -cu * hv;
-  jac[12 + kK] = cu * hv;
-  jac[24 + kH] = -cv * ku;
-  jac[36 + kH] = cv * ku;
-  jac[24 + kK] = cv * hu;
-  jac[36 + kK] = -cv * hu;
-}
-
-bool IsolineAlignment::RowTouches(int, int, int local) const {
-  return local % 12 == kH || local % 12 == kK;
+  jac[up + h] = cu * kv;
+  jac[um + h] = -cu * kv;
+  jac[up + k] = -cu * hv;
+  jac[um + k] = cu * hv;
+  jac[vp + h] = -cv * ku;
+  jac[vm + h] = cv * ku;
+  jac[vp + k] = cv * hu;
+  jac[vm + k] = -cv * hu;
 }
 
 }  // namespace gproj

@@ -10,7 +10,8 @@
 
 namespace gproj {
 
-// H_u K_v − H_v K_u = 0; items {a(a+1,b), a(a−1,b), a(a,b+1), a(a,b−1)} (curvature items).
+// H_u K_v − H_v K_u = 0; items {c(a+1,b), c(a−1,b), c(a,b+1), c(a,b−1)} (curvature items:
+// K, H).
 // With `normalized`, each row is divided by (|∇H| |∇K| + δ) at x^k (frozen, refreshed by
 // Update; δ = 0.1 × the RMS of |∇H| |∇K| over the samples), so it measures the sine of the angle
 // between the gradients. The raw residual scales with the cube of the curvature, so without
@@ -24,7 +25,6 @@ class IsolineAlignment : public ConstraintFamily {
   // inv_du = 1 / (u_{a+1} − u_{a−1}), inv_dv likewise.
   int AddSample(int up, int um, int vp, int vm, double inv_du, double inv_dv);
   void EvaluateElement(int e, const double* x, double* phi, double* jac) const override;
-  bool RowTouches(int e, int row, int local) const override;
   void Update(const VariableLayout& layout, const Eigen::VectorXd& x) override;
 
  private:

@@ -53,7 +53,6 @@ SolverOptions WeingartenSolverDefaults() {
   s.residual_tolerance = 0.0;  // the alignment is minimised, not driven to zero
   s.step_tolerance = 1e-12;
   s.soft_weight_decay = 0.5;
-  s.eliminate_auxiliaries = false;
   return s;
 }
 
@@ -314,8 +313,11 @@ std::vector<WeingartenProblem::SampleTerms> WeingartenProblem::AddCurvatureDefin
   const int nc = input.num_control_points(), ns = maps_.num_samples();
   const bool gp = options.geodesic_parallel_weight > 0.0;
   control_block_ = layout.AddBlock("control points", nc, 3);
-  if (options.curvature_auxiliaries)
-    curvature_block_ = layout.AddBlock("curvature auxiliaries", ns, kCurvatureAuxDim);
+  if (options.curvature_auxiliaries) {
+    // Only the sample's own definition rows touch the forms: eliminated before factorising.
+    forms_block_ = layout.AddBlock("fundamental forms", ns, kFormsDim, /*eliminable=*/true);
+    curvature_block_ = layout.AddBlock("curvatures", ns, kCurvatureDim);
+  }
   if (gp) gradient_block_ = layout.AddBlock("gradient auxiliaries", ns, kGeodesicAuxDim);
   problem_.ResizeToLayout();
   Eigen::VectorXd& x = problem_.x();
@@ -368,12 +370,12 @@ std::vector<WeingartenProblem::SampleTerms> WeingartenProblem::AddCurvatureDefin
     for (int c : stencil.control) items.push_back(layout.Item(control_block_, c));
     stencils.emplace_back(items, stencil);
     if (!definitions) continue;
-    const int item = layout.Item(curvature_block_, s);
+    const int forms = layout.Item(forms_block_, s), curvature = layout.Item(curvature_block_, s);
     const Eigen::Matrix<double, 12, 1> exact = CurvatureAuxiliaries::ExactAuxiliary(derivatives[s]);
     const auto magnitudes =
         CurvatureAuxiliaries::RowMagnitudes(exact, options.target_mean_curvature);
-    definitions->AddSample(item, items, stencil, &magnitudes);
-    x.segment<kCurvatureAuxDim>(layout.ItemOffset(item)) = exact;
+    definitions->AddSample(forms, curvature, items, stencil, &magnitudes);
+    SetSampleAuxiliaries(layout, s, exact, &x);
   }
 
   return stencils;
@@ -398,7 +400,8 @@ void WeingartenProblem::AddAlignment() {
         return CentralGradient(value(a + 1, b, off), value(a - 1, b, off), value(a, b + 1, off),
                                value(a, b - 1, off), inv_du_[a], inv_dv_[b]);
       };
-      gradient_product += Squared(GradientNormProduct(gradient(kH), gradient(kK)));
+      gradient_product +=
+          Squared(GradientNormProduct(gradient(kCurvatureH), gradient(kCurvatureK)));
       ++inner;
     }
   alignment_scale_ =
@@ -427,8 +430,8 @@ void WeingartenProblem::AddGeodesicParallel() {
     for (int b = 1; b + 1 < sv; ++b) {
       const double cu = inv_du_[a];
       const double cv = inv_dv_[b];
-      definitions2->AddSample(grad(a, b), aux(a, b), aux(a + 1, b), aux(a - 1, b), aux(a, b + 1),
-                              aux(a, b - 1), cu, cv);
+      definitions2->AddSample(grad(a, b), FormsItem(a, b), aux(a + 1, b), aux(a - 1, b),
+                              aux(a, b + 1), aux(a, b - 1), cu, cv);
     }
   // Exact initial values from the curvature auxiliaries, stored in units of the typical
   // |∇K|² and |∇H|².
@@ -450,7 +453,7 @@ void WeingartenProblem::AddGeodesicParallel() {
   for (int a = 2; a + 2 < su; ++a)
     for (int b = 2; b + 2 < sv; ++b)
       for (int p = 0; p < 2; ++p) {
-        const int off = p == 0 ? kK : kH, goff = p == 0 ? kGradK : kGradH;
+        const int off = p == 0 ? kCurvatureK : kCurvatureH, goff = p == 0 ? kGradK : kGradH;
         auto gradient = [&](auto item, int o) {
           auto at = [&](int aa, int bb) { return x[layout.ItemOffset(item(aa, bb)) + o]; };
           return CentralGradient(at(a + 1, b), at(a - 1, b), at(a, b + 1), at(a, b - 1), inv_du_[a],
@@ -589,6 +592,14 @@ void WeingartenProblem::AddBoundaryGliding(double mean_edge) {
   }
 }
 
+void WeingartenProblem::SetSampleAuxiliaries(const VariableLayout& layout, int s,
+                                             const Eigen::Matrix<double, 12, 1>& a,
+                                             Eigen::VectorXd* x) const {
+  x->segment<kFormsDim>(layout.ItemOffset(layout.Item(forms_block_, s))) = a.head<kFormsDim>();
+  x->segment<kCurvatureDim>(layout.ItemOffset(layout.Item(curvature_block_, s))) =
+      a.tail<kCurvatureDim>();
+}
+
 void WeingartenProblem::SetCurvatureAuxiliaries(Eigen::VectorXd* x) const {
   if (curvature_block_ < 0) return;
   const VariableLayout& layout = problem_.layout();
@@ -606,8 +617,7 @@ void WeingartenProblem::SetCurvatureAuxiliaries(Eigen::VectorXd* x) const {
   for (int s = 0; s < ns; ++s) {
     for (int k = 0; k < 5; ++k)
       d[k] = derivative_buffer_[k].row(s).transpose() * derivative_scale_[k];
-    x->segment<kCurvatureAuxDim>(layout.ItemOffset(layout.Item(curvature_block_, s))) =
-        CurvatureAuxiliaries::ExactAuxiliary(d);
+    SetSampleAuxiliaries(layout, s, CurvatureAuxiliaries::ExactAuxiliary(d), x);
   }
 }
 
@@ -615,15 +625,15 @@ void WeingartenProblem::SetGradientAuxiliaries(Eigen::VectorXd* x) const {
   if (gradient_block_ < 0) return;
   const VariableLayout& layout = problem_.layout();
   auto value = [&](int a, int b, int off) {
-    return (*x)[layout.ItemOffset(layout.Item(curvature_block_, maps_.Index(a, b))) + off];
+    return (*x)[layout.ItemOffset(CurvatureItem(a, b)) + off];
   };
   for (int a = 1; a + 1 < maps_.su; ++a)
     for (int b = 1; b + 1 < maps_.sv; ++b) {
-      const double E = value(a, b, kE), F = value(a, b, kF), G = value(a, b, kG),
-                   D = value(a, b, kDelta);
+      const double* forms = x->data() + layout.ItemOffset(FormsItem(a, b));
+      const double E = forms[kE], F = forms[kF], G = forms[kG], D = forms[kDelta];
       Eigen::Matrix<double, kGeodesicAuxDim, 1> g;
       for (int p = 0; p < 2; ++p) {
-        const int off = p == 0 ? kK : kH;
+        const int off = p == 0 ? kCurvatureK : kCurvatureH;
         const Eigen::Vector2d gradient =
             CentralGradient(value(a + 1, b, off), value(a - 1, b, off), value(a, b + 1, off),
                             value(a, b - 1, off), inv_du_[a], inv_dv_[b]);

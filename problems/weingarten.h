@@ -210,7 +210,11 @@ class WeingartenProblem : public GuidedProblem {
   void AddControlNetTerms();
   void AddBoundaryGliding(double mean_edge);
 
-  // Items of sample (a, b): its curvature auxiliaries, its gradient auxiliaries.
+  // Items of sample (a, b): its forms (n, E, F, G, Δ, L, M, N), its curvatures (K, H), its
+  // gradient auxiliaries.
+  int FormsItem(int a, int b) const {
+    return problem_.layout().Item(forms_block_, maps_.Index(a, b));
+  }
   int CurvatureItem(int a, int b) const {
     return problem_.layout().Item(curvature_block_, maps_.Index(a, b));
   }
@@ -223,6 +227,9 @@ class WeingartenProblem : public GuidedProblem {
   // Exact auxiliaries from the control points in x (curvature) or from the curvature
   // auxiliaries in x (geodesic parallel; nothing without them).
   void SetCurvatureAuxiliaries(Eigen::VectorXd* x) const;
+  // Writes the twelve values of sample s (ExactAuxiliary's order) into its two items.
+  void SetSampleAuxiliaries(const VariableLayout& layout, int s,
+                            const Eigen::Matrix<double, 12, 1>& a, Eigen::VectorXd* x) const;
   void SetGradientAuxiliaries(Eigen::VectorXd* x) const;
 
   WeingartenOptions options_;
@@ -239,7 +246,7 @@ class WeingartenProblem : public GuidedProblem {
   mutable Eigen::MatrixX3d control_buffer_;
   mutable std::array<Eigen::MatrixX3d, 5> derivative_buffer_;
   Problem problem_;
-  int control_block_ = -1, curvature_block_ = -1, gradient_block_ = -1;
+  int control_block_ = -1, forms_block_ = -1, curvature_block_ = -1, gradient_block_ = -1;
   class LinearWeingarten* linear_ = nullptr;
   class SurfaceLinearWeingarten* surface_linear_ = nullptr;
 };

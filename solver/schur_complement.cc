@@ -105,10 +105,15 @@ void SchurComplement::GroupColumnsByItem(int m) {
     items_[e].col_begin = count[e];
     items_[e].col_end = count[e];
   }
+  free_cols_.clear();
   for (int c = 0; c < m; ++c)
-    if (col_item_[c] >= 0) item_cols_[items_[col_item_[c]].col_end++] = c;
+    if (col_item_[c] >= 0)
+      item_cols_[items_[col_item_[c]].col_end++] = c;
+    else
+      free_cols_.push_back(c);
   kept_vars_.clear();
-  int b_size = 0, dinv_size = 0;
+  int64_t a_kept_size = 0, v_size = 0;
+  int dinv_size = 0, max_kept = 0, max_cols = 0;
   for (Item& item : items_) {
     item.kept_begin = static_cast<int>(kept_vars_.size());
     for (int j = item.col_begin; j < item.col_end; ++j) {
@@ -120,12 +125,22 @@ void SchurComplement::GroupColumnsByItem(int m) {
     kept_vars_.erase(std::unique(kept_vars_.begin() + item.kept_begin, kept_vars_.end()),
                      kept_vars_.end());
     item.kept_end = static_cast<int>(kept_vars_.size());
-    item.b_offset = b_size;
-    b_size += (item.kept_end - item.kept_begin) * item.dim;
+    item.a_kept_offset = a_kept_size;
+    a_kept_size +=
+        static_cast<int64_t>(item.kept_end - item.kept_begin) * (item.col_end - item.col_begin);
+    item.v_offset = v_size;
+    v_size += static_cast<int64_t>(item.col_end - item.col_begin) * item.dim;
     item.dinv_offset = dinv_size;
     dinv_size += item.dim * item.dim;
+    max_kept = std::max(max_kept, item.kept_end - item.kept_begin);
+    max_cols = std::max(max_cols, item.col_end - item.col_begin);
   }
-  b_.assign(b_size, 0.0);
+  ae_.resize(kMaxItemDim, max_cols);
+  p_.resize(max_cols, max_cols);
+  w_.resize(max_kept, max_cols);
+  clique_.resize(max_kept, max_kept);
+  a_kept_.assign(a_kept_size, 0.0);
+  v_.assign(v_size, 0.0);
   dinv_.assign(dinv_size, 0.0);
   kept_local_.assign(kept_pos_.size(), -1);
   for (int c = 0; c < m; ++c) {
@@ -149,7 +164,7 @@ void SchurComplement::BuildPattern(int m) {
   // of pair_pos_ and then clique_pos_ after the diagonal.
   auto for_each_entry = [&](auto&& diagonal, auto&& column_pair, auto&& clique_pair) {
     for (int j = 0; j < num_kept; ++j) diagonal(j);
-    for (int c = 0; c < m; ++c)  // A's row indices are sorted, so kept_idx_ is within a column
+    for (int c : free_cols_)  // A's row indices are sorted, so kept_idx_ is within a column
       for (int p = col_kept_begin_[c]; p < col_kept_begin_[c + 1]; ++p)
         for (int q = p; q < col_kept_begin_[c + 1]; ++q) column_pair(kept_idx_[p], kept_idx_[q]);
     for (const Item& item : items_)  // K_e is sorted
@@ -157,10 +172,11 @@ void SchurComplement::BuildPattern(int m) {
         for (int q = p; q < item.kept_end; ++q) clique_pair(kept_vars_[p], kept_vars_[q]);
   };
   auto pairs = [](int k) { return k * (k + 1) / 2; };
-  col_pair_begin_.assign(m + 1, 0);
+  col_pair_begin_.assign(m + 1, 0);  // a column of an item adds to its item's clique
   for (int c = 0; c < m; ++c)
     col_pair_begin_[c + 1] =
-        col_pair_begin_[c] + pairs(col_kept_begin_[c + 1] - col_kept_begin_[c]);
+        col_pair_begin_[c] +
+        (col_item_[c] < 0 ? pairs(col_kept_begin_[c + 1] - col_kept_begin_[c]) : 0);
   int num_clique_pairs = 0;
   for (Item& item : items_) {
     item.clique_begin = num_clique_pairs;
@@ -208,8 +224,8 @@ void SchurComplement::BuildPattern(int m) {
 
 bool SchurComplement::Form(const CscMatrix& a, double beta, std::string* message) {
   std::fill(s_.values.begin(), s_.values.end(), 0.0);
-  const int m = a.num_cols;
-  for (int c = 0; c < m; ++c) {
+  // Columns that touch no eliminated item: their kept pairs, one by one.
+  for (int c : free_cols_) {
     const int* pos = pair_pos_.data() + col_pair_begin_[c];
     const int begin = col_kept_begin_[c], end = col_kept_begin_[c + 1];
     for (int p = begin; p < end; ++p) {
@@ -217,78 +233,88 @@ bool SchurComplement::Form(const CscMatrix& a, double beta, std::string* message
       for (int q = p; q < end; ++q) s_.values[*pos++] += vp * a.values[kept_pos_[q]];
     }
   }
-  std::fill(b_.begin(), b_.end(), 0.0);
-  for (size_t e = 0; e < items_.size(); ++e) {
-    const Item& item = items_[e];
-    const int d = item.dim;
-    SmallMatrix block = SmallMatrix::Identity(d, d) * beta;
-    double* b = b_.data() + item.b_offset;  // |K_e| × d
-    SmallVector ae(d);
-    for (int j = item.col_begin; j < item.col_end; ++j) {
-      const int c = item_cols_[j];
-      ae.setZero();
+  // Per item, its columns as dense blocks A_K (|K_e| × cols) and A_e (dim × cols). With
+  // D = A_e A_eᵀ + β I = L Lᵀ and T = L⁻¹ A_e,
+  //   S_KK += A_K A_Kᵀ − A_K A_eᵀ D⁻¹ A_e A_Kᵀ = A_K P A_Kᵀ,  P = I − Tᵀ T (cols × cols),
+  // added to S once per clique entry; fewer flops than forming B = A_K A_eᵀ when the item has
+  // about as many columns as components.
+  for (const Item& item : items_) {
+    const int d = item.dim, kk = item.kept_end - item.kept_begin;
+    const int nc = item.col_end - item.col_begin;
+    Eigen::Map<Eigen::MatrixXd> ak(a_kept_.data() + item.a_kept_offset, kk, nc);
+    auto ae = ae_.topLeftCorner(d, nc);
+    ak.setZero();
+    ae.setZero();
+    for (int j = 0; j < nc; ++j) {
+      const int c = item_cols_[item.col_begin + j];
       for (int k = col_elim_begin_[c]; k < col_elim_begin_[c + 1]; ++k)
-        ae[elim_comp_[k]] = a.values[elim_pos_[k]];
-      block.noalias() += ae * ae.transpose();
-      for (int k = col_kept_begin_[c]; k < col_kept_begin_[c + 1]; ++k) {
-        const double v = a.values[kept_pos_[k]];
-        double* row = b + kept_local_[k] * d;
-        for (int t = 0; t < d; ++t) row[t] += v * ae[t];
-      }
+        ae(elim_comp_[k], j) = a.values[elim_pos_[k]];
+      for (int k = col_kept_begin_[c]; k < col_kept_begin_[c + 1]; ++k)
+        ak(kept_local_[k], j) = a.values[kept_pos_[k]];
     }
+    SmallMatrix block = SmallMatrix::Identity(d, d) * beta;
+    block.noalias() += ae * ae.transpose();
     Eigen::LLT<SmallMatrix> llt(block);
     if (llt.info() != Eigen::Success) {
       *message = "an eliminated block is not positive definite";
       return false;
     }
-    SmallMatrix dinv = llt.solve(SmallMatrix::Identity(d, d));
-    std::copy(dinv.data(), dinv.data() + d * d, dinv_.data() + item.dinv_offset);
-    // S_KK −= B D⁻¹ Bᵀ.
-    const int kk = item.kept_end - item.kept_begin;
+    Eigen::Map<SmallMatrix> dinv(dinv_.data() + item.dinv_offset, d, d);
+    dinv = llt.solve(SmallMatrix::Identity(d, d));
+    // V = A_eᵀ D⁻¹ for the right-hand side and the back substitution.
+    Eigen::Map<Eigen::MatrixXd> v(v_.data() + item.v_offset, nc, d);
+    v.noalias() = ae.transpose() * dinv;
+    llt.matrixL().solveInPlace(ae);  // T
+    auto p = p_.topLeftCorner(nc, nc);
+    p.setIdentity();
+    p.noalias() -= ae.transpose() * ae;
+    auto w = w_.topLeftCorner(kk, nc);
+    w.noalias() = ak * p;
+    auto clique = clique_.topLeftCorner(kk, kk);
+    clique.triangularView<Eigen::Upper>() = w * ak.transpose();
     const int* pos = clique_pos_.data() + item.clique_begin;
-    SmallVector w(d);
-    for (int p = 0; p < kk; ++p) {
-      w.noalias() = dinv * Eigen::Map<const SmallVector>(b + p * d, d);
-      for (int q = p; q < kk; ++q) {
-        double dot = 0.0;
-        for (int t = 0; t < d; ++t) dot += w[t] * b[q * d + t];
-        s_.values[*pos++] -= dot;
-      }
-    }
+    for (int q = 0; q < kk; ++q)
+      for (int r = q; r < kk; ++r) s_.values[*pos++] += clique(q, r);
   }
   return true;
 }
 
+// reduced = g_K − A_K A_eᵀ D⁻¹ g_e = g_K − A_K (V g_e) per item.
 void SchurComplement::ReduceRhs(const Eigen::VectorXd& g, Eigen::VectorXd* reduced) const {
   const int num_kept = static_cast<int>(kept_var_.size());
   for (int k = 0; k < num_kept; ++k) (*reduced)[k] = g[kept_var_[k]];
   for (const Item& item : items_) {
-    const int d = item.dim;
-    const Eigen::Map<const SmallMatrix> dinv(dinv_.data() + item.dinv_offset, d, d);
-    const SmallVector t = dinv * g.segment(item.first_var, d);
-    const double* b = b_.data() + item.b_offset;
-    for (int p = item.kept_begin; p < item.kept_end; ++p, b += d) {
-      double dot = 0.0;
-      for (int i = 0; i < d; ++i) dot += b[i] * t[i];
-      (*reduced)[kept_vars_[p]] -= dot;
+    const int d = item.dim, kk = item.kept_end - item.kept_begin;
+    const int nc = item.col_end - item.col_begin;
+    const Eigen::Map<const Eigen::MatrixXd> v(v_.data() + item.v_offset, nc, d);
+    const Eigen::Map<const Eigen::MatrixXd> ak(a_kept_.data() + item.a_kept_offset, kk, nc);
+    const int* kept = kept_vars_.data() + item.kept_begin;
+    for (int j = 0; j < nc; ++j) {
+      const double t = v.row(j).dot(g.segment(item.first_var, d));
+      for (int p = 0; p < kk; ++p) (*reduced)[kept[p]] -= ak(p, j) * t;
     }
   }
 }
 
+// d_e = D⁻¹ g_e − Vᵀ A_Kᵀ d_K per item.
 void SchurComplement::BackSubstitute(const Eigen::VectorXd& d_kept, const Eigen::VectorXd& g,
                                      Eigen::VectorXd* d) const {
   const int num_kept = static_cast<int>(kept_var_.size());
   for (int k = 0; k < num_kept; ++k) (*d)[kept_var_[k]] = d_kept[k];
   for (const Item& item : items_) {
-    const int dim = item.dim;
-    SmallVector r = g.segment(item.first_var, dim);
-    const double* b = b_.data() + item.b_offset;
-    for (int p = item.kept_begin; p < item.kept_end; ++p, b += dim) {
-      const double dk = d_kept[kept_vars_[p]];
-      for (int i = 0; i < dim; ++i) r[i] -= b[i] * dk;
-    }
+    const int dim = item.dim, kk = item.kept_end - item.kept_begin;
+    const int nc = item.col_end - item.col_begin;
+    const Eigen::Map<const Eigen::MatrixXd> v(v_.data() + item.v_offset, nc, dim);
     const Eigen::Map<const SmallMatrix> dinv(dinv_.data() + item.dinv_offset, dim, dim);
-    d->segment(item.first_var, dim) = dinv * r;
+    const Eigen::Map<const Eigen::MatrixXd> ak(a_kept_.data() + item.a_kept_offset, kk, nc);
+    const int* kept = kept_vars_.data() + item.kept_begin;
+    SmallVector de = dinv * g.segment(item.first_var, dim);
+    for (int j = 0; j < nc; ++j) {
+      double u = 0.0;  // (A_Kᵀ d_K)_j
+      for (int p = 0; p < kk; ++p) u += ak(p, j) * d_kept[kept[p]];
+      de -= u * v.row(j).transpose();
+    }
+    d->segment(item.first_var, dim) = de;
   }
 }
 

@@ -7,6 +7,7 @@
 // The pattern of S and every scatter position are computed once; Form only writes values.
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -54,7 +55,8 @@ class SchurComplement {
     int kept_begin = 0;  // into kept_vars_: K_e, sorted kept indices touched with the item
     int kept_end = 0;
     int clique_begin = 0;            // into clique_pos_: S positions of the pairs a ≤ b of K_e
-    int b_offset = 0;                // into b_: |K_e| × dim, row-major
+    int64_t a_kept_offset = 0;       // into a_kept_: A_K, |K_e| × cols, column-major
+    int64_t v_offset = 0;            // into v_: V = A_eᵀ D⁻¹, cols × dim
     int dinv_offset = 0;             // into dinv_: dim × dim
     int col_begin = 0, col_end = 0;  // into item_cols_: columns of A touching the item
   };
@@ -64,15 +66,19 @@ class SchurComplement {
   std::vector<int> kept_of_var_;  // n: kept index or −1
   std::vector<int> kept_var_;     // n_k: global variable of each kept index
   // Per column of A: its kept entries (positions in A, kept indices, local index in its
-  // item's K_e or −1), its eliminated entries (positions in A, component) and the S positions
-  // of its kept pairs p ≤ q.
+  // item's K_e or −1), its eliminated entries (positions in A, component) and, for a column
+  // that touches no item, the S positions of its kept pairs p ≤ q (an item's columns add to its
+  // clique instead).
   std::vector<int> col_kept_begin_, kept_pos_, kept_idx_, kept_local_;
   std::vector<int> col_elim_begin_, elim_pos_, elim_comp_;
-  std::vector<int> col_item_;  // item touched by the column or −1
+  std::vector<int> col_item_;   // item touched by the column or −1
+  std::vector<int> free_cols_;  // the columns that touch no item
   std::vector<int> col_pair_begin_, pair_pos_;
   std::vector<Item> items_;
   std::vector<int> kept_vars_, clique_pos_, item_cols_;
-  std::vector<double> b_, dinv_;
+  std::vector<double> a_kept_, v_, dinv_;
+  // Form's workspace, sized by Init for the largest item: A_e (then T), P, A_K P, the clique.
+  Eigen::MatrixXd ae_, p_, w_, clique_;
 };
 
 }  // namespace gproj

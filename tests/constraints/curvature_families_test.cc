@@ -31,7 +31,7 @@ SampleStencil RandomStencil(uint32_t seed) {
 
 TEST(CurvatureAuxiliariesTest, GradientMatchesFiniteDifferences) {
   CurvatureAuxiliaries family;
-  family.AddSample(0, {1, 2, 3, 4}, RandomStencil(3));
+  family.AddSample(0, 1, {2, 3, 4, 5}, RandomStencil(3));
   for (uint32_t seed : {1u, 2u, 3u}) {
     std::vector<double> x = Random(24, seed);
     x[kDelta] = 0.8;  // keep away from zero
@@ -62,8 +62,10 @@ TEST(CurvatureAuxiliariesTest, ExactAuxiliaryGivesZeroResidualAndKnownCurvatures
   }
   CurvatureAuxiliaries family;
   VariableLayout layout;
-  const int aux = layout.AddBlock("aux", 1, 12), control = layout.AddBlock("c", 5, 3);
-  family.AddSample(layout.Item(aux, 0),
+  const int forms = layout.AddBlock("forms", 1, kFormsDim, /*eliminable=*/true);
+  const int curvature = layout.AddBlock("curvature", 1, kCurvatureDim);
+  const int control = layout.AddBlock("c", 5, 3);
+  family.AddSample(layout.Item(forms, 0), layout.Item(curvature, 0),
                    {layout.Item(control, 0), layout.Item(control, 1), layout.Item(control, 2),
                     layout.Item(control, 3), layout.Item(control, 4)},
                    stencil);
@@ -103,14 +105,15 @@ TEST(SurfaceLinearWeingartenTest, GradientAndValueOnTheSurfaceItself) {
 TEST(IsolineAlignmentTest, GradientAndZeroWhenHIsAFunctionOfK) {
   IsolineAlignment family(1.0);
   family.AddSample(0, 1, 2, 3, 0.7, 1.3);
-  ExpectGradientMatchesFiniteDifferences(family, 0, Random(48, 5));
+  ExpectGradientMatchesFiniteDifferences(family, 0, Random(4 * kCurvatureDim, 5));
   // H = 2 K + 1 at every sample: aligned isolines.
-  std::vector<double> x = Random(48, 6);
-  for (int s = 0; s < 4; ++s) x[12 * s + kH] = 2.0 * x[12 * s + kK] + 1.0;
-  std::vector<double> phi(1), jac(48);
+  std::vector<double> x = Random(4 * kCurvatureDim, 6);
+  for (int s = 0; s < 4; ++s)
+    x[kCurvatureDim * s + kCurvatureH] = 2.0 * x[kCurvatureDim * s + kCurvatureK] + 1.0;
+  std::vector<double> phi(1), jac(4 * kCurvatureDim);
   family.EvaluateElement(0, x.data(), phi.data(), jac.data());
   EXPECT_NEAR(phi[0], 0.0, 1e-14);
-  x[kH] += 0.3;  // break it
+  x[kCurvatureH] += 0.3;  // break it
   family.EvaluateElement(0, x.data(), phi.data(), jac.data());
   EXPECT_GT(std::abs(phi[0]), 1e-3);
 }
@@ -118,11 +121,12 @@ TEST(IsolineAlignmentTest, GradientAndZeroWhenHIsAFunctionOfK) {
 TEST(GeodesicParallelTest, GradientsMatchFiniteDifferences) {
   GeodesicAuxiliaries definitions;
   definitions.AddSample(0, 1, 2, 3, 4, 5, 0.6, 0.9);
-  std::vector<double> x = Random(68, 7);
+  std::vector<double> x = Random(kGeodesicAuxDim + kFormsDim + 4 * kCurvatureDim, 7);
   ExpectGradientMatchesFiniteDifferences(definitions, 0, x);
   GeodesicParallelIsolines parallel(1.0);
   parallel.AddSample({0, 1, 2, 3}, {4, 5, 6, 7}, 0.6, 0.9);
-  ExpectGradientMatchesFiniteDifferences(parallel, 0, Random(80, 8));
+  ExpectGradientMatchesFiniteDifferences(parallel, 0,
+                                         Random(4 * (kGeodesicAuxDim + kCurvatureDim), 8));
 }
 
 TEST(LinearWeingartenTest, FitLineRecoversTheRelation) {

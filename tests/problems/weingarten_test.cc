@@ -146,6 +146,31 @@ TEST(WeingartenTest, DefaultPresetAlignsIsolinesOfAFreeformSurface) {
   EXPECT_LE(after.max_deviation, 0.02);
 }
 
+// The forms (n, E, F, G, Δ, L, M, N) of every sample are eliminated by a Schur complement before
+// the factorisation, which then sees only the control points, K, H and the gradient
+// auxiliaries. The steps are those of the full system: same iterates, same result.
+TEST(WeingartenTest, EliminatingTheFormsGivesTheSameIterates) {
+  for (const char* preset : {"fig1", "fig9c"}) {
+    WeingartenOptions o = WeingartenPreset(preset);
+    o.solver.max_iterations = 4;
+    const BSplineSurface input = Freeform(8, 8);
+    WeingartenProblem eliminated(input, o);
+    o.solver.eliminate_auxiliaries = false;
+    WeingartenProblem full(input, o);
+    const SolverSummary a = eliminated.Run().summary, b = full.Run().summary;
+    ASSERT_NE(a.termination, TerminationType::kFailure) << a.FullReport();
+    ASSERT_NE(b.termination, TerminationType::kFailure) << b.FullReport();
+    EXPECT_EQ(a.eliminated_variables, 10 * eliminated.maps().num_samples()) << preset;
+    EXPECT_EQ(b.eliminated_variables, 0) << preset;
+    ASSERT_EQ(a.iterations.size(), b.iterations.size()) << preset;
+    for (size_t k = 0; k < a.iterations.size(); ++k)
+      EXPECT_NEAR(a.iterations[k].energy, b.iterations[k].energy, 1e-9 * b.iterations[k].energy)
+          << preset << " iteration " << k;
+    const Eigen::MatrixX3d ca = eliminated.Result().control, cb = full.Result().control;
+    EXPECT_LT((ca - cb).cwiseAbs().maxCoeff(), 1e-9 * cb.cwiseAbs().maxCoeff()) << preset;
+  }
+}
+
 // A bump over the square [−1, 1]² with a planar boundary (the start of 003 Fig. 3).
 BSplineSurface Bump(int n) { return MakeBumpBSpline(n); }
 
