@@ -63,20 +63,20 @@ bool SchurComplement::CollectItems(const VariableLayout& layout, int n,
 }
 
 // Every column of A split into kept and eliminated entries; a column may touch one item only.
+// The entries are counted first so that every array has its exact size (at a million faces
+// the slack of growing vectors would be hundreds of megabytes).
 bool SchurComplement::SplitColumns(const CscMatrix& a, const std::vector<int>& item_of_var,
                                    std::string* message) {
   const int m = a.num_cols;
   col_item_.assign(m, -1);
-  col_kept_begin_.assign(1, 0);
-  col_elim_begin_.assign(1, 0);
-  kept_pos_.clear(), kept_idx_.clear(), elim_pos_.clear(), elim_comp_.clear();
+  col_kept_begin_.assign(m + 1, 0);
+  col_elim_begin_.assign(m + 1, 0);
   for (int c = 0; c < m; ++c) {
+    int kept = 0, elim = 0;
     for (int k = a.col_begin[c]; k < a.col_begin[c + 1]; ++k) {
-      const int var = a.row_index[k];
-      const int e = item_of_var[var];
+      const int e = item_of_var[a.row_index[k]];
       if (e < 0) {
-        kept_pos_.push_back(k);
-        kept_idx_.push_back(kept_of_var_[var]);
+        ++kept;
         continue;
       }
       if (col_item_[c] >= 0 && col_item_[c] != e) {
@@ -84,13 +84,29 @@ bool SchurComplement::SplitColumns(const CscMatrix& a, const std::vector<int>& i
         return false;
       }
       col_item_[c] = e;
-      elim_pos_.push_back(k);
-      elim_comp_.push_back(var - items_[e].first_var);
+      ++elim;
     }
-    col_kept_begin_.push_back(static_cast<int>(kept_pos_.size()));
-    col_elim_begin_.push_back(static_cast<int>(elim_pos_.size()));
+    col_kept_begin_[c + 1] = col_kept_begin_[c] + kept;
+    col_elim_begin_[c + 1] = col_elim_begin_[c] + elim;
   }
-
+  kept_pos_.assign(col_kept_begin_[m], 0);
+  kept_idx_.assign(col_kept_begin_[m], 0);
+  elim_pos_.assign(col_elim_begin_[m], 0);
+  elim_comp_.assign(col_elim_begin_[m], 0);
+  for (int c = 0; c < m; ++c) {
+    int kept = col_kept_begin_[c], elim = col_elim_begin_[c];
+    for (int k = a.col_begin[c]; k < a.col_begin[c + 1]; ++k) {
+      const int var = a.row_index[k];
+      const int e = item_of_var[var];
+      if (e < 0) {
+        kept_pos_[kept] = k;
+        kept_idx_[kept++] = kept_of_var_[var];
+      } else {
+        elim_pos_[elim] = k;
+        elim_comp_[elim++] = var - items_[e].first_var;
+      }
+    }
+  }
   return true;
 }
 
@@ -112,7 +128,7 @@ void SchurComplement::GroupColumnsByItem(int m) {
     else
       free_cols_.push_back(c);
   kept_vars_.clear();
-  int64_t a_kept_size = 0, v_size = 0;
+  int64_t v_size = 0;
   int dinv_size = 0, max_kept = 0, max_cols = 0;
   for (Item& item : items_) {
     item.kept_begin = static_cast<int>(kept_vars_.size());
@@ -125,9 +141,6 @@ void SchurComplement::GroupColumnsByItem(int m) {
     kept_vars_.erase(std::unique(kept_vars_.begin() + item.kept_begin, kept_vars_.end()),
                      kept_vars_.end());
     item.kept_end = static_cast<int>(kept_vars_.size());
-    item.a_kept_offset = a_kept_size;
-    a_kept_size +=
-        static_cast<int64_t>(item.kept_end - item.kept_begin) * (item.col_end - item.col_begin);
     item.v_offset = v_size;
     v_size += static_cast<int64_t>(item.col_end - item.col_begin) * item.dim;
     item.dinv_offset = dinv_size;
@@ -135,11 +148,11 @@ void SchurComplement::GroupColumnsByItem(int m) {
     max_kept = std::max(max_kept, item.kept_end - item.kept_begin);
     max_cols = std::max(max_cols, item.col_end - item.col_begin);
   }
+  ak_.resize(max_kept, max_cols);
   ae_.resize(kMaxItemDim, max_cols);
   p_.resize(max_cols, max_cols);
   w_.resize(max_kept, max_cols);
   clique_.resize(max_kept, max_kept);
-  a_kept_.assign(a_kept_size, 0.0);
   v_.assign(v_size, 0.0);
   dinv_.assign(dinv_size, 0.0);
   kept_local_.assign(kept_pos_.size(), -1);
@@ -210,6 +223,7 @@ void SchurComplement::BuildPattern(int m) {
     for (int64_t k = bucket[j]; k < bucket[j + 1]; ++k) entries[k] = position[entries[k]];
     s_.col_begin.push_back(last);
   }
+  s_.row_index.shrink_to_fit();
   s_.values.assign(s_.row_index.size(), 0.0);
 
   std::copy(bucket.begin(), bucket.end() - 1, next.begin());
@@ -241,7 +255,7 @@ bool SchurComplement::Form(const CscMatrix& a, double beta, std::string* message
   for (const Item& item : items_) {
     const int d = item.dim, kk = item.kept_end - item.kept_begin;
     const int nc = item.col_end - item.col_begin;
-    Eigen::Map<Eigen::MatrixXd> ak(a_kept_.data() + item.a_kept_offset, kk, nc);
+    auto ak = ak_.topLeftCorner(kk, nc);
     auto ae = ae_.topLeftCorner(d, nc);
     ak.setZero();
     ae.setZero();
@@ -279,39 +293,38 @@ bool SchurComplement::Form(const CscMatrix& a, double beta, std::string* message
   return true;
 }
 
-// reduced = g_K − A_K A_eᵀ D⁻¹ g_e = g_K − A_K (V g_e) per item.
-void SchurComplement::ReduceRhs(const Eigen::VectorXd& g, Eigen::VectorXd* reduced) const {
+// reduced = g_K − A_K A_eᵀ D⁻¹ g_e = g_K − A_K (V g_e) per item, A_K read from A's columns.
+void SchurComplement::ReduceRhs(const CscMatrix& a, const Eigen::VectorXd& g,
+                                Eigen::VectorXd* reduced) const {
   const int num_kept = static_cast<int>(kept_var_.size());
   for (int k = 0; k < num_kept; ++k) (*reduced)[k] = g[kept_var_[k]];
   for (const Item& item : items_) {
-    const int d = item.dim, kk = item.kept_end - item.kept_begin;
-    const int nc = item.col_end - item.col_begin;
+    const int d = item.dim, nc = item.col_end - item.col_begin;
     const Eigen::Map<const Eigen::MatrixXd> v(v_.data() + item.v_offset, nc, d);
-    const Eigen::Map<const Eigen::MatrixXd> ak(a_kept_.data() + item.a_kept_offset, kk, nc);
-    const int* kept = kept_vars_.data() + item.kept_begin;
     for (int j = 0; j < nc; ++j) {
+      const int c = item_cols_[item.col_begin + j];
       const double t = v.row(j).dot(g.segment(item.first_var, d));
-      for (int p = 0; p < kk; ++p) (*reduced)[kept[p]] -= ak(p, j) * t;
+      for (int k = col_kept_begin_[c]; k < col_kept_begin_[c + 1]; ++k)
+        (*reduced)[kept_idx_[k]] -= a.values[kept_pos_[k]] * t;
     }
   }
 }
 
 // d_e = D⁻¹ g_e − Vᵀ A_Kᵀ d_K per item.
-void SchurComplement::BackSubstitute(const Eigen::VectorXd& d_kept, const Eigen::VectorXd& g,
-                                     Eigen::VectorXd* d) const {
+void SchurComplement::BackSubstitute(const CscMatrix& a, const Eigen::VectorXd& d_kept,
+                                     const Eigen::VectorXd& g, Eigen::VectorXd* d) const {
   const int num_kept = static_cast<int>(kept_var_.size());
   for (int k = 0; k < num_kept; ++k) (*d)[kept_var_[k]] = d_kept[k];
   for (const Item& item : items_) {
-    const int dim = item.dim, kk = item.kept_end - item.kept_begin;
-    const int nc = item.col_end - item.col_begin;
+    const int dim = item.dim, nc = item.col_end - item.col_begin;
     const Eigen::Map<const Eigen::MatrixXd> v(v_.data() + item.v_offset, nc, dim);
     const Eigen::Map<const SmallMatrix> dinv(dinv_.data() + item.dinv_offset, dim, dim);
-    const Eigen::Map<const Eigen::MatrixXd> ak(a_kept_.data() + item.a_kept_offset, kk, nc);
-    const int* kept = kept_vars_.data() + item.kept_begin;
     SmallVector de = dinv * g.segment(item.first_var, dim);
     for (int j = 0; j < nc; ++j) {
+      const int c = item_cols_[item.col_begin + j];
       double u = 0.0;  // (A_Kᵀ d_K)_j
-      for (int p = 0; p < kk; ++p) u += ak(p, j) * d_kept[kept[p]];
+      for (int k = col_kept_begin_[c]; k < col_kept_begin_[c + 1]; ++k)
+        u += a.values[kept_pos_[k]] * d_kept[kept_idx_[k]];
       de -= u * v.row(j).transpose();
     }
     d->segment(item.first_var, dim) = de;

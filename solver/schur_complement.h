@@ -35,10 +35,10 @@ class SchurComplement {
 
   // Writes S for the current values of A; false if a block D_e is not positive definite.
   bool Form(const CscMatrix& a, double beta, std::string* message);
-  // g (n) → reduced right-hand side (n_k).
-  void ReduceRhs(const Eigen::VectorXd& g, Eigen::VectorXd* reduced) const;
-  // d_k (n_k) and g (n) → the full step d (n).
-  void BackSubstitute(const Eigen::VectorXd& d_kept, const Eigen::VectorXd& g,
+  // g (n) → reduced right-hand side (n_k); `a` the matrix S was formed from.
+  void ReduceRhs(const CscMatrix& a, const Eigen::VectorXd& g, Eigen::VectorXd* reduced) const;
+  // d_k (n_k) and g (n) → the full step d (n); `a` the matrix S was formed from.
+  void BackSubstitute(const CscMatrix& a, const Eigen::VectorXd& d_kept, const Eigen::VectorXd& g,
                       Eigen::VectorXd* d) const;
 
  private:
@@ -55,7 +55,6 @@ class SchurComplement {
     int kept_begin = 0;  // into kept_vars_: K_e, sorted kept indices touched with the item
     int kept_end = 0;
     int clique_begin = 0;            // into clique_pos_: S positions of the pairs a ≤ b of K_e
-    int64_t a_kept_offset = 0;       // into a_kept_: A_K, |K_e| × cols, column-major
     int64_t v_offset = 0;            // into v_: V = A_eᵀ D⁻¹, cols × dim
     int dinv_offset = 0;             // into dinv_: dim × dim
     int col_begin = 0, col_end = 0;  // into item_cols_: columns of A touching the item
@@ -76,9 +75,10 @@ class SchurComplement {
   std::vector<int> col_pair_begin_, pair_pos_;
   std::vector<Item> items_;
   std::vector<int> kept_vars_, clique_pos_, item_cols_;
-  std::vector<double> a_kept_, v_, dinv_;
-  // Form's workspace, sized by Init for the largest item: A_e (then T), P, A_K P, the clique.
-  Eigen::MatrixXd ae_, p_, w_, clique_;
+  std::vector<double> v_, dinv_;
+  // Form's workspace, sized by Init for the largest item: A_K, A_e (then T), P, A_K P, the
+  // clique.
+  Eigen::MatrixXd ak_, ae_, p_, w_, clique_;
 };
 
 }  // namespace gproj

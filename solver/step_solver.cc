@@ -75,7 +75,7 @@ bool StepSolver::Solve(double epsilon, Eigen::VectorXd* step, double* schur_seco
   auto t = Clock::now();
   if (eliminate_) {
     const bool formed = schur_.Form(system_->a(), beta, why);
-    if (formed) schur_.ReduceRhs(rhs_, &reduced_);
+    if (formed) schur_.ReduceRhs(system_->a(), rhs_, &reduced_);
     *schur_seconds += SecondsSince(t);
     if (!formed) return false;
   }
@@ -87,7 +87,7 @@ bool StepSolver::Solve(double epsilon, Eigen::VectorXd* step, double* schur_seco
   t = Clock::now();
   const bool solved = eliminate_ ? cholesky_->Solve(reduced_.data(), step_kept_.data(), why)
                                  : cholesky_->Solve(rhs_.data(), step->data(), why);
-  if (solved && eliminate_) schur_.BackSubstitute(step_kept_, rhs_, step);
+  if (solved && eliminate_) schur_.BackSubstitute(system_->a(), step_kept_, rhs_, step);
   *solve_seconds += SecondsSince(t);
   if (!solved) return false;
   // Check the solve: ‖(A Aᵀ + ε² I) d − rhs‖ small against the terms' sizes. Catches

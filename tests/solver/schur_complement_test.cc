@@ -76,9 +76,9 @@ TEST_P(SchurComplementTest, ReducedSolveEqualsFullSolve) {
     }
   s += beta * Eigen::MatrixXd::Identity(18, 18);
   Eigen::VectorXd reduced(18), d(n);
-  schur.ReduceRhs(g, &reduced);
+  schur.ReduceRhs(f.a, g, &reduced);
   const Eigen::VectorXd d_kept = s.ldlt().solve(reduced);
-  schur.BackSubstitute(d_kept, g, &d);
+  schur.BackSubstitute(f.a, d_kept, g, &d);
   EXPECT_LT((d - expected).norm() / expected.norm(), 1e-10);
 }
 
