@@ -1,5 +1,7 @@
 // `gproj weingarten`: Weingarten surfaces on B-splines (003).
+#include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -10,6 +12,7 @@
 
 #include "apps/commands.h"
 #include "problems/weingarten.h"
+#include "problems/weingarten_paneling.h"
 
 namespace gproj {
 namespace {
@@ -18,6 +21,10 @@ struct WeingartenArgs {
   std::string input, report, solver = "gp";
   WeingartenFiles files;
   WeingartenSettings settings;
+  std::vector<int> panel_grid;          // --panels NU,NV
+  std::vector<double> panel_tolerance;  // --panel-tolerance GAP,KINK
+  PanelSettings panels;
+  std::string panel_picture, seam_histograms;
 };
 
 // The optional outputs: option, path, help.
@@ -31,12 +38,29 @@ std::vector<Output> Outputs(WeingartenArgs* a) {
           {"--diagram", &a->files.diagram, "Curvature diagram before/after (.svg)"},
           {"--curvature", &a->files.curvature, "H, K per sample before/after (.csv)"},
           {"--surface-mesh", &a->files.surface_mesh, "The result sampled as a quad mesh"},
-          {"--picture", &a->files.picture, "A shaded picture of the result (.svg)"}};
+          {"--picture", &a->files.picture, "A shaded picture of the result (.svg)"},
+          {"--panel-picture", &a->panel_picture,
+           "With --panels: the result's panels, one colour per mold (.svg)"},
+          {"--seam-histograms", &a->seam_histograms,
+           "With --panels: gaps and kinks at the seams, input against result (.svg)"}};
 }
 
 // The options from the preset and the overrides; the input; every output path checked.
 WeingartenOptions Prepare(WeingartenArgs* args, BSplineSurface* input) {
   const WeingartenOptions options = args->settings.ToOptions();
+  if (!args->panel_grid.empty()) {
+    args->panels.panels_u = args->panel_grid[0];
+    args->panels.panels_v = args->panel_grid[1];
+  }
+  if (!args->panel_tolerance.empty()) {
+    args->panels.max_gap = args->panel_tolerance[0];
+    args->panels.max_kink_deg = args->panel_tolerance[1];
+  }
+  if (!args->panels.enabled() && (!args->panel_tolerance.empty() || !args->panel_picture.empty() ||
+                                  !args->seam_histograms.empty()))
+    throw InputError(
+        "--panel-tolerance, --panel-picture and --seam-histograms need --panels NU,NV");
+  args->panels.Validate();
   std::vector<OutputPath> outputs = {{"--output", args->files.output}};
   for (const Output& o : Outputs(args))
     outputs.push_back({o.option, *o.path, o.path == &args->files.surface_mesh});
@@ -71,17 +95,42 @@ int RunWeingartenCommand(WeingartenArgs args) try {
   } catch (const InputError& e) {  // a property of the surface read from the input
     throw InputError(args.input + ": " + e.what());
   }
+  std::optional<PanelComparison> panels;
+  if (!run.report.failed && args.panels.enabled()) {
+    std::printf("gproj weingarten: paneling the input and the result (%d x %d panels)...\n",
+                args.panels.panels_u, args.panels.panels_v);
+    std::fflush(stdout);
+    panels = ComparePaneling(input, run.result, args.panels);
+  }
   nlohmann::json report = WeingartenReportJson(options, run);
+  if (panels) report["panels"] = PanelsJson(*panels);
   report.update(
       {{"input", args.input}, {"output", args.files.output}, {"preset", args.settings.preset}});
   OutputFiles files;
   if (!run.report.failed) AddWeingartenFiles(run, args.files, &files);
+  if (panels && !args.panel_picture.empty())
+    files.AddText(args.panel_picture, PanelPictureSvg(run.result, panels->final));
+  if (panels && !args.seam_histograms.empty())
+    files.AddText(args.seam_histograms, SeamHistogramsSvg(*panels));
   if (!run.report.failed && !args.report.empty()) files.AddText(args.report, report.dump(2) + "\n");
   files.Commit();
   if (!run.report.failed) std::printf("%s", SummarizeWeingartenRun(run).c_str());
+  if (panels) std::printf("%s", SummarizePanels(*panels).c_str());
   const WeingartenFiles& f = args.files;
-  return ConcludeRun("weingarten", run.report, options.target_measure(), options.tolerance,
-                     {f.output, args.report, f.diagram, f.curvature, f.surface_mesh, f.picture});
+  const int code =
+      ConcludeRun("weingarten", run.report, options.target_measure(), options.tolerance,
+                  {f.output, args.report, f.diagram, f.curvature, f.surface_mesh, f.picture,
+                   args.panel_picture, args.seam_histograms});
+  if (code == kExitOk && run.folds()) {
+    // A folded surface is not a result, whatever its misalignment.
+    std::fprintf(stderr,
+                 "gproj weingarten: the result folds: neighbouring normals turn by %.0f deg near "
+                 "(u, v) = (%.4g, %.4g); the result was written, exit code %d\n",
+                 std::acos(std::max(-1.0, run.normals_after.min_cosine)) * 180.0 / M_PI,
+                 run.normals_after.u, run.normals_after.v, kExitNotConverged);
+    return kExitNotConverged;
+  }
+  return code;
 } catch (const InputError& e) {
   std::cerr << "gproj weingarten: " << e.what() << "\n";
   return kExitInputError;
@@ -158,6 +207,23 @@ void RegisterWeingartenCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--molds", args->settings.molds,
                   "Cluster the samples into at most this many molds in the (H, sqrt K) plane")
       ->check(Within(0, 1000000));
+  cmd->add_option("--panels", args->panel_grid,
+                  "Panel the input and the result: NU,NV panels over the parameter domain, "
+                  "molds by clustering in the (H, sqrt K) plane, one cubic per mold (003 §4.2); "
+                  "the report's panels object compares their gaps and kinks")
+      ->check(Within(1, 1000))
+      ->delimiter(',')
+      ->expected(2);
+  cmd->add_option("--mold-factor", args->panels.mold_factor,
+                  "With --panels: k sqrt N molds for N panels")
+      ->check(Within(0.01, 1000.0))
+      ->capture_default_str();
+  cmd->add_option("--panel-tolerance", args->panel_tolerance,
+                  "With --panels: GAP,KINK (input units, degrees): report the molds the input and "
+                  "the result need for max gap <= GAP and max kink <= KINK")
+      ->check(Positive())
+      ->delimiter(',')
+      ->expected(2);
   for (const Output& o : Outputs(args.get())) cmd->add_option(o.option, *o.path, o.help);
   cmd->callback([args, exit_code]() { *exit_code = RunWeingartenCommand(*args); });
 }

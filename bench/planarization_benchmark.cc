@@ -10,6 +10,8 @@
 //   BM_PlanarizeToTolerance/n/s/e   a full solve to max planarity ≤ 10^-e (s = 0: gproj, 1: Ceres):
 //                                   seconds, iterations, time in numeric factorisations
 //                                   (over_factor), Ceres over gproj, peak memory per quad
+//   BM_PlanarizeLocalGlobal/n/e     gproj against a prefactored local–global planariser
+//                                   (ShapeOp's method) to max planarity ≤ 10^-e
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -21,6 +23,7 @@
 
 #include "dense_rate.h"
 #include "geometry/quad_grid.h"
+#include "local_global_planarizer.h"
 #include "problems/pq_planarization.h"
 #include "solver_counters.h"
 
@@ -161,6 +164,88 @@ void BM_PlanarizeToTolerance(benchmark::State& state) {
 BENCHMARK(BM_PlanarizeToTolerance)
     ->ArgsProduct({{51, 101, 201}, {0, 1}, {6}})
     ->Args({201, 0, 9})
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond);
+
+// Max vertex displacement from `reference` / the reference's bounding-box diagonal.
+double MaxDisplacement(const Eigen::MatrixX3d& v, const Eigen::MatrixX3d& reference) {
+  const double diagonal = (reference.colwise().maxCoeff() - reference.colwise().minCoeff()).norm();
+  return (v - reference).rowwise().norm().maxCoeff() / diagonal;
+}
+
+// gproj against a prefactored local–global planariser (ShapeOp's method; see
+// bench/local_global_planarizer.h) on the same noisy grid, to the same max planarity 10^-e.
+// The local–global run tries the closeness weights 10^-1 … 10^-6 (relative to the planes'
+// weight 1), each until the planarity is reached, stops improving (less than 1% over 500
+// iterations) or takes longer than the best weight so far or than 30 s; the fastest weight that
+// reaches the tolerance is reported: lg_seconds (set-up, factorisation and iterations),
+// lg_iterations, lg_closeness, lg_displacement, next to gproj's whole run (gproj_seconds,
+// gproj_displacement) and lg_over_gproj. When no weight reaches it, lg_reached = 0,
+// lg_lowest_planarity is the best any weight reached and lg_over_gproj is 30 s over gproj's
+// time.
+void BM_PlanarizeLocalGlobal(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const int exponent = static_cast<int>(state.range(1));
+  const double tolerance = std::pow(10.0, -exponent);
+  const PolyMesh mesh = NoisyGrid(n);
+  Eigen::MatrixX3d reference(mesh.n_vertices(), 3);
+  for (const auto vh : mesh.vertices())
+    reference.row(vh.idx()) << mesh.point(vh)[0], mesh.point(vh)[1], mesh.point(vh)[2];
+  constexpr double kBudget = 30.0;
+  double gproj_seconds = 0.0, gproj_reached = 0.0, gproj_displacement = 0.0;
+  double best = kBudget, best_weight = 0.0, best_iterations = 0.0, best_displacement = 0.0;
+  double lowest = HUGE_VAL;  // the lowest planarity any weight reached
+  bool reached = false;
+  for (auto _ : state) {
+    PQPlanarizationOptions options;
+    options.tolerance = tolerance;
+    auto t = Clock::now();
+    PQPlanarization pq(mesh, options);
+    pq.Run();
+    gproj_seconds = Since(t);
+    const PlanarityMeasures m = pq.Measures();
+    gproj_reached = m.max_planarity;
+    gproj_displacement = m.max_displacement;
+    for (double weight : {1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6}) {
+      t = Clock::now();
+      LocalGlobalPlanarizer lg(mesh, weight);
+      double planarity = lg.MaxPlanarity(), checkpoint = planarity;
+      int iterations = 0;
+      while (planarity > tolerance && Since(t) < best) {
+        lg.Iterate();
+        planarity = lg.MaxPlanarity();
+        if (++iterations % 500 == 0) {
+          if (planarity > 0.99 * checkpoint) break;  // stalled at this weight's fixed point
+          checkpoint = planarity;
+        }
+      }
+      const double seconds = Since(t);
+      lowest = std::min(lowest, planarity);
+      if (planarity <= tolerance && seconds < best) {
+        reached = true;
+        best = seconds;
+        best_weight = weight;
+        best_iterations = iterations;
+        best_displacement = MaxDisplacement(lg.vertices(), reference);
+      }
+    }
+  }
+  state.counters["quads"] = static_cast<double>(mesh.n_faces());
+  state.counters["gproj_seconds"] = gproj_seconds;
+  state.counters["gproj_max_planarity"] = gproj_reached;
+  state.counters["gproj_displacement"] = gproj_displacement;
+  state.counters["lg_reached"] = reached ? 1.0 : 0.0;
+  state.counters["lg_seconds"] = best;
+  state.counters["lg_iterations"] = best_iterations;
+  state.counters["lg_closeness"] = best_weight;
+  state.counters["lg_displacement"] = best_displacement;
+  state.counters["lg_over_gproj"] = best / gproj_seconds;
+  state.counters["lg_lowest_planarity"] = lowest;
+  if (gproj_reached > tolerance) state.SkipWithError("gproj did not reach the tolerance");
+  state.SetLabel(reached ? "local-global reached" : "local-global not within 30 s");
+}
+BENCHMARK(BM_PlanarizeLocalGlobal)
+    ->ArgsProduct({{41, 81}, {3, 6}})
     ->Iterations(1)
     ->Unit(benchmark::kSecond);
 

@@ -549,6 +549,33 @@ BSplineSurface InsertKnotsUniform(const BSplineSurface& surface, int per_span) {
   return out;
 }
 
+NormalTurn MinNormalCosine(const BSplineSurface& surface, int m, int n) {
+  NormalTurn turn;
+  std::vector<Eigen::Vector3d> normal(static_cast<size_t>(m + 1) * (n + 1));
+  auto at = [&](int a, int b) -> Eigen::Vector3d& { return normal[a * (n + 1) + b]; };
+  auto u = [&](int a) { return surface.u_min() + (surface.u_max() - surface.u_min()) * a / m; };
+  auto v = [&](int b) { return surface.v_min() + (surface.v_max() - surface.v_min()) * b / n; };
+  for (int a = 0; a <= m; ++a)
+    for (int b = 0; b <= n; ++b) {
+      const auto d = surface.Derivatives(u(a), v(b));
+      const Eigen::Vector3d cross = d[1].cross(d[2]);
+      const double length = cross.norm();
+      at(a, b) = length > 0.0 && std::isfinite(length) ? Eigen::Vector3d(cross / length)
+                                                       : Eigen::Vector3d::Zero();
+    }
+  auto compare = [&](int a, int b, int a2, int b2) {
+    const Eigen::Vector3d &p = at(a, b), &q = at(a2, b2);
+    const double c = p.isZero() || q.isZero() ? -1.0 : p.dot(q);
+    if (c < turn.min_cosine) turn = {c, u(a), v(b)};
+  };
+  for (int a = 0; a <= m; ++a)
+    for (int b = 0; b <= n; ++b) {
+      if (a < m) compare(a, b, a + 1, b);
+      if (b < n) compare(a, b, a, b + 1);
+    }
+  return turn;
+}
+
 PolyMesh ControlNetMesh(const BSplineSurface& surface) {
   PolyMesh mesh;
   std::vector<PolyMesh::VertexHandle> v;

@@ -96,6 +96,16 @@ BSplineSurface MakeWavyBSpline(int nu, int nv, int degree, double amplitude = 1.
 // (x, y, 0.15 (1 − x²)(1 − y²)(1 + 0.3 x + 0.2 y²)) on a uniform grid.
 BSplineSurface MakeBumpBSpline(int n, int degree = 4);
 
+// Regularity: the smallest cosine between the unit normals (s_u × s_v) at neighbouring points
+// of an (m + 1) × (n + 1) grid over the domain, and where (the parameters of the pair's first
+// point). A regular surface sampled densely stays near 1; a fold, where s_u × s_v turns through
+// zero, shows as a cosine near −1. A point where s_u × s_v = 0 counts as −1.
+struct NormalTurn {
+  double min_cosine = 1.0;
+  double u = 0.0, v = 0.0;
+};
+NormalTurn MinNormalCosine(const BSplineSurface& surface, int m, int n);
+
 // The control net as a quad mesh (vertex i * nv + j), for pictures and `gproj` outputs.
 PolyMesh ControlNetMesh(const BSplineSurface& surface);
 // The surface sampled on an (m + 1) × (n + 1) grid of the domain as a quad mesh.

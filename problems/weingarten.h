@@ -276,6 +276,10 @@ struct WeingartenRun {
   bool with_relation = false;
   // The clustering of the result's (and the input's) samples into molds, when asked.
   std::optional<MoldClustering> molds, molds_before;
+  // Regularity of the input and the result on a grid 4× as dense as the samples: a fold (the
+  // normal turning over between neighbouring points) makes the result unusable.
+  NormalTurn normals_before, normals_after;
+  bool folds() const { return normals_after.min_cosine < 0.0; }
 };
 
 // Optimises `input` with `options` (guided projection, or Ceres' LM with `use_ceres`), then

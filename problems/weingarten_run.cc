@@ -102,6 +102,8 @@ WeingartenRun RunWeingarten(const BSplineSurface& input, const WeingartenOptions
                    std::abs(run.relation[0] * run.after.h[s] + run.relation[1] * run.after.k[s] +
                             run.relation[2]));
   run.report.final = ToNamedValues(run.after, with_relation);
+  run.normals_before = MinNormalCosine(input, 4 * run.su, 4 * run.sv);
+  run.normals_after = MinNormalCosine(current, 4 * run.su, 4 * run.sv);
   if (molds > 0) {
     run.molds = ClusterMolds(run.after.h, run.after.k, molds);
     run.molds_before = ClusterMolds(run.before.h, run.before.k, molds);
@@ -130,6 +132,9 @@ nlohmann::json WeingartenReportJson(const WeingartenOptions& options, const Wein
     extra["worst_sample"] = {run.after.worst_sample / run.sv, run.after.worst_sample % run.sv};
   if (run.with_relation)
     extra["linear_relation"] = {run.relation[0], run.relation[1], run.relation[2]};
+  extra["min_normal_cosine"] = {{"initial", run.normals_before.min_cosine},
+                                {"final", run.normals_after.min_cosine},
+                                {"final_at", {run.normals_after.u, run.normals_after.v}}};
   if (run.molds)
     extra["molds"] = {{"clusters", run.molds->num_clusters},
                       {"cells_per_axis", run.molds->cells_per_axis},
@@ -172,6 +177,10 @@ std::string SummarizeWeingartenRun(const WeingartenRun& run) {
                        "%.3e\n",
                        run.relation[0], run.relation[1], run.relation[2],
                        after.max_relation_residual);
+  n += std::snprintf(text + n, sizeof(text) - n,
+                     "regularity: min cosine of neighbouring normals %.4f -> %.4f%s\n",
+                     run.normals_before.min_cosine, run.normals_after.min_cosine,
+                     run.folds() ? " (the result folds)" : "");
   if (run.molds)
     std::snprintf(text + n, sizeof(text) - n,
                   "molds: %d clusters in the (H, sqrt K) plane (grid %d x %d)\n",

@@ -37,6 +37,47 @@ TEST_F(WeingartenCommandTest, OptimisesTheShippedSurfaceAndWritesEveryOutput) {
   EXPECT_EQ(again.exit_code, 0) << again.err;
 }
 
+// 003 §4.2 on the shipped surface: the input and the result paneled alike (8 × 8 panels,
+// 3 √64 = 24 molds asked), the report's panels object, the two pictures, the log lines.
+TEST_F(WeingartenCommandTest, PanelsTheInputAndTheResultAlike) {
+  const CommandRun r =
+      Gproj("weingarten " + Data("freeform_10x10.json") + " -o " + Path("out.json") +
+            " --max-iterations 6 --panels 8,8 --panel-tolerance 0.05,5 --panel-picture " +
+            Path("panels.svg") + " --seam-histograms " + Path("seams.svg") + " --report " +
+            Path("r.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const nlohmann::json panels = Json("r.json")["panels"];
+  EXPECT_EQ(panels["count"].get<int>(), 64);
+  EXPECT_EQ(panels["molds"].get<int>(), 24);
+  for (const char* which : {"initial", "final"}) {
+    const nlohmann::json& p = panels[which];
+    EXPECT_LE(p["molds"].get<int>(), 24) << which;
+    EXPECT_GT(p["mean_gap"].get<double>(), 0.0) << which;
+    EXPECT_LE(p["mean_gap"].get<double>(), p["max_gap"].get<double>()) << which;
+    EXPECT_LE(p["mean_kink_deg"].get<double>(), p["max_kink_deg"].get<double>()) << which;
+    EXPECT_TRUE(p.contains("molds_needed")) << which;
+  }
+  EXPECT_EQ(panels["tolerance"]["max_gap"].get<double>(), 0.05);
+  EXPECT_NE(r.out.find("panels: 64 (8 x 8), 24 molds asked"), std::string::npos) << r.out;
+  const std::string picture = Slurp(dir_ / "panels.svg");
+  EXPECT_NE(picture.find("one colour per mold"), std::string::npos);
+  const std::string seams = Slurp(dir_ / "seams.svg");
+  EXPECT_NE(seams.find("Gaps at the seams"), std::string::npos);
+  EXPECT_NE(seams.find("Kinks at the seams"), std::string::npos);
+}
+
+TEST_F(WeingartenCommandTest, PanelOptionsAreChecked) {
+  const std::string base =
+      "weingarten " + Data("freeform_10x10.json") + " -o " + Path("out.json") + " ";
+  const CommandRun lone = Gproj(base + "--panel-tolerance 0.1,2");
+  EXPECT_EQ(lone.exit_code, 1);
+  EXPECT_NE(lone.err.find("need --panels NU,NV"), std::string::npos) << lone.err;
+  const CommandRun zero = Gproj(base + "--panels 0,4");
+  EXPECT_EQ(zero.exit_code, 1);
+  EXPECT_NE(zero.err.find("--panels"), std::string::npos) << zero.err;
+  EXPECT_FALSE(Exists("out.json"));
+}
+
 // Without --tolerance the preset's iterations are the ask (exit 0); with one, the run stops as
 // soon as it is met, and one it cannot meet gives exit 3 with the result and report written.
 // A property of the surface found while sampling it is an input error that names the file.

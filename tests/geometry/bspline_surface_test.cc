@@ -546,3 +546,24 @@ TEST(BSplineSurfaceTest, MeshesAreQuadGridsInGridOrder) {
 
 }  // namespace
 }  // namespace gproj
+
+namespace gproj {
+namespace {
+
+// A cuspidal edge (u², v, u³), u ∈ [−1, 1]: s_u = 0 along u = 0 and the normal turns over
+// there; a smooth wavy surface keeps neighbouring normals together.
+TEST(MinNormalCosineTest, FindsTheFoldOfACuspidalEdge) {
+  const BSplineSurface cusp = FitBSpline(
+      [](double u, double v) {
+        const double t = 2.0 * u - 1.0;
+        return Eigen::Vector3d(t * t, v, t * t * t);
+      },
+      3, 3, 6, 4);
+  const NormalTurn turn = MinNormalCosine(cusp, 41, 10);
+  EXPECT_LT(turn.min_cosine, -0.9);
+  EXPECT_NEAR(turn.u, 0.5, 0.03);  // the fold is at u = ½ of the parameter domain
+  EXPECT_GT(MinNormalCosine(MakeWavyBSpline(10, 10, 4), 40, 40).min_cosine, 0.99);
+}
+
+}  // namespace
+}  // namespace gproj
