@@ -63,7 +63,8 @@ echo "== Weingarten surface: align the curvature isolines of a shipped bi-degree
 ./build/gproj weingarten examples/data/freeform_10x10.json -o out/demo/weingarten.json \
   --diagram out/demo/weingarten_diagram.svg --curvature out/demo/weingarten_curvature.csv \
   --molds 20 --picture out/demo/weingarten.svg --surface-mesh out/demo/weingarten_surface.obj \
-  --report out/demo/weingarten_report.json
+  --panels 10,10 --panel-tolerance 0.003,3 --panel-picture out/demo/weingarten_panels.svg \
+  --seam-histograms out/demo/weingarten_seams.svg --report out/demo/weingarten_report.json
 echo
 echo "== Fig. 3 of 003: the shipped bump, boundary held, driven to constant mean curvature H = -0.1 =="
 ./build/gproj weingarten examples/data/bump_14x14.json -o out/demo/cmc.json --preset fig3 \
@@ -85,5 +86,7 @@ echo "  combescure.obj, .svg          parallel mesh of the surface of revolution
 echo "  weingarten.json               the optimised B-spline (SPEC §4 JSON); weingarten_surface.obj sampled"
 echo "  weingarten_diagram.svg        curvature diagram (H, K) before and after: a curve after"
 echo "  weingarten_curvature.csv      H, K per sample before/after and the mold of each sample"
+echo "  weingarten_panels.svg         the result paneled 10 x 10, one colour per mold (003 §4.2)"
+echo "  weingarten_seams.svg          gaps and kinks at the seams, input against result (Fig. 13e)"
 echo "  cmc.json, cmc_surface.obj     the bump made CMC (H = -0.1); cmc_diagram.svg: H, K before/after"
 echo "  m_revolution.obj, .svg        the surface of revolution inverted (000 §5.1; still circular)"
