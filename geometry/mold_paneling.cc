@@ -1,9 +1,16 @@
 #include "geometry/mold_paneling.h"
 
+#include <ceres/jet.h>
+#include <ceres/rotation.h>
+
 #include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 #include <string>
+#include <utility>
 
 #include "geometry/curvature_diagram.h"
 #include "geometry/input_error.h"
@@ -177,33 +184,272 @@ double PlacePanel(const DesignPanel& panel, const MoldShape& mold, Eigen::Isomet
   return std::sqrt(error / panel.points.size());
 }
 
-SeamMeasures MeasureSeams(const std::vector<DesignPanel>& panels, const Paneling& p, int m) {
+// A seam sample: the same design point as point ia of panel a and point ib of panel b.
+struct SeamSample {
+  int a, b, ia, ib;
+};
+
+// Every seam sample of the panel grid: m per side shared by two panels.
+std::vector<SeamSample> SeamSamples(int nu, int nv, int m) {
+  std::vector<SeamSample> samples;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const int a = i * nv + j;
+      for (int t = 0; t < m; ++t) {
+        // The side u = u_{i+1} of panel (i, j) is the side u = u_{i+1} of panel (i + 1, j).
+        if (i + 1 < nu) samples.push_back({a, a + nv, (m - 1) * m + t, t});
+        if (j + 1 < nv) samples.push_back({a, a + 1, t * m + m - 1, t * m});
+      }
+    }
+  return samples;
+}
+
+SeamMeasures MeasureSeams(const std::vector<DesignPanel>& panels, const Paneling& p,
+                          const std::vector<SeamSample>& samples) {
   SeamMeasures s;
-  auto seam = [&](int a, int b, auto point_index) {
-    for (int t = 0; t < m; ++t) {
-      const Eigen::Vector3d& x = panels[a].points[point_index(t, true)];
-      Eigen::Vector3d pa, na, pb, nb;
-      MoldPoint(p.molds[p.mold_of_panel[a]], p.placement[a], x, &pa, &na);
-      MoldPoint(p.molds[p.mold_of_panel[b]], p.placement[b],
-                panels[b].points[point_index(t, false)], &pb, &nb);
-      s.gaps.push_back((pa - pb).norm());
-      s.kinks_deg.push_back(std::atan2(na.cross(nb).norm(), na.dot(nb)) * 180.0 / kPi);
-    }
-  };
-  for (int i = 0; i < p.panels_u; ++i)
-    for (int j = 0; j < p.panels_v; ++j) {
-      const int a = i * p.panels_v + j;
-      // The side u = u_{i+1} of panel (i, j) is the side u = u_{i+1} of panel (i + 1, j).
-      if (i + 1 < p.panels_u)
-        seam(a, a + p.panels_v, [m](int t, bool first) { return first ? (m - 1) * m + t : t; });
-      if (j + 1 < p.panels_v)
-        seam(a, a + 1, [m](int t, bool first) { return first ? t * m + m - 1 : t * m; });
-    }
+  for (const SeamSample& q : samples) {
+    Eigen::Vector3d pa, na, pb, nb;
+    MoldPoint(p.molds[p.mold_of_panel[q.a]], p.placement[q.a], panels[q.a].points[q.ia], &pa, &na);
+    MoldPoint(p.molds[p.mold_of_panel[q.b]], p.placement[q.b], panels[q.b].points[q.ib], &pb, &nb);
+    s.gaps.push_back((pa - pb).norm());
+    s.kinks_deg.push_back(std::atan2(na.cross(nb).norm(), na.dot(nb)) * 180.0 / kPi);
+  }
   for (double g : s.gaps) s.mean_gap += g / s.gaps.size(), s.max_gap = std::max(s.max_gap, g);
   for (double k : s.kinks_deg)
     s.mean_kink_deg += k / s.kinks_deg.size(), s.max_kink_deg = std::max(s.max_kink_deg, k);
   return s;
 }
+
+// The mold point above a design point and the mold's unit normal there (world), for a panel
+// placed by base ∘ M(θ), M(θ) the rotation by the angle-axis θ[0..2] and then the translation
+// θ[3..5]; q0 = base⁻¹ x is the design point in the base frame. T a scalar or a Jet over θ.
+template <typename T>
+void MovedMoldPoint(const MoldShape& mold, const Eigen::Isometry3d& base, const T* theta,
+                    const Eigen::Vector3d& q0, Eigen::Matrix<T, 3, 1>* point,
+                    Eigen::Matrix<T, 3, 1>* normal) {
+  const T minus[3] = {-theta[0], -theta[1], -theta[2]};
+  const T shifted[3] = {T(q0.x()) - theta[3], T(q0.y()) - theta[4], T(q0.z()) - theta[5]};
+  T q[3];
+  ceres::AngleAxisRotatePoint(minus, shifted, q);  // M⁻¹ q0
+  const T xs = q[0] / mold.scale, ys = q[1] / mold.scale;
+  const T xx = xs * xs, yy = ys * ys;
+  const T values[10] = {T(1), xs, ys, xx, xs * ys, yy, xx * xs, xx * ys, xs * yy, yy * ys};
+  const T dx[10] = {T(0), T(1), T(0), 2.0 * xs, ys, T(0), 3.0 * xx, 2.0 * xs * ys, yy, T(0)};
+  const T dy[10] = {T(0), T(0), T(1), T(0), xs, 2.0 * ys, T(0), xx, 2.0 * xs * ys, 3.0 * yy};
+  T f(0), fx(0), fy(0);
+  for (int i = 0; i < 10; ++i) {
+    if (mold.coefficients[i] == 0.0) continue;
+    f += mold.coefficients[i] * values[i];
+    fx += mold.coefficients[i] * dx[i] / mold.scale;
+    fy += mold.coefficients[i] * dy[i] / mold.scale;
+  }
+  const T on_mold[3] = {q[0], q[1], f};
+  T moved[3];
+  ceres::AngleAxisRotatePoint(theta, on_mold, moved);
+  const T length = sqrt(fx * fx + fy * fy + T(1));
+  const T slope[3] = {-fx / length, -fy / length, T(1) / length};
+  T turned[3];
+  ceres::AngleAxisRotatePoint(theta, slope, turned);
+  const Eigen::Matrix3d r = base.linear();
+  for (int k = 0; k < 3; ++k) {
+    (*point)[k] = T(base.translation()[k]);
+    (*normal)[k] = T(0);
+    for (int l = 0; l < 3; ++l) {
+      (*point)[k] += r(k, l) * (moved[l] + theta[3 + l]);
+      (*normal)[k] += r(k, l) * turned[l];
+    }
+  }
+}
+
+// Seam positioning: every panel's placement corrected by a rigid motion so that the gaps and
+// kinks (normal differences) at the seam samples are small, each panel held to its design panel
+// by its fit residuals at nine points (weight `hold`). Gaps and fit residuals are measured in
+// units of the mean gap before positioning, kinks in units of the mean kink, so that neither
+// is traded for the other whatever the surface's size. Levenberg–Marquardt on the 6 parameters
+// per panel; the normal equations have one 6 × 6 block per panel and per pair of panels sharing
+// a seam, accumulated in place (the pattern is built once).
+class SeamPositioning {
+ public:
+  SeamPositioning(const std::vector<DesignPanel>& panels, const std::vector<SeamSample>& seams,
+                  const SeamMeasures& fitted, double hold, Paneling* p)
+      : panels_(panels),
+        seams_(seams),
+        hold_weight_(hold),
+        p_(p),
+        n_(static_cast<int>(panels.size())) {
+    double size = 0.0;
+    for (const DesignPanel& d : panels) size += d.size / n_;
+    const double gap = fitted.mean_gap > 1e-9 * size ? fitted.mean_gap : 1e-3 * size;
+    const double kink = std::max(fitted.mean_kink_deg * kPi / 180.0, 1e-6);
+    inv_gap_ = gap > 0.0 ? 1.0 / gap : 1.0;
+    inv_kink_ = 1.0 / kink;
+    // Blocks: (a, a) for every panel, then (a, b), a < b, for every pair sharing a seam.
+    for (int a = 0; a < n_; ++a) block_of_[{a, a}] = a;
+    for (const SeamSample& s : seams) {
+      const auto key = std::minmax(s.a, s.b);
+      if (!block_of_.count(key)) block_of_.emplace(key, static_cast<int>(block_of_.size()));
+    }
+    blocks_.resize(block_of_.size());
+    seam_block_.reserve(seams.size());
+    for (const SeamSample& s : seams) {
+      seam_block_.push_back(block_of_.at(std::minmax(s.a, s.b)));
+      seam_q0_.push_back({p->placement[s.a].inverse() * panels[s.a].points[s.ia],
+                          p->placement[s.b].inverse() * panels[s.b].points[s.ib]});
+    }
+    // Held at a 3 × 3 subset of its points (corners, side midpoints, centre).
+    hold_begin_.push_back(0);
+    for (int a = 0; a < n_; ++a) {
+      const int m = static_cast<int>(std::lround(std::sqrt(panels[a].points.size())));
+      const Eigen::Isometry3d inverse = p->placement[a].inverse();
+      for (int i : {0, (m - 1) / 2, m - 1})
+        for (int j : {0, (m - 1) / 2, m - 1}) {
+          const Eigen::Vector3d& x = panels[a].points[i * m + j];
+          hold_.push_back({x, inverse * x});
+        }
+      hold_begin_.push_back(static_cast<int>(hold_.size()));
+    }
+  }
+
+  // Runs at most `iterations` LM steps and applies the motions to the placements.
+  void Run(int iterations) {
+    Eigen::VectorXd theta = Eigen::VectorXd::Zero(6 * n_), gradient(6 * n_);
+    double energy = Energy(theta), lambda = 1e-4;
+    Eigen::SparseMatrix<double> normal(6 * n_, 6 * n_);
+    std::vector<Eigen::Triplet<double>> triplets;
+    for (int it = 0; it < iterations; ++it) {
+      Linearize(theta, &gradient);
+      triplets.clear();
+      for (const auto& [key, index] : block_of_)
+        for (int i = 0; i < 6; ++i)
+          for (int j = 0; j < 6; ++j) {
+            triplets.emplace_back(6 * key.first + i, 6 * key.second + j, blocks_[index](i, j));
+            if (key.first != key.second)
+              triplets.emplace_back(6 * key.second + j, 6 * key.first + i, blocks_[index](i, j));
+          }
+      normal.setFromTriplets(triplets.begin(), triplets.end());
+      const double level = normal.diagonal().maxCoeff() + 1e-300;
+      bool improved = false;
+      for (int attempt = 0; attempt < 8 && !improved; ++attempt, lambda *= 10.0) {
+        Eigen::SparseMatrix<double> damped = normal;
+        for (int k = 0; k < 6 * n_; ++k) damped.coeffRef(k, k) += lambda * level;
+        const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(damped);
+        if (ldlt.info() != Eigen::Success) continue;
+        const Eigen::VectorXd trial = theta - ldlt.solve(gradient);
+        const double trial_energy = trial.allFinite() ? Energy(trial) : HUGE_VAL;
+        if (trial_energy < energy) {
+          improved = true;
+          theta = trial;
+          lambda = std::max(lambda / 100.0, 1e-12);
+          const bool converged = energy - trial_energy < 1e-10 * energy;
+          energy = trial_energy;
+          if (converged) it = iterations;
+        }
+      }
+      if (!improved) break;
+    }
+    for (int a = 0; a < n_; ++a) {
+      const Eigen::Vector3d omega = theta.segment<3>(6 * a);
+      Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+      if (omega.norm() > 0.0)
+        motion.linear() = Eigen::AngleAxisd(omega.norm(), omega.normalized()).toRotationMatrix();
+      motion.translation() = theta.segment<3>(6 * a + 3);
+      p_->placement[a] = p_->placement[a] * motion;
+    }
+  }
+
+ private:
+  using Jet = ceres::Jet<double, 12>;  // both panels of a seam sample
+  using HoldJet = ceres::Jet<double, 6>;
+
+  // The 6 residuals of seam sample k (gap over L, normal difference) for motions ta, tb.
+  template <typename T>
+  void SeamResiduals(int k, const T* ta, const T* tb, T* r) const {
+    const SeamSample& s = seams_[k];
+    Eigen::Matrix<T, 3, 1> pa, na, pb, nb;
+    MovedMoldPoint(p_->molds[p_->mold_of_panel[s.a]], p_->placement[s.a], ta, seam_q0_[k][0], &pa,
+                   &na);
+    MovedMoldPoint(p_->molds[p_->mold_of_panel[s.b]], p_->placement[s.b], tb, seam_q0_[k][1], &pb,
+                   &nb);
+    for (int k = 0; k < 3; ++k) {
+      r[k] = (pa[k] - pb[k]) * inv_gap_;
+      r[3 + k] = (na[k] - nb[k]) * inv_kink_;
+    }
+  }
+  // The hold residual of hold point h of panel a: the design point's distance from the mold
+  // along the mold's normal (the fit residual), weighted.
+  template <typename T>
+  T HoldResidual(int a, int h, const T* ta) const {
+    const Eigen::Vector3d& x = hold_[h][0];
+    Eigen::Matrix<T, 3, 1> point, normal;
+    MovedMoldPoint(p_->molds[p_->mold_of_panel[a]], p_->placement[a], ta, hold_[h][1], &point,
+                   &normal);
+    T r(0.0);
+    for (int k = 0; k < 3; ++k) r += (point[k] - x[k]) * normal[k];
+    return r * (hold_weight_ * inv_gap_);
+  }
+
+  double Energy(const Eigen::VectorXd& t) const {
+    double energy = 0.0, r[6];
+    for (size_t k = 0; k < seams_.size(); ++k) {
+      SeamResiduals(k, t.data() + 6 * seams_[k].a, t.data() + 6 * seams_[k].b, r);
+      for (double v : r) energy += v * v;
+    }
+    for (int a = 0; a < n_; ++a)
+      for (int h = hold_begin_[a]; h < hold_begin_[a + 1]; ++h) {
+        const double v = HoldResidual(a, h, t.data() + 6 * a);
+        energy += v * v;
+      }
+    return energy;
+  }
+
+  // Fills the blocks of JᵀJ and the gradient Jᵀr at t.
+  void Linearize(const Eigen::VectorXd& t, Eigen::VectorXd* gradient) {
+    for (auto& b : blocks_) b.setZero();
+    gradient->setZero();
+    Jet ta[6], tb[6];
+    for (size_t k = 0; k < seams_.size(); ++k) {
+      const SeamSample& s = seams_[k];
+      for (int c = 0; c < 6; ++c) {
+        ta[c] = Jet(t[6 * s.a + c], c);
+        tb[c] = Jet(t[6 * s.b + c], 6 + c);
+      }
+      Jet r[6];
+      SeamResiduals(static_cast<int>(k), ta, tb, r);
+      const bool a_first = s.a < s.b;
+      for (const Jet& v : r) {
+        const Eigen::Matrix<double, 6, 1> ja = v.v.head<6>(), jb = v.v.tail<6>();
+        gradient->segment<6>(6 * s.a) += ja * v.a;
+        gradient->segment<6>(6 * s.b) += jb * v.a;
+        blocks_[s.a] += ja * ja.transpose();
+        blocks_[s.b] += jb * jb.transpose();
+        blocks_[seam_block_[k]] += a_first ? Eigen::Matrix<double, 6, 6>(ja * jb.transpose())
+                                           : Eigen::Matrix<double, 6, 6>(jb * ja.transpose());
+      }
+    }
+    HoldJet th[6];
+    for (int a = 0; a < n_; ++a) {
+      for (int c = 0; c < 6; ++c) th[c] = HoldJet(t[6 * a + c], c);
+      for (int h = hold_begin_[a]; h < hold_begin_[a + 1]; ++h) {
+        const HoldJet v = HoldResidual(a, h, th);
+        gradient->segment<6>(6 * a) += v.v * v.a;
+        blocks_[a] += v.v * v.v.transpose();
+      }
+    }
+  }
+
+  const std::vector<DesignPanel>& panels_;
+  const std::vector<SeamSample>& seams_;
+  double hold_weight_;
+  Paneling* p_;
+  int n_;
+  double inv_gap_ = 1.0, inv_kink_ = 1.0;
+  std::map<std::pair<int, int>, int> block_of_;
+  std::vector<Eigen::Matrix<double, 6, 6>> blocks_;
+  std::vector<int> seam_block_;
+  std::vector<std::array<Eigen::Vector3d, 2>> seam_q0_;  // per seam sample, in a's and b's base
+  std::vector<std::array<Eigen::Vector3d, 2>> hold_;     // design point x and its base-frame q0
+  std::vector<int> hold_begin_;                          // per panel, into hold_
+};
 
 }  // namespace
 
@@ -235,6 +481,10 @@ void PanelingOptions::Validate() const {
                      std::to_string(points_per_side) + ")");
   if (fit_rounds < 1)
     throw InputError("paneling: at least one fit round (got " + std::to_string(fit_rounds) + ")");
+  if (!(hold_weight >= 0.0) || !std::isfinite(hold_weight) || positioning_iterations < 0)
+    throw InputError(
+        "paneling: the hold weight must be finite and >= 0 and the positioning "
+        "iterations >= 0");
 }
 
 Paneling PanelSurface(const BSplineSurface& surface, const PanelingOptions& options) {
@@ -289,7 +539,12 @@ Paneling PanelSurface(const BSplineSurface& surface, const PanelingOptions& opti
     for (size_t i = 0; i < members.size(); ++i)
       PlacePanel(*members[i], p.molds[c], placements[i], 3);
   }
-  p.seams = MeasureSeams(panels, p, m);
+  const std::vector<SeamSample> seams = SeamSamples(nu, nv, m);
+  p.fitted_seams = MeasureSeams(panels, p, seams);
+  if (options.seam_positioning && panels.size() > 1)
+    SeamPositioning(panels, seams, p.fitted_seams, options.hold_weight, &p)
+        .Run(options.positioning_iterations);
+  p.seams = MeasureSeams(panels, p, seams);
   return p;
 }
 

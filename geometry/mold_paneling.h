@@ -14,6 +14,10 @@
 //     mold point above (or below) it in the mold frame. Along every seam between two panels the
 //     gap is the distance between the two panels' points of the same design point and the kink
 //     the angle between their mold normals there.
+//  5. The panels are positioned together: every placement is corrected by a rigid motion that
+//     lowers the gaps and kinks at the seams, each panel held to its design panel
+//     (Levenberg–Marquardt, sparse normal equations; "the panels cut from their mold and
+//     positioned to minimise gaps and kinks", Fig. 13c).
 // With as many molds as panels every panel is its own best cubic; with fewer, panels share a
 // shape and the seams open: the paper's claim is that a Weingarten surface needs fewer molds
 // for the same gaps and kinks than the freeform surface it came from.
@@ -44,6 +48,12 @@ struct PanelingOptions {
   int molds = 1;                   // clusters asked; ClusterMolds may use fewer
   int points_per_side = 7;         // fitting and seam points per panel side (≥ 3)
   int fit_rounds = 4;              // alternations of mold fit and panel placement (≥ 1)
+  // Seam positioning: after the fit, all placements are corrected together to close the gaps
+  // and kinks (normal differences) at the seams, each relative to its mean before positioning,
+  // each panel held to its design panel by its fit residuals with weight hold_weight.
+  bool seam_positioning = true;
+  double hold_weight = 0.3;
+  int positioning_iterations = 15;
 
   // Throws InputError naming the rule broken.
   void Validate() const;
@@ -63,8 +73,9 @@ struct Paneling {
   std::vector<MoldShape> molds;
   // Per panel: mold frame → world (the panel's placement).
   std::vector<Eigen::Isometry3d> placement;
-  std::vector<double> h, k;  // at each panel's centre
-  SeamMeasures seams;
+  std::vector<double> h, k;   // at each panel's centre
+  SeamMeasures seams;         // of the final placements
+  SeamMeasures fitted_seams;  // of the placements that fit each panel to its design panel
   int num_panels() const { return panels_u * panels_v; }
 };
 

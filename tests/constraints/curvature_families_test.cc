@@ -129,6 +129,41 @@ TEST(GeodesicParallelTest, GradientsMatchFiniteDifferences) {
                                          Random(4 * (kGeodesicAuxDim + kCurvatureDim), 8));
 }
 
+// 003 Lemma 2.1 and eq. 7: a distance function has ‖∇ₛψ‖² = 1. On the plane with the skewed
+// parametrisation s(u, v) = (u + v/2, 0.8 v, 0) (E = 1, F = ½, G = 0.89, Δ = 0.64), ψ = x =
+// u + v/2 is the distance to the y-axis: with ‖∇ψ‖² = 1 and the exact ψ_u², ψ_u ψ_v, ψ_v² the
+// gradient definitions vanish, neighbours' ψ given by central differences. §3.2.1 prints E and
+// G swapped, which gives (E ψ_u² − 2F ψ_u ψ_v + G ψ_v²) / Δ = 1.1289 instead.
+TEST(GeodesicParallelTest, DistanceFunctionHasUnitGradientByEquation7) {
+  const double E = 1.0, F = 0.5, G = 0.89, D = E * G - F * F, pu = 1.0, pv = 0.5, h = 0.1;
+  VariableLayout layout;
+  const int g = layout.AddBlock("g", 1, kGeodesicAuxDim);
+  const int forms = layout.AddBlock("forms", 1, kFormsDim);
+  const int c = layout.AddBlock("curvatures", 4, kCurvatureDim);
+  GeodesicAuxiliaries family;
+  family.AddSample(layout.Item(g, 0), layout.Item(forms, 0), layout.Item(c, 0), layout.Item(c, 1),
+                   layout.Item(c, 2), layout.Item(c, 3), 1.0 / (2 * h), 1.0 / (2 * h));
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(layout.num_variables());
+  double* gv = x.data() + layout.ItemOffset(layout.Item(g, 0));
+  for (int p = 0; p < 2; ++p) {  // ψ is both K and H
+    gv[3 * p] = pu * pu;
+    gv[3 * p + 1] = pu * pv;
+    gv[3 * p + 2] = pv * pv;
+  }
+  gv[kGradK] = gv[kGradH] = 1.0;
+  double* f = x.data() + layout.ItemOffset(layout.Item(forms, 0));
+  f[kE] = E, f[kF] = F, f[kG] = G, f[kDelta] = D;
+  const double neighbour[4] = {pu * h, -pu * h, pv * h, -pv * h};  // ψ at (a±1, b), (a, b±1)
+  for (int j = 0; j < 4; ++j)
+    for (int o : {kCurvatureK, kCurvatureH})
+      x[layout.ItemOffset(layout.Item(c, j)) + o] = neighbour[j];
+  family.Update(layout, x);
+  std::vector<double> phi(8), jac(8 * layout.num_variables());
+  family.EvaluateElement(0, x.data(), phi.data(), jac.data());
+  for (int r = 0; r < 8; ++r) EXPECT_NEAR(phi[r], 0.0, 1e-12) << "row " << r;
+  EXPECT_NEAR((E * pu * pu - 2 * F * pu * pv + G * pv * pv) / D, 1.1289, 1e-4);
+}
+
 TEST(LinearWeingartenTest, FitLineRecoversTheRelation) {
   std::vector<double> h, k;
   for (int i = 0; i < 20; ++i) {

@@ -56,7 +56,7 @@ TEST(MoldShapeTest, HeightAndSlopeOfTheCubic) {
 
 // Congruent panels share a mold: every panel of a cylinder (panels along its rulings) and every
 // panel of a sphere fits one mold, so with a single mold the seams stay closed; a freeform
-// surface with a single mold opens them by orders of magnitude more.
+// surface with a single mold opens them more than ten times as wide.
 TEST(PanelingTest, CongruentPanelsShareOneMoldWithClosedSeams) {
   for (const BSplineSurface& s : {Cylinder(), SphereCap()}) {
     const Paneling p = PanelSurface(s, Grid(6, 1));
@@ -65,8 +65,8 @@ TEST(PanelingTest, CongruentPanelsShareOneMoldWithClosedSeams) {
     EXPECT_LT(p.seams.max_kink_deg, 0.1);
   }
   const Paneling freeform = PanelSurface(MakeWavyBSpline(10, 10, 4), Grid(6, 1));
-  EXPECT_GT(freeform.seams.max_gap, 1e-2);
-  EXPECT_GT(freeform.seams.max_kink_deg, 2.0);
+  EXPECT_GT(freeform.seams.max_gap, 10 * 2e-4);
+  EXPECT_GT(freeform.seams.max_kink_deg, 10 * 0.1);
 }
 
 // The curvatures at the panel centres are the surface's: the cylinder has H = ±½, K = 0, the
@@ -99,8 +99,27 @@ TEST(PanelingTest, SeamsMoldsAndOneMoldPerPanel) {
   const Paneling one = PanelSurface(s, Grid(5, 1));
   const Paneling each = PanelSurface(s, Grid(5, 25));
   EXPECT_EQ(each.num_molds, 25);
-  EXPECT_LT(each.seams.max_gap, 0.2 * one.seams.max_gap);
-  EXPECT_LT(each.seams.max_kink_deg, 0.2 * one.seams.max_kink_deg);
+  EXPECT_LT(each.fitted_seams.max_gap, 0.2 * one.fitted_seams.max_gap);
+  EXPECT_LT(each.fitted_seams.max_kink_deg, 0.2 * one.fitted_seams.max_kink_deg);
+  EXPECT_LT(each.seams.mean_gap, 0.2 * one.seams.mean_gap);
+  EXPECT_LT(each.seams.mean_kink_deg, 0.2 * one.seams.mean_kink_deg);
+}
+
+// Positioning the panels together (Fig. 13c) closes the seams that fitting each panel to its
+// own design panel leaves: on a freeform surface with few molds the mean gap and kink fall, and
+// the panels stay close to the design surface.
+TEST(PanelingTest, SeamPositioningLowersGapsAndKinks) {
+  const BSplineSurface s = MakeWavyBSpline(10, 10, 4);
+  for (int molds : {4, 12}) {
+    const Paneling p = PanelSurface(s, Grid(8, molds));
+    EXPECT_LT(p.seams.mean_gap, 0.9 * p.fitted_seams.mean_gap) << molds;
+    EXPECT_LT(p.seams.mean_kink_deg, 0.8 * p.fitted_seams.mean_kink_deg) << molds;
+    PanelingOptions fixed = Grid(8, molds);
+    fixed.seam_positioning = false;
+    const Paneling unmoved = PanelSurface(s, fixed);
+    EXPECT_EQ(unmoved.seams.mean_gap, unmoved.fitted_seams.mean_gap);
+    EXPECT_DOUBLE_EQ(unmoved.fitted_seams.mean_gap, p.fitted_seams.mean_gap);
+  }
 }
 
 // The placed panel lies on the design surface up to the fit: every mold point of a panel's

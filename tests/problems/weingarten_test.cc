@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iterator>
+#include <string>
 
 #include "solver/ceres_adapter.h"
 
@@ -11,9 +13,12 @@ namespace {
 
 BSplineSurface Freeform(int nu, int nv, int degree = 4) { return MakeWavyBSpline(nu, nv, degree); }
 
-// 003 Table 2: the rows whose variable count is 3 × control points + 12 × samples (or 20 ×
-// samples with geodesic parallel isolines). The other rows (2, 6b–6e, 7, 10c) do not fit either
-// count and are left out (see the issue note).
+// 003 Table 2: the variable count is 3 × control points + 12 × samples (20 × samples with
+// geodesic parallel isolines). Rows 6b–6e and 10c fit it exactly with 8 more sample rows along u
+// than the table's sampling column (s_u + 8) × s_v, e.g. 6b: 3·80 + 12·28·16 = 5616; row 7 fits
+// it with 12 × 16 samples (2 per control point, as every other row) where the table prints
+// 18 × 24; row 2 is one more than 3·18² + 12·36² = 16524 (the table prints 16525). Every row but
+// row 2 is pinned here with the sampling its count implies.
 TEST(WeingartenTest, VariableCountsOfTable2) {
   struct Row {
     const char* figure;
@@ -23,9 +28,12 @@ TEST(WeingartenTest, VariableCountsOfTable2) {
   const Row rows[] = {
       {"1", 14, 14, 4, 28, 28, 9996, false},      {"3", 25, 25, 4, 50, 50, 31875, false},
       {"4b", 20, 18, 4, 40, 36, 18360, false},    {"4c", 16, 10, 5, 32, 20, 13280, true},
-      {"8b", 16, 20, 3, 48, 60, 35520, false},    {"8c", 16, 20, 4, 48, 60, 35520, false},
-      {"9b", 8, 10, 4, 16, 20, 4080, false},      {"9c", 8, 10, 4, 16, 20, 6640, true},
-      {"10a", 35, 12, 4, 70, 24, 21420, false},   {"10b", 40, 12, 4, 80, 24, 24480, false},
+      {"6e", 25, 18, 4, 50 + 8, 36, 26406, false}, {"6b", 10, 8, 4, 20 + 8, 16, 5616, false},
+      {"6c", 14, 10, 4, 28 + 8, 20, 9060, false}, {"6d", 18, 14, 4, 36 + 8, 28, 15540, false},
+      {"7", 6, 8, 4, 12, 16, 2448, false},        {"8b", 16, 20, 3, 48, 60, 35520, false},
+      {"8c", 16, 20, 4, 48, 60, 35520, false},    {"9b", 8, 10, 4, 16, 20, 4080, false},
+      {"9c", 8, 10, 4, 16, 20, 6640, true},       {"10a", 35, 12, 4, 70, 24, 21420, false},
+      {"10b", 40, 12, 4, 80, 24, 24480, false},   {"10c", 40, 15, 4, 80 + 8, 30, 33480, false},
       {"13top", 16, 20, 4, 32, 40, 16320, false}, {"13bot", 20, 30, 4, 40, 60, 30600, false},
       {"12", 10, 10, 4, 20, 20, 5100, false}};
   for (const Row& r : rows) {
@@ -35,6 +43,34 @@ TEST(WeingartenTest, VariableCountsOfTable2) {
     const WeingartenProblem problem(Freeform(r.nu, r.nv, r.degree), o);
     EXPECT_EQ(problem.num_variables(), r.variables) << "Fig. " << r.figure;
     EXPECT_EQ(WeingartenVariableCount(r.nu, r.nv, r.su, r.sv, r.geodesic), r.variables);
+  }
+  EXPECT_EQ(WeingartenVariableCount(18, 18, 36, 36, false) + 1, 16525);  // row 2
+}
+
+// 003 Table 1: the weights of every preset, with ω_f = 0.2 and ε = 0.001 throughout except
+// fig3's ε, the floor of its adaptive damping (1e-4; README, "Fixed relations").
+TEST(WeingartenTest, PresetsCarryTheWeightsOfTable1) {
+  struct Row {
+    const char* preset;
+    double al, bs, ln, gp, cl, sh;
+  };
+  const Row rows[] = {{"fig1", 0.1, 0, 0, 0, 0.1, 0},        {"fig2b", 0.1, 0, 0, 0, 0.1, 0},
+                      {"fig2c", 0, 10, 0, 0, 0.1, 0},        {"fig2d", 0, 0, 1, 0, 0.1, 0},
+                      {"fig3", 0, 0, 1, 0, 0.001, 0.001},    {"fig4b", 0.1, 0, 0, 0, 0.001, 0.01},
+                      {"fig4c", 0.1, 0, 0, 0.2, 0.001, 0.01}, {"fig9b", 0.1, 0, 0, 0, 0.1, 0},
+                      {"fig9c", 0.1, 0, 0, 0.05, 0.1, 0},    {"fig10", 0.1, 0, 0, 0.01, 0.05, 0.001}};
+  ASSERT_EQ(std::size(rows), WeingartenPresetNames().size());
+  for (const Row& r : rows) {
+    const WeingartenOptions o = WeingartenPreset(r.preset);
+    EXPECT_EQ(o.alignment_weight, r.al) << r.preset;
+    EXPECT_EQ(o.bspline_relation_weight, r.bs) << r.preset;
+    EXPECT_EQ(o.linear_relation_weight, r.ln) << r.preset;
+    EXPECT_EQ(o.geodesic_parallel_weight, r.gp) << r.preset;
+    EXPECT_EQ(o.closeness_weight, r.cl) << r.preset;
+    EXPECT_EQ(o.shape_weight, r.sh) << r.preset;
+    EXPECT_EQ(o.solver.fairness_weight, 0.2) << r.preset;
+    EXPECT_EQ(o.solver.epsilon, std::string(r.preset) == "fig3" ? 1e-4 : 1e-3) << r.preset;
+    EXPECT_EQ(o.target_mean_curvature, 5.0) << r.preset;
   }
 }
 
