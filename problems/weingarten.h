@@ -261,6 +261,18 @@ struct WeingartenLevel {
   double misalignment = 0.0;  // of the level's result
 };
 
+// The result measured between the samples: on a check grid twice as dense (its points fall
+// between the samples), the misalignment and, with a relation, its max residual inside and
+// within 5% of the parameter domain's boundary (input units).
+struct WeingartenDenseCheck {
+  int su = 0, sv = 0;
+  double misalignment = 0.0;
+  double max_relation_interior = 0.0, max_relation_boundary = 0.0;
+};
+WeingartenDenseCheck DenseCheck(const BSplineSurface& surface, const BSplineSurface& reference,
+                                int su, int sv, const Eigen::Vector3d& relation,
+                                bool with_relation);
+
 // A whole Weingarten run: the levels, every iterate, the result and its measures.
 struct WeingartenRun {
   // The run as one report: report.history holds every level's records in order, initial the
@@ -279,6 +291,7 @@ struct WeingartenRun {
   // Regularity of the input and the result on a grid 4× as dense as the samples: a fold (the
   // normal turning over between neighbouring points) makes the result unusable.
   NormalTurn normals_before, normals_after;
+  WeingartenDenseCheck dense;  // the result between the samples
   bool folds() const { return normals_after.min_cosine < 0.0; }
 };
 

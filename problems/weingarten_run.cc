@@ -56,6 +56,29 @@ WeingartenFootprint WeingartenMemoryEstimate(const BSplineSurface& input,
   return f;
 }
 
+WeingartenDenseCheck DenseCheck(const BSplineSurface& surface, const BSplineSurface& reference,
+                                int su, int sv, const Eigen::Vector3d& relation,
+                                bool with_relation) {
+  WeingartenDenseCheck d;
+  d.su = su;
+  d.sv = sv;
+  const WeingartenMeasures m = MeasureWeingarten(surface, reference, su, sv);
+  d.misalignment = m.misalignment;
+  if (!with_relation) return d;
+  const SampleMaps maps = MakeSampleMaps(surface, su, sv);
+  const double du = surface.u_max() - surface.u_min(), dv = surface.v_max() - surface.v_min();
+  for (int a = 0; a < su; ++a)
+    for (int b = 0; b < sv; ++b) {
+      const int s = maps.Index(a, b);
+      const double r = std::abs(relation[0] * m.h[s] + relation[1] * m.k[s] + relation[2]);
+      const double tu = (maps.u[a] - surface.u_min()) / du, tv = (maps.v[b] - surface.v_min()) / dv;
+      const bool near_boundary = std::min({tu, 1.0 - tu, tv, 1.0 - tv}) < 0.05;
+      double& worst = near_boundary ? d.max_relation_boundary : d.max_relation_interior;
+      worst = std::max(worst, r);
+    }
+  return d;
+}
+
 WeingartenRun RunWeingarten(const BSplineSurface& input, const WeingartenOptions& options,
                             bool use_ceres, int molds, const RunCallback& on_iteration,
                             const std::function<void(int, const WeingartenProblem&)>& on_level) {
@@ -102,6 +125,7 @@ WeingartenRun RunWeingarten(const BSplineSurface& input, const WeingartenOptions
                    std::abs(run.relation[0] * run.after.h[s] + run.relation[1] * run.after.k[s] +
                             run.relation[2]));
   run.report.final = ToNamedValues(run.after, with_relation);
+  run.dense = DenseCheck(current, input, 2 * run.su, 2 * run.sv, run.relation, with_relation);
   run.normals_before = MinNormalCosine(input, 4 * run.su, 4 * run.sv);
   run.normals_after = MinNormalCosine(current, 4 * run.su, 4 * run.sv);
   if (molds > 0) {
@@ -132,6 +156,13 @@ nlohmann::json WeingartenReportJson(const WeingartenOptions& options, const Wein
     extra["worst_sample"] = {run.after.worst_sample / run.sv, run.after.worst_sample % run.sv};
   if (run.with_relation)
     extra["linear_relation"] = {run.relation[0], run.relation[1], run.relation[2]};
+  nlohmann::json dense = {{"samples", {run.dense.su, run.dense.sv}},
+                          {"misalignment", run.dense.misalignment}};
+  if (run.with_relation) {
+    dense["max_relation_residual_interior"] = run.dense.max_relation_interior;
+    dense["max_relation_residual_boundary"] = run.dense.max_relation_boundary;
+  }
+  extra["dense_check"] = dense;
   extra["min_normal_cosine"] = {{"initial", run.normals_before.min_cosine},
                                 {"final", run.normals_after.min_cosine},
                                 {"final_at", {run.normals_after.u, run.normals_after.v}}};
@@ -163,7 +194,7 @@ std::string DescribeWeingartenLevel(int level, const WeingartenProblem& problem)
 std::string SummarizeWeingartenRun(const WeingartenRun& run) {
   const double before = ValueOf(run.report.initial, "misalignment");
   const WeingartenMeasures& after = run.after;
-  char text[1024];
+  char text[2048];
   int n = std::snprintf(
       text, sizeof(text),
       "misalignment %.4e -> %.4e (%.1fx lower), deviation max %.3e (sample %d, %d) / mean "
@@ -177,6 +208,14 @@ std::string SummarizeWeingartenRun(const WeingartenRun& run) {
                        "%.3e\n",
                        run.relation[0], run.relation[1], run.relation[2],
                        after.max_relation_residual);
+  n += std::snprintf(text + n, sizeof(text) - n,
+                     "between the samples (%d x %d check grid): misalignment %.4e", run.dense.su,
+                     run.dense.sv, run.dense.misalignment);
+  if (run.with_relation)
+    n += std::snprintf(text + n, sizeof(text) - n,
+                       ", max relation residual %.3e inside, %.3e within 5%% of the boundary",
+                       run.dense.max_relation_interior, run.dense.max_relation_boundary);
+  n += std::snprintf(text + n, sizeof(text) - n, "\n");
   n += std::snprintf(text + n, sizeof(text) - n,
                      "regularity: min cosine of neighbouring normals %.4f -> %.4f%s\n",
                      run.normals_before.min_cosine, run.normals_after.min_cosine,

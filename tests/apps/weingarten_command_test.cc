@@ -27,6 +27,11 @@ TEST_F(WeingartenCommandTest, OptimisesTheShippedSurfaceAndWritesEveryOutput) {
   EXPECT_LT(report["final"]["misalignment"].get<double>(),
             0.5 * report["initial"]["misalignment"].get<double>());
   EXPECT_LE(report["molds"]["clusters"].get<int>(), 12);
+  // Measured between the samples too, and checked for folds.
+  EXPECT_EQ(report["dense_check"]["samples"], nlohmann::json::array({40, 40}));
+  EXPECT_GT(report["dense_check"]["misalignment"].get<double>(), 0.0);
+  EXPECT_GT(report["min_normal_cosine"]["final"].get<double>(), 0.9);
+  EXPECT_NE(r.out.find("between the samples (40 x 40 check grid)"), std::string::npos) << r.out;
   EXPECT_EQ(report["history"].size(), 7u);
   EXPECT_NE(Slurp(dir_ / "d.svg").find("<svg"), std::string::npos);
   EXPECT_NE(Slurp(dir_ / "c.csv").find("H_before,K_before,H_after,K_after,mold"),

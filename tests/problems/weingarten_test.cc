@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <iterator>
 #include <string>
 
@@ -26,15 +27,15 @@ TEST(WeingartenTest, VariableCountsOfTable2) {
     bool geodesic;
   };
   const Row rows[] = {
-      {"1", 14, 14, 4, 28, 28, 9996, false},      {"3", 25, 25, 4, 50, 50, 31875, false},
-      {"4b", 20, 18, 4, 40, 36, 18360, false},    {"4c", 16, 10, 5, 32, 20, 13280, true},
+      {"1", 14, 14, 4, 28, 28, 9996, false},       {"3", 25, 25, 4, 50, 50, 31875, false},
+      {"4b", 20, 18, 4, 40, 36, 18360, false},     {"4c", 16, 10, 5, 32, 20, 13280, true},
       {"6e", 25, 18, 4, 50 + 8, 36, 26406, false}, {"6b", 10, 8, 4, 20 + 8, 16, 5616, false},
-      {"6c", 14, 10, 4, 28 + 8, 20, 9060, false}, {"6d", 18, 14, 4, 36 + 8, 28, 15540, false},
-      {"7", 6, 8, 4, 12, 16, 2448, false},        {"8b", 16, 20, 3, 48, 60, 35520, false},
-      {"8c", 16, 20, 4, 48, 60, 35520, false},    {"9b", 8, 10, 4, 16, 20, 4080, false},
-      {"9c", 8, 10, 4, 16, 20, 6640, true},       {"10a", 35, 12, 4, 70, 24, 21420, false},
-      {"10b", 40, 12, 4, 80, 24, 24480, false},   {"10c", 40, 15, 4, 80 + 8, 30, 33480, false},
-      {"13top", 16, 20, 4, 32, 40, 16320, false}, {"13bot", 20, 30, 4, 40, 60, 30600, false},
+      {"6c", 14, 10, 4, 28 + 8, 20, 9060, false},  {"6d", 18, 14, 4, 36 + 8, 28, 15540, false},
+      {"7", 6, 8, 4, 12, 16, 2448, false},         {"8b", 16, 20, 3, 48, 60, 35520, false},
+      {"8c", 16, 20, 4, 48, 60, 35520, false},     {"9b", 8, 10, 4, 16, 20, 4080, false},
+      {"9c", 8, 10, 4, 16, 20, 6640, true},        {"10a", 35, 12, 4, 70, 24, 21420, false},
+      {"10b", 40, 12, 4, 80, 24, 24480, false},    {"10c", 40, 15, 4, 80 + 8, 30, 33480, false},
+      {"13top", 16, 20, 4, 32, 40, 16320, false},  {"13bot", 20, 30, 4, 40, 60, 30600, false},
       {"12", 10, 10, 4, 20, 20, 5100, false}};
   for (const Row& r : rows) {
     WeingartenOptions o = WeingartenPreset(r.geodesic ? "fig4c" : "fig1");
@@ -54,11 +55,12 @@ TEST(WeingartenTest, PresetsCarryTheWeightsOfTable1) {
     const char* preset;
     double al, bs, ln, gp, cl, sh;
   };
-  const Row rows[] = {{"fig1", 0.1, 0, 0, 0, 0.1, 0},        {"fig2b", 0.1, 0, 0, 0, 0.1, 0},
-                      {"fig2c", 0, 10, 0, 0, 0.1, 0},        {"fig2d", 0, 0, 1, 0, 0.1, 0},
-                      {"fig3", 0, 0, 1, 0, 0.001, 0.001},    {"fig4b", 0.1, 0, 0, 0, 0.001, 0.01},
-                      {"fig4c", 0.1, 0, 0, 0.2, 0.001, 0.01}, {"fig9b", 0.1, 0, 0, 0, 0.1, 0},
-                      {"fig9c", 0.1, 0, 0, 0.05, 0.1, 0},    {"fig10", 0.1, 0, 0, 0.01, 0.05, 0.001}};
+  const Row rows[] = {
+      {"fig1", 0.1, 0, 0, 0, 0.1, 0},         {"fig2b", 0.1, 0, 0, 0, 0.1, 0},
+      {"fig2c", 0, 10, 0, 0, 0.1, 0},         {"fig2d", 0, 0, 1, 0, 0.1, 0},
+      {"fig3", 0, 0, 1, 0, 0.001, 0.001},     {"fig4b", 0.1, 0, 0, 0, 0.001, 0.01},
+      {"fig4c", 0.1, 0, 0, 0.2, 0.001, 0.01}, {"fig9b", 0.1, 0, 0, 0, 0.1, 0},
+      {"fig9c", 0.1, 0, 0, 0.05, 0.1, 0},     {"fig10", 0.1, 0, 0, 0.01, 0.05, 0.001}};
   ASSERT_EQ(std::size(rows), WeingartenPresetNames().size());
   for (const Row& r : rows) {
     const WeingartenOptions o = WeingartenPreset(r.preset);
@@ -225,6 +227,7 @@ WeingartenOptions Fig3Options(double a, double b, double c) {
 struct Fig3Case {
   const char* name;
   double a, b, c;
+  double dense_interior = 1.0, dense_boundary = 1.0;  // bounds of the relation between samples
 };
 
 class Fig3Test : public ::testing::TestWithParam<Fig3Case> {};
@@ -239,6 +242,16 @@ TEST_P(Fig3Test, FixedLinearRelationIsMetAtEverySample) {
   const WeingartenMeasures m = problem.Measures();
   EXPECT_GT(start, 0.05);
   EXPECT_LE(m.max_relation_residual, 1e-4) << "from " << start;
+  // Between the samples (a check grid twice as dense) the relation is looser, most near the
+  // held boundary (issue 14 keeps this open): measured, and held to its present size.
+  const WeingartenDenseCheck dense =
+      DenseCheck(problem.Result(), bump, 4 * n, 4 * n, problem.LinearRelation(), true);
+  std::printf("%s: samples %.2e, between them %.2e inside, %.2e near the boundary\n",
+              GetParam().name, m.max_relation_residual, dense.max_relation_interior,
+              dense.max_relation_boundary);
+  EXPECT_GT(dense.max_relation_interior, 0.0);
+  EXPECT_LT(dense.max_relation_interior, GetParam().dense_interior);
+  EXPECT_LT(dense.max_relation_boundary, GetParam().dense_boundary);
   // The boundary stays: the corners keep their place.
   const BSplineSurface result = problem.Result();
   for (int corner :
@@ -246,14 +259,13 @@ TEST_P(Fig3Test, FixedLinearRelationIsMetAtEverySample) {
     EXPECT_LT((result.control.row(corner) - bump.control.row(corner)).norm(), 1e-3);
 }
 
-INSTANTIATE_TEST_SUITE_P(Fig3, Fig3Test,
-                         ::testing::Values(Fig3Case{"Developable", 0.0, 1.0, 0.0},
-                                           Fig3Case{"Minimal", 1.0, 0.0, 0.0},
-                                           Fig3Case{"ConstantMeanCurvature005", 1.0, 0.0, 0.05},
-                                           Fig3Case{"ConstantMeanCurvature010", 1.0, 0.0, 0.1}),
-                         [](const ::testing::TestParamInfo<Fig3Case>& info) {
-                           return std::string(info.param.name);
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Fig3, Fig3Test,
+    ::testing::Values(Fig3Case{"Developable", 0.0, 1.0, 0.0, 1e-5, 1e-4},
+                      Fig3Case{"Minimal", 1.0, 0.0, 0.0, 1e-6, 1e-6},
+                      Fig3Case{"ConstantMeanCurvature005", 1.0, 0.0, 0.05, 1e-3, 2e-2},
+                      Fig3Case{"ConstantMeanCurvature010", 1.0, 0.0, 0.1, 2.5e-3, 3e-2}),
+    [](const ::testing::TestParamInfo<Fig3Case>& info) { return std::string(info.param.name); });
 
 // Why the fig3 preset uses projected steps: with the paper's ε = 1e-3, plain steps diverge on
 // the way to H = 0 (the factorisation fails), while projected steps reach it.
