@@ -2,6 +2,7 @@
 // Marionette meshes (002 §2–3): the plan view (x, y of every vertex) of a regular quad grid is
 // fixed and only heights are unknown, so quad planarity is linear in the heights (002 eq. 2):
 //   z_C = z_A + α (z_B − z_A) + β (z_D − z_A),  AC = α AB + β AD in the plan.
+// (002 eq. 2 as printed has the wrong sign on its (z_B − z_A) term; see README, Marionette.)
 // Planar height fields of an N × M-face grid form a vector space of dimension N + M + 1: the
 // heights along one row and one column of vertices (the guide curves) determine the rest.
 
@@ -48,7 +49,8 @@ Eigen::VectorXd LiftMarionette(const MarionettePlan& plan, const Eigen::VectorXd
                                const Eigen::VectorXd& column);
 
 // The (N + 1)(M + 1) × (N + M + 1) matrix of 002 eq. 10 that maps the guide heights
-// (row, then column without its first entry) to all heights.
+// (row, then column without its first entry) to all heights (eq. 10 prints the size
+// transposed).
 Eigen::MatrixXd MarionetteGuideMatrix(const MarionettePlan& plan);
 
 // The planarity rows (NM × (N + 1)(M + 1)) as a dense matrix: P z = 0 for planar lifts.
@@ -80,6 +82,8 @@ struct ClosedStrip {
 
 // Lift of a closed strip from the heights Z of the inner curve. Propagating around the strip
 // from z_0* (outer vertex 0) gives z_N* = V·Z + a z_0* (002 eq. 8); closing needs z_N* = z_0*.
+// a is the product of the factors each quad applies to z*_i, the reciprocals of 002 eq. 18's
+// a_i (Appendix A; a = 1 either way).
 //   a ≠ 1: z_0* = V·Z / (1 − a), the only closing lift; the inner heights are kept.
 //   a = 1 (|a − 1| ≤ tolerance, e.g. a plan with rotational symmetry): Z must satisfy V·Z = 0,
 //          so it is projected onto that hyperplane (N − 1 free heights), and z_0* is free.

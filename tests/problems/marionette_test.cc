@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 
+#include "constraints/marionette_planarity.h"
 #include "geometry/quad_grid.h"
 
 namespace gproj {
@@ -251,6 +252,73 @@ TEST(MarionetteClosedStripTest, RefusesDegenerateQuads) {
   ClosedStrip strip = Ring(8, 0.0);
   strip.outer[3] = strip.inner[3] + 0.5 * (strip.inner[4] - strip.inner[3]);
   EXPECT_THROW(LiftClosedStrip(strip, Eigen::VectorXd::Zero(8)), InputError);
+}
+
+double Det(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+// 002 Appendix A on a jittered ring (a generic plan, a ≠ 1). With A = P_k, B = P_{k+1},
+// C = P_k*, D = P_{k+1}* (inner and outer curves), the propagation z*_k → z*_{k+1} multiplies
+// z*_k by μ_k = det(AB, AD) / det(AB, AC), so a = ∏ μ_k (eq. 20). The paper's a_k (eq. 18) is
+// the reciprocal, det(AB, AC) / det(AB, AD): its product is 1 / a, which is 1 exactly when a
+// is (eq. 24 is unaffected). Since det(AB, AD) = det(AB, BD), μ_k = |BD| sin θ_B / (|AC| sin θ_A)
+// with θ_A the angle at A from AB to AC and θ_B the angle at B from AB to BD; the transverse
+// edges |AC| and |BD| telescope round the strip, leaving a = ∏ sin θ_B / sin θ_A (eq. 28's form).
+TEST(MarionetteAppendixATest, ClosingFactorIsAProductOfQuadRatiosAndOfSines) {
+  const int n = 24;
+  const ClosedStrip strip = Ring(n, 0.08);
+  const ClosedStripLift lift = LiftClosedStrip(strip, Eigen::VectorXd::Zero(n));
+  double ratios = 1.0, sines = 1.0, paper = 1.0;
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Vector2d a = strip.inner[k], b = strip.inner[(k + 1) % n], c = strip.outer[k],
+                          d = strip.outer[(k + 1) % n];
+    ratios *= Det(b - a, d - a) / Det(b - a, c - a);
+    paper *= Det(b - a, c - a) / Det(b - a, d - a);
+    const double sin_a = Det(b - a, c - a) / ((b - a).norm() * (c - a).norm());
+    const double sin_b = Det(b - a, d - b) / ((b - a).norm() * (d - b).norm());
+    sines *= sin_b / sin_a;
+  }
+  EXPECT_GT(std::abs(lift.a - 1.0), 1e-3);
+  EXPECT_NEAR(lift.a, ratios, 1e-12 * std::abs(ratios));
+  EXPECT_NEAR(lift.a, sines, 1e-12 * std::abs(sines));
+  EXPECT_NEAR(lift.a * paper, 1.0, 1e-12);
+}
+
+// Appendix A.4: an affine map of the plan keeps every ratio, hence a. Under x ↦ M x + t a 2D
+// determinant of two difference vectors is multiplied by det M (eq. 26 prints (det M)²).
+TEST(MarionetteAppendixATest, AffineMapsOfThePlanKeepTheClosingFactor) {
+  const int n = 16;
+  const ClosedStrip strip = Ring(n, 0.08);
+  Eigen::Matrix2d m;
+  m << 2.0, 0.5, 0.3, 1.2;  // det M = 2.25
+  const Eigen::Vector2d t(0.7, -1.3);
+  ClosedStrip mapped = strip;
+  for (auto* curve : {&mapped.inner, &mapped.outer})
+    for (Eigen::Vector2d& p : *curve) p = m * p + t;
+  Eigen::VectorXd z(n);
+  for (int i = 0; i < n; ++i) z[i] = 0.3 * std::sin(2 * M_PI * i / n);
+  const ClosedStripLift before = LiftClosedStrip(strip, z), after = LiftClosedStrip(mapped, z);
+  EXPECT_NEAR(after.a, before.a, 1e-12);
+  for (int i = 0; i < n; ++i) EXPECT_NEAR(after.outer_heights[i], before.outer_heights[i], 1e-12);
+  const Eigen::Vector2d x0 = strip.outer[3] - strip.inner[3], x1 = strip.inner[4] - strip.inner[3];
+  const Eigen::Vector2d y0 = mapped.outer[3] - mapped.inner[3],
+                        y1 = mapped.inner[4] - mapped.inner[3];
+  EXPECT_NEAR(Det(y0, y1), m.determinant() * Det(x0, x1), 1e-12);
+  EXPECT_GT(std::abs(Det(y0, y1) - m.determinant() * m.determinant() * Det(x0, x1)), 0.1);
+}
+
+// 002 eq. 2 as printed gives the plane z = x over the unit square the wrong height at C: its
+// (z_B − z_A) term carries d_DC / d_BD = −1 where −d_DC / d_BD = +1 belongs. gproj's
+// coefficients (AC = α AB + β AD) give z_C = 1.
+TEST(MarionetteAppendixATest, EquationTwoHasTheWrongSignOnItsSecondTerm) {
+  const Eigen::Vector2d a(0, 0), b(1, 0), c(1, 1), d(0, 1);
+  double alpha = 0.0, beta = 0.0;
+  ASSERT_TRUE(MarionettePlanarity::PlanCoefficients(a, b, c, d, &alpha, &beta));
+  const double za = 0.0, zb = 1.0, zd = 0.0;  // z = x
+  EXPECT_NEAR(za + alpha * (zb - za) + beta * (zd - za), 1.0, 1e-15);
+  const double d_bc = Det(b - a, c - a), d_bd = Det(b - a, d - a), d_dc = Det(d - a, c - a);
+  EXPECT_NEAR(za + d_bc / d_bd * (zd - za) + d_dc / d_bd * (zb - za), -1.0, 1e-15);
 }
 
 }  // namespace
