@@ -1,10 +1,14 @@
 // `gproj marionette`: planar-quad meshes over a fixed plan view (002), on the shared run layer.
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "apps/commands.h"
+#include "geometry/text_input.h"
 #include "problems/marionette_run.h"
 
 namespace gproj {
@@ -14,7 +18,28 @@ namespace {
 struct MarionetteArgs {
   std::string output, report;
   MarionetteRunOptions options;
+  std::vector<std::string> hold;  // --hold VERTEX:HEIGHT, ...
+  std::optional<double> volume, max_height;
 };
+
+// The hard constraints of the options: "VERTEX:HEIGHT" words, the volume and the max height.
+MarionetteConstraints Constraints(const MarionetteArgs& args) {
+  MarionetteConstraints c;
+  for (const std::string& word : args.hold) {
+    const size_t colon = word.find(':');
+    const std::string where = "--hold '" + word + "'";
+    if (colon == std::string::npos) throw InputError(where + ": give VERTEX:HEIGHT, e.g. 12:0.5");
+    const double vertex = ParseNumber(word.substr(0, colon), where);
+    if (vertex != std::floor(vertex) || vertex < 0 || vertex > 2e9)
+      throw InputError(where + ": the vertex must be an index >= 0");
+    c.heights.push_back({static_cast<int>(vertex), ParseNumber(word.substr(colon + 1), where)});
+  }
+  c.with_volume = args.volume.has_value();
+  c.volume = args.volume.value_or(0.0);
+  c.with_max_height = args.max_height.has_value();
+  c.max_height = args.max_height.value_or(0.0);
+  return c;
+}
 
 // Writes the mesh (unless the run failed) and the report; false (error printed) when it cannot.
 bool WriteOutputs(const MarionetteArgs& args, const MarionetteRun& run, const RunReport& report) {
@@ -37,13 +62,15 @@ bool WriteOutputs(const MarionetteArgs& args, const MarionetteRun& run, const Ru
 int RunMarionette(const MarionetteArgs& args) {
   std::unique_ptr<MarionetteRun> run;
   try {
-    const MarionetteRunOptions& o = args.options;
+    MarionetteRunOptions o = args.options;
     CheckOutputPaths({{"plan", o.plan},
                       {"--guides", o.guides},
                       {"--fit", o.fit},
+                      {"--fit-heights", o.fit_heights},
                       {"--closed-strip", o.closed_strip}},
                      {{"--output", args.output, true}, {"--report", args.report}});
-    run = MakeMarionetteRun(args.options);
+    o.constraints = Constraints(args);
+    run = MakeMarionetteRun(o);
   } catch (const InputError& e) {
     std::cerr << "gproj marionette: " << e.what() << "\n";
     return kExitInputError;
@@ -111,6 +138,20 @@ void RegisterMarionetteCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--fit", args->options.fit,
                   "Target mesh with the plan's vertex order: least-squares fit of its heights "
                   "(002 eq. 14) instead of guide curves (vertical grid plans)");
+  cmd->add_option("--fit-heights", args->options.fit_heights,
+                  "A partial target: lines 'VERTEX HEIGHT'; the least-squares fit follows only "
+                  "these vertices (they must determine the lift; --solver direct)");
+  cmd->add_option("--hold", args->hold,
+                  "Hard constraint of a fit (002 §3.3): VERTEX:HEIGHT, comma-separated; met "
+                  "exactly (KKT system, --solver direct)")
+      ->delimiter(',');
+  cmd->add_option("--volume", args->volume,
+                  "Hard constraint of a fit: the volume under the mesh over its plan (z = 0 as "
+                  "the base), met exactly")
+      ->check(Finite());
+  cmd->add_option("--max-height", args->max_height,
+                  "Hard constraint of a fit: no vertex above this height (active set)")
+      ->check(Finite());
   cmd->add_option("--solver", args->options.solver,
                   "direct: propagation (linear time) / normal equations of the fit; gp: guided "
                   "projection (one iteration when vertical, several for other projections; the "

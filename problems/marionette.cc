@@ -1,10 +1,13 @@
 #include "problems/marionette.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 
 #include "constraints/marionette_planarity.h"
 #include "constraints/scalar_target.h"
+#include "geometry/input_error.h"
 #include "geometry/quad_grid.h"
 #include "geometry/scale_free.h"
 #include "problems/panel_bounds.h"
@@ -267,6 +270,109 @@ PolyMesh ClosedStripMesh(const ClosedStrip& strip, const ClosedStripLift& lift) 
 Eigen::VectorXd FitMarionette(const MarionettePlan& plan, const Eigen::VectorXd& z0) {
   const Eigen::MatrixXd a = MarionetteGuideMatrix(plan);  // 002 eq. 14
   return a * (a.transpose() * a).ldlt().solve(a.transpose() * z0);
+}
+
+Eigen::RowVectorXd MarionetteVolumeRow(const MarionettePlan& plan) {
+  Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(plan.num_vertices());
+  double total = 0.0;
+  auto triangle = [&](int a, int b, int c) {
+    const Eigen::Vector2d ab = plan.xy[b] - plan.xy[a], ac = plan.xy[c] - plan.xy[a];
+    const double area = 0.5 * (ab.x() * ac.y() - ab.y() * ac.x());
+    total += area;
+    for (int v : {a, b, c}) row[v] += area / 3.0;
+  };
+  for (int i = 0; i < plan.rows; ++i)
+    for (int j = 0; j < plan.cols; ++j) {
+      const int a = plan.Vertex(i, j), b = plan.Vertex(i + 1, j), c = plan.Vertex(i + 1, j + 1),
+                d = plan.Vertex(i, j + 1);
+      triangle(a, b, c);
+      triangle(a, c, d);
+    }
+  return total < 0.0 ? Eigen::RowVectorXd(-row) : row;
+}
+
+Eigen::VectorXd FitMarionette(const MarionettePlan& plan, const Eigen::VectorXd& z0,
+                              const Eigen::VectorXd& weights,
+                              const MarionetteConstraints& constraints) {
+  const int n = plan.num_vertices();
+  if (z0.size() != n || weights.size() != n)
+    throw InputError("the fit needs one target height and one weight per vertex (" +
+                     std::to_string(n) + ")");
+  for (const auto& [v, z] : constraints.heights)
+    if (v < 0 || v >= n || !std::isfinite(z))
+      throw InputError("prescribed height at vertex " + std::to_string(v) +
+                       ": no such vertex or not finite (the plan has " + std::to_string(n) +
+                       " vertices)");
+  const Eigen::MatrixXd a = MarionetteGuideMatrix(plan);
+  const int g = static_cast<int>(a.cols());
+  const Eigen::MatrixXd h = a.transpose() * weights.asDiagonal() * a;
+  const Eigen::VectorXd b = a.transpose() * (weights.array() * z0.array()).matrix();
+  // Equality rows over z: the prescribed heights, the volume; then the active bounds.
+  std::vector<Eigen::RowVectorXd> rows;
+  std::vector<double> values;
+  for (const auto& [v, z] : constraints.heights) {
+    rows.push_back(a.row(v));
+    values.push_back(z);
+  }
+  if (constraints.with_volume) {
+    rows.push_back(MarionetteVolumeRow(plan) * a);
+    values.push_back(constraints.volume);
+  }
+  const int fixed = static_cast<int>(rows.size());
+  std::vector<int> active;  // vertices held at the max height
+  const double scale = 1.0 + z0.cwiseAbs().maxCoeff() + std::abs(constraints.max_height);
+  for (int round = 0; round <= 2 * n + 2; ++round) {
+    const int m = fixed + static_cast<int>(active.size());
+    Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(g + m, g + m);
+    Eigen::VectorXd rhs(g + m);
+    kkt.topLeftCorner(g, g) = h;
+    rhs.head(g) = b;
+    for (int r = 0; r < m; ++r) {
+      const Eigen::RowVectorXd row =
+          r < fixed ? rows[r] : Eigen::RowVectorXd(a.row(active[r - fixed]));
+      kkt.block(g + r, 0, 1, g) = row;
+      kkt.block(0, g + r, g, 1) = row.transpose();
+      rhs[g + r] = r < fixed ? values[r] : constraints.max_height;
+    }
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(kkt);
+    if (lu.rank() < g + m) {
+      if (round == 0 || active.empty())
+        throw InputError(
+            "the fit's targets and hard constraints do not determine the lift: " +
+            std::to_string(g + m - lu.rank()) + " of its " + std::to_string(g) +
+            " guide heights stay free, or constraints repeat each other (give targets at more "
+            "vertices or fewer constraints)");
+      throw InputError("the max height contradicts the prescribed heights or volume");
+    }
+    const Eigen::VectorXd solution = lu.solve(rhs);
+    if ((kkt * solution - rhs).norm() > 1e-8 * (rhs.norm() + 1.0))
+      throw InputError("the hard constraints contradict each other");
+    const Eigen::VectorXd z = a * solution.head(g);
+    if (!constraints.with_max_height) return z;
+    // Release the active bound with the most negative multiplier, else add the worst violation.
+    int leave = -1;
+    double most_negative = -1e-12 * scale;
+    for (size_t k = 0; k < active.size(); ++k)
+      if (solution[g + fixed + k] < most_negative) {
+        most_negative = solution[g + fixed + k];
+        leave = static_cast<int>(k);
+      }
+    if (leave >= 0) {
+      active.erase(active.begin() + leave);
+      continue;
+    }
+    int worst = -1;
+    double excess = 1e-12 * scale;
+    for (int v = 0; v < n; ++v)
+      if (z[v] - constraints.max_height > excess &&
+          std::find(active.begin(), active.end(), v) == active.end()) {
+        excess = z[v] - constraints.max_height;
+        worst = v;
+      }
+    if (worst < 0) return z;
+    active.push_back(worst);
+  }
+  throw InputError("the max height could not be met (the active set did not settle)");
 }
 
 }  // namespace gproj

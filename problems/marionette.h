@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "geometry/mesh_io.h"
@@ -73,6 +74,30 @@ SolverOptions MarionetteSolverOptions();
 // The least-squares fit of 002 eq. 14: the planar lift closest to the target heights z0 (one
 // per vertex), from the guide matrix.
 Eigen::VectorXd FitMarionette(const MarionettePlan& plan, const Eigen::VectorXd& z0);
+
+// Hard linear constraints of 002 §3.3, met exactly by a fit.
+struct MarionetteConstraints {
+  std::vector<std::pair<int, double>> heights;  // (vertex, prescribed height)
+  bool with_volume = false;
+  double volume = 0.0;  // ∫ z dA over the plan (exact for planar faces: z is affine on each)
+  bool with_max_height = false;
+  double max_height = 0.0;  // z_v ≤ max_height at every vertex
+  bool empty() const { return heights.empty() && !with_volume && !with_max_height; }
+};
+
+// ∫ z dA over the plan as a row over the heights (each planar face split into two triangles, on
+// which z is affine: area × mean of the three heights); the plan's orientation counts positive.
+Eigen::RowVectorXd MarionetteVolumeRow(const MarionettePlan& plan);
+
+// The weighted fit with hard constraints: min Σ_v w_v (z_v − z0_v)² over planar lifts
+// z = A z_p (002 eq. 12), w_v = 0 where no target is given (a partial target), subject to the
+// constraints, solved exactly by the KKT system of the guide heights; max height by an active
+// set (vertices at the bound join as equalities; one whose multiplier turns negative leaves).
+// Throws InputError when targets and constraints leave guide heights free, or contradict each
+// other or the bound.
+Eigen::VectorXd FitMarionette(const MarionettePlan& plan, const Eigen::VectorXd& z0,
+                              const Eigen::VectorXd& weights,
+                              const MarionetteConstraints& constraints);
 
 // A closed strip (002 §2.5): an inner and an outer closed polyline in the plan, N vertices each,
 // quads (P_i, Q_i, Q_{i+1}, P_{i+1}) with indices mod N.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "geometry/input_error.h"
 #include "problems/pq_planarization.h"
 
 namespace gproj {
@@ -68,7 +69,22 @@ NamedValues MarionetteGridProblem::MeasureAt(const Eigen::VectorXd& z) const {
   const PlanarityMeasures m = MeasurePlanarity(lifted, lifted);
   NamedValues values = {{"max_planarity", m.max_planarity}, {"mean_planarity", m.mean_planarity}};
   if (fit()) {
-    values.push_back({"rms_distance_to_target", std::sqrt((z - target_).squaredNorm() / z.size())});
+    if (!constrained()) {
+      values.push_back(
+          {"rms_distance_to_target", std::sqrt((z - target_).squaredNorm() / z.size())});
+      return values;
+    }
+    const Eigen::ArrayXd d = (z - target_).array() * weights_.array();
+    values.push_back(
+        {"rms_distance_to_target", std::sqrt(d.square().sum() / std::max(1.0, weights_.sum()))});
+    double error = 0.0;
+    for (const auto& [v, h] : constraints_.heights) error = std::max(error, std::abs(z[v] - h));
+    if (constraints_.with_volume)
+      error = std::max(error, std::abs(MarionetteVolumeRow(plan_).dot(z) - constraints_.volume) /
+                                  std::max(1.0, std::abs(constraints_.volume)));
+    if (constraints_.with_max_height)
+      error = std::max(error, z.maxCoeff() - constraints_.max_height);
+    values.push_back({"max_constraint_error", error});
     return values;
   }
   double error = 0.0;
@@ -82,11 +98,23 @@ NamedValues MarionetteGridProblem::MeasureAt(const Eigen::VectorXd& z) const {
 }
 
 bool MarionetteGridProblem::MeetsTolerance(const NamedValues& m) const {
+  if (constrained() && ValueOf(m, "max_constraint_error") >
+                           options_.tolerance * (1.0 + target_.cwiseAbs().maxCoeff()))
+    return false;
   return ValueOf(m, "max_planarity") <= options_.tolerance &&
          (fit() || ValueOf(m, "max_guide_error") <= options_.tolerance);
 }
 
+void MarionetteGridProblem::SetFitConstraints(const Eigen::VectorXd& weights,
+                                              const MarionetteConstraints& c) {
+  if (!fit() || weights.size() != plan_.num_vertices())
+    throw InputError("hard constraints and weights need a fit with one weight per vertex");
+  weights_ = weights;
+  constraints_ = c;
+}
+
 Eigen::VectorXd MarionetteGridProblem::DirectHeights() const {
+  if (constrained()) return FitMarionette(plan_, target_, weights_, constraints_);
   return fit() ? FitMarionette(plan_, target_) : LiftMarionette(plan_, row_, column_);
 }
 

@@ -28,7 +28,9 @@ struct MarionetteOptions {
 };
 
 // Measures (the report's keys): max_planarity, mean_planarity, and max_guide_error for a lift or
-// rms_distance_to_target for a fit. A lift meets the tolerance when planarity and guide error
+// rms_distance_to_target for a fit (over the vertices with a target), with hard constraints
+// also max_constraint_error (prescribed heights and max height in height units, the volume
+// relative to max(1, |V|)). A lift meets the tolerance when planarity and guide error
 // are within it. A fit is one least-squares solve that does not stop at the tolerance (x = 0 is
 // planar): StopsAtTolerance() is false and the tolerance judges the final planarity.
 // x (#V heights) starts at 0.
@@ -49,6 +51,10 @@ class MarionetteGridProblem : public GuidedProblem {
   bool StopsAtTolerance() const override { return !fit(); }
 
   bool fit() const { return target_.size() > 0; }
+  // A partial target (weight 0 where no height is given) and hard constraints for the direct
+  // fit (FitMarionette's KKT system); guided projection and Ceres take the full target only.
+  void SetFitConstraints(const Eigen::VectorXd& weights, const MarionetteConstraints& c);
+  bool constrained() const { return weights_.size() > 0; }
   const MarionettePlan& plan() const { return plan_; }
   // The direct solution: LiftMarionette's propagation, or the fit by 002 eq. 14 (#V heights).
   Eigen::VectorXd DirectHeights() const;
@@ -60,6 +66,8 @@ class MarionetteGridProblem : public GuidedProblem {
   PolyMesh mesh_;
   MarionettePlan plan_;
   Eigen::VectorXd row_, column_, target_;
+  Eigen::VectorXd weights_;  // empty: the full target, no constraints
+  MarionetteConstraints constraints_;
   MarionetteOptions options_;
   Problem problem_;
 };

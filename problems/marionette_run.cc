@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "geometry/quad_grid.h"
+#include "geometry/text_input.h"
 #include "problems/marionette_grid_problem.h"
 #include "problems/marionette_inputs.h"
 #include "problems/pq_planarization.h"
@@ -46,26 +47,59 @@ class GridRun : public MarionetteRun {
   explicit GridRun(const MarionetteRunOptions& options) : options_(options) {
     const PolyMesh mesh = PlanMesh(options);
     warning_ = CheckPlanView(mesh, options.plan, options.allow_folded_plan);
-    Eigen::VectorXd target;
-    if (!options.fit.empty() || options.fit_mesh) {
-      if (!options.row.empty() || !options.column.empty())
-        throw InputError("give either --fit or --row/--column, not both");
+    Eigen::VectorXd target, weights;
+    const bool full_target = !options.fit.empty() || options.fit_mesh.has_value();
+    const bool partial_target = !options.fit_heights.empty();
+    if (full_target && partial_target)
+      throw InputError("give either --fit or --fit-heights, not both");
+    if ((full_target || partial_target) && (!options.row.empty() || !options.column.empty()))
+      throw InputError("give either a target (--fit, --fit-heights) or --row/--column, not both");
+    if (full_target) {
       const PolyMesh fit = FitMesh(options);
       if (fit.n_vertices() != mesh.n_vertices())
         throw InputError(options.fit + ": the target has " + std::to_string(fit.n_vertices()) +
                          " vertices, the plan " + std::to_string(mesh.n_vertices()));
       target.resize(fit.n_vertices());
       for (auto v : fit.vertices()) target[v.idx()] = fit.point(v)[2];
+      if (!options.constraints.empty()) weights = Eigen::VectorXd::Ones(target.size());
+    } else if (partial_target) {
+      const int n = static_cast<int>(mesh.n_vertices());
+      target = weights = Eigen::VectorXd::Zero(n);
+      for (const TextLine& line : ReadTextLines(options.fit_heights)) {
+        const std::string where = TextPlace(options.fit_heights, line.number);
+        if (line.words.size() != 2)
+          throw InputError(where + ": a line is 'VERTEX HEIGHT' (got " +
+                           std::to_string(line.words.size()) + " words)");
+        const int v = ParseIndex(line.words[0], where, n, "vertex");
+        if (weights[v] > 0.0)
+          throw InputError(where + ": vertex " + std::to_string(v) + " is given twice");
+        target[v] = ParseNumber(line.words[1], where);
+        weights[v] = 1.0;
+      }
     } else if (options.row.empty() || options.column.empty()) {
       throw InputError(
-          "give the guide curves (--row and --column heights, or --guides) or a target (--fit)");
+          "give the guide curves (--row and --column heights, or --guides) or a target (--fit, "
+          "--fit-heights)");
     }
+    if (!options.constraints.empty() && !full_target && !partial_target)
+      throw InputError(
+          "--hold, --volume and --max-height constrain a fit (--fit or --fit-heights)");
+    if (weights.size() > 0 && options.solver != "direct")
+      throw InputError(
+          "a partial target (--fit-heights) and hard constraints (--hold, --volume, "
+          "--max-height) are solved exactly by the KKT system: use --solver direct");
     const auto vector = [](const std::vector<double>& v) {
       return Eigen::Map<const Eigen::VectorXd>(v.data(), v.size());
     };
     problem_ = std::make_unique<MarionetteGridProblem>(
         mesh, options.plan, vector(options.row), vector(options.column), target,
         MarionetteOptions{MarionetteSolverOptions(), options.lift.tolerance});
+    if (weights.size() > 0) {
+      problem_->SetFitConstraints(weights, options.constraints);
+      // Solved here, so that targets or constraints that do not determine the lift are an input
+      // error before anything runs.
+      constrained_heights_ = problem_->DirectHeights();
+    }
   }
 
   std::string Description() const override {
@@ -79,21 +113,40 @@ class GridRun : public MarionetteRun {
     if (options_.solver == "gp") return problem_->Run(callback);
     if (options_.solver == "ceres")
       return problem_->RunCeres(options_.lift.solver.max_iterations, callback);
-    return problem_->RunDirect(problem_->fit() ? "DIRECT: normal equations of the fit (002 eq. 14)"
-                                               : "DIRECT: propagation (002 eq. 2)",
-                               [this] { problem_->SetHeights(problem_->DirectHeights()); });
+    return problem_->RunDirect(
+        problem_->constrained() ? "DIRECT: KKT system of the constrained fit (002 §3.3)"
+        : problem_->fit()       ? "DIRECT: normal equations of the fit (002 eq. 14)"
+                                : "DIRECT: propagation (002 eq. 2)",
+        [this] {
+          problem_->SetHeights(constrained_heights_.size() > 0 ? constrained_heights_
+                                                               : problem_->DirectHeights());
+        });
   }
   PolyMesh Result() const override { return problem_->Result(); }
   nlohmann::json Facts() const override {
     const MarionettePlan& plan = problem_->plan();
-    return {{"input", options_.plan}, {"fit", options_.fit}, {"faces", plan.rows * plan.cols}};
+    nlohmann::json facts = {
+        {"input", options_.plan}, {"fit", options_.fit}, {"faces", plan.rows * plan.cols}};
+    if (!options_.fit_heights.empty()) facts["fit_heights"] = options_.fit_heights;
+    const MarionetteConstraints& c = options_.constraints;
+    if (!c.empty()) {
+      nlohmann::json held = nlohmann::json::array();
+      for (const auto& [v, z] : c.heights) held.push_back({v, z});
+      facts["hard_constraints"] = {
+          {"heights", held},
+          {"volume", c.with_volume ? nlohmann::json(c.volume) : nlohmann::json(nullptr)},
+          {"max_height",
+           c.with_max_height ? nlohmann::json(c.max_height) : nlohmann::json(nullptr)}};
+    }
+    return facts;
   }
   std::string ToleranceMeasure() const override { return "max_planarity"; }
 
  private:
   MarionetteRunOptions options_;
   std::unique_ptr<MarionetteGridProblem> problem_;
-  std::string warning_;  // a folded plan view lifted anyway
+  std::string warning_;                  // a folded plan view lifted anyway
+  Eigen::VectorXd constrained_heights_;  // the constrained or partial fit, solved up front
 };
 
 // The prescribed values of a mesh lift: from the guide file, or --row and --column on a grid.

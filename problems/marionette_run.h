@@ -25,11 +25,16 @@ namespace gproj {
 //   guides, or a projection      a plan of any connectivity lifted on the lines of the projection
 //   other than vertical          (MarionetteMeshProblem), guides from the file or row / column;
 //   otherwise                    a grid plan lifted from row and column, or fitted to the heights
-//                                of the mesh `fit` (MarionetteGridProblem).
+//                                of the mesh `fit` or of the vertices in `fit_heights`, with the
+//                                hard constraints if any (MarionetteGridProblem).
 struct MarionetteRunOptions {
-  std::string plan;          // plan view: a quad mesh file
-  std::string guides;        // guide file (ReadMarionetteGuides)
-  std::string fit;           // target mesh with the plan's vertex order
+  std::string plan;    // plan view: a quad mesh file
+  std::string guides;  // guide file (ReadMarionetteGuides)
+  std::string fit;     // target mesh with the plan's vertex order
+  // A partial target: lines "VERTEX HEIGHT" ('#' comments); the fit follows only these.
+  std::string fit_heights;
+  // Hard linear constraints of the fit (002 §3.3), met exactly (direct solver).
+  MarionetteConstraints constraints;
   std::string closed_strip;  // closed strip file (ReadClosedStrip) instead of a plan
   // The plan, the fit target and the guide file's text held in memory (a caller such as the
   // Python module): when set, each replaces reading its file, and `plan`, `fit`, `guides` are

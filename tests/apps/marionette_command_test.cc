@@ -230,5 +230,65 @@ TEST_F(MarionetteMeshCommandTest, ClosedStripRefusesBadLinesAndDegenerateQuads) 
                 "t.txt: a closed strip needs at least 3 vertex pairs, got 2");
 }
 
+// 002 §3.3 from the command line: a fit with hard constraints (a held height, the volume, a
+// max height) meets them exactly; a partial target (--fit-heights) along the two guide curves
+// reproduces the lift from them; constraints that leave the lift free or a solver that cannot
+// take them are refused before anything is written.
+TEST_F(MarionetteMeshCommandTest, FitsWithHardConstraintsAndPartialTargets) {
+  ASSERT_EQ(Gproj("grid -o " + Path("plan.obj") + " --nu 9 --nv 7 --noise 0.1").exit_code, 0);
+  ASSERT_EQ(Gproj("grid -o " + Path("target.obj") +
+                  " --nu 9 --nv 7 --noise 0.1 --a 0.8 --b -0.5 "
+                  "--wave 0.3")
+                .exit_code,
+            0);
+  const std::string plan = Path("plan.obj");
+  const Run fit = Marionette(plan + " --fit " + Path("target.obj") +
+                             " --hold 30:0.5,0:0 --volume 1.25 --max-height 0.55");
+  ASSERT_EQ(fit.exit_code, 0) << fit.err << fit.out;
+  const nlohmann::json report = Report();
+  EXPECT_LE(report["final"]["max_constraint_error"].get<double>(), 1e-12);
+  EXPECT_LE(report["final"]["max_planarity"].get<double>(), 1e-12);
+  EXPECT_EQ(report["hard_constraints"]["volume"].get<double>(), 1.25);
+  const auto v = Vertices("out.obj");
+  EXPECT_NEAR(v[30][2], 0.5, 1e-12);
+  EXPECT_NEAR(v[0][2], 0.0, 1e-12);
+  double top = -1e300;
+  for (const auto& p : v) top = std::max(top, p[2]);
+  EXPECT_LE(top, 0.55 + 1e-12);
+  EXPECT_NE(fit.out.find("KKT system of the constrained fit"), std::string::npos) << fit.out;
+
+  // Heights along row 0 and column 0 only (vertex (i, j) = i * 7 + j): the lift from them.
+  std::ofstream part(dir_ / "part.txt");
+  part << "# row 0 and column 0\n";
+  for (int j = 0; j < 7; ++j) part << j << " " << 0.1 * j << "\n";
+  for (int i = 1; i < 9; ++i) part << i * 7 << " " << 0.05 * i * i << "\n";
+  part.close();
+  const Run partial = Marionette(plan + " --fit-heights " + Path("part.txt"));
+  ASSERT_EQ(partial.exit_code, 0) << partial.err;
+  const auto lifted = Vertices("out.obj");
+  const Run lift = Gproj("marionette " + plan + " --row 0,0.1,0.2,0.3,0.4,0.5,0.6 --column " +
+                         "0,0.05,0.2,0.45,0.8,1.25,1.8,2.45,3.2 -o " + Path("lift.obj"));
+  ASSERT_EQ(lift.exit_code, 0) << lift.err;
+  const auto expected = Vertices("lift.obj");
+  ASSERT_EQ(lifted.size(), expected.size());
+  for (size_t k = 0; k < lifted.size(); ++k) EXPECT_NEAR(lifted[k][2], expected[k][2], 1e-10) << k;
+  fs::remove(dir_ / "out.obj");
+  fs::remove(dir_ / "r.json");
+
+  std::ofstream few(dir_ / "few.txt");
+  few << "0 0.1\n10 0.2\n";
+  few.close();
+  ExpectRefused(plan + " --fit-heights " + Path("few.txt"), "guide heights stay free");
+  ExpectRefused(plan + " --fit " + Path("target.obj") + " --hold 30:0.5 --solver gp",
+                "use --solver direct");
+  ExpectRefused(plan + " --row 0,0,0,0,0,0,0 --column 0,0,0,0,0,0,0,0,0 --volume 1",
+                "constrain a fit");
+  ExpectRefused(plan + " --fit " + Path("target.obj") + " --hold 3x:1", "--hold '3x:1'");
+  std::ofstream bad(dir_ / "bad.txt");
+  bad << "0 0.1\n99 0.2\n";
+  bad.close();
+  ExpectRefused(plan + " --fit-heights " + Path("bad.txt"), "bad.txt:2");
+}
+
 }  // namespace
 }  // namespace gproj

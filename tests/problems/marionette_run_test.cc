@@ -23,13 +23,18 @@ TEST(MarionetteRunTest, RefusesMissingOrConflictingInputs) {
   EXPECT_EQ(ErrorOf(options), "give a plan view (or --closed-strip FILE)");
   options.plan = kData + "marionette_plan_21x21.obj";
   EXPECT_EQ(ErrorOf(options),
-            "give the guide curves (--row and --column heights, or --guides) or a target (--fit)");
+            "give the guide curves (--row and --column heights, or --guides) or a target (--fit, "
+            "--fit-heights)");
   options.closed_strip = kData + "marionette_closed_strip.txt";
   EXPECT_EQ(ErrorOf(options), "give either a plan or --closed-strip, not both");
   options.closed_strip.clear();
   options.fit = kData + "marionette_plan_21x21.obj";
   options.row = {1, 2};
-  EXPECT_EQ(ErrorOf(options), "give either --fit or --row/--column, not both");
+  EXPECT_EQ(ErrorOf(options),
+            "give either a target (--fit, --fit-heights) or --row/--column, not both");
+  options.fit_heights = kData + "marionette_valence6_guides.txt";
+  EXPECT_EQ(ErrorOf(options), "give either --fit or --fit-heights, not both");
+  options.fit_heights.clear();
   options.fit.clear();
   options.guides = kData + "marionette_valence6_guides.txt";
   options.row = {1, 2};

@@ -6,8 +6,10 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <random>
+#include <string>
 
 #include "constraints/marionette_planarity.h"
+#include "geometry/input_error.h"
 #include "geometry/quad_grid.h"
 
 namespace gproj {
@@ -319,6 +321,109 @@ TEST(MarionetteAppendixATest, EquationTwoHasTheWrongSignOnItsSecondTerm) {
   EXPECT_NEAR(za + alpha * (zb - za) + beta * (zd - za), 1.0, 1e-15);
   const double d_bc = Det(b - a, c - a), d_bd = Det(b - a, d - a), d_dc = Det(d - a, c - a);
   EXPECT_NEAR(za + d_bc / d_bd * (zd - za) + d_dc / d_bd * (zb - za), -1.0, 1e-15);
+}
+
+// A target over a 10 × 8-face plan: a bump the planar lifts cannot follow exactly.
+Eigen::VectorXd Bump(const MarionettePlan& plan) {
+  Eigen::VectorXd z0(plan.num_vertices());
+  for (int v = 0; v < plan.num_vertices(); ++v) {
+    const Eigen::Vector2d p = plan.xy[v];
+    z0[v] = 0.8 * std::exp(-((p.x() - 0.2) * (p.x() - 0.2) + p.y() * p.y()) * 3.0) + 0.1 * p.x();
+  }
+  return z0;
+}
+
+// 002 §3.3: the volume row is exact for planar faces: z = c gives c × plan area, and z = x + 2y
+// over any plan gives ∫ (x + 2y) dA, here compared with the triangle-by-triangle integral.
+TEST(MarionetteConstraintsTest, VolumeRowIntegratesAffineHeightsExactly) {
+  const MarionettePlan plan = Plan(6, 5);
+  const Eigen::RowVectorXd row = MarionetteVolumeRow(plan);
+  double area = 0.0, moment = 0.0;
+  for (int i = 0; i < plan.rows; ++i)
+    for (int j = 0; j < plan.cols; ++j) {
+      const int quad[4] = {plan.Vertex(i, j), plan.Vertex(i + 1, j), plan.Vertex(i + 1, j + 1),
+                           plan.Vertex(i, j + 1)};
+      for (int t : {1, 2}) {
+        const Eigen::Vector2d a = plan.xy[quad[0]], b = plan.xy[quad[t]], c = plan.xy[quad[t + 1]];
+        const double s = 0.5 * ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+        const Eigen::Vector2d centroid = (a + b + c) / 3.0;
+        area += s;
+        moment += s * (centroid.x() + 2.0 * centroid.y());
+      }
+    }
+  if (area < 0) area = -area, moment = -moment;
+  Eigen::VectorXd z(plan.num_vertices());
+  z.setConstant(1.7);
+  EXPECT_NEAR(row.dot(z), 1.7 * area, 1e-12);
+  for (int v = 0; v < plan.num_vertices(); ++v) z[v] = plan.xy[v].x() + 2.0 * plan.xy[v].y();
+  EXPECT_NEAR(row.dot(z), moment, 1e-12);
+}
+
+// Hard constraints are met exactly and the lift stays planar; the fit pays for them (a larger
+// distance to the target than the unconstrained fit) and is the best under them: moving along
+// the lifts that keep the constraints does not lower the distance.
+TEST(MarionetteConstraintsTest, HeightsAndVolumeAreMetExactly) {
+  const MarionettePlan plan = Plan(10, 8);
+  const Eigen::VectorXd z0 = Bump(plan), w = Eigen::VectorXd::Ones(plan.num_vertices());
+  const Eigen::VectorXd free = FitMarionette(plan, z0);
+  MarionetteConstraints c;
+  c.heights = {{plan.Vertex(5, 4), 1.0}, {plan.Vertex(0, 0), -0.2}};
+  c.with_volume = true;
+  c.volume = 1.2 * MarionetteVolumeRow(plan).dot(free);
+  const Eigen::VectorXd z = FitMarionette(plan, z0, w, c);
+  EXPECT_NEAR(z[plan.Vertex(5, 4)], 1.0, 1e-12);
+  EXPECT_NEAR(z[plan.Vertex(0, 0)], -0.2, 1e-12);
+  EXPECT_NEAR(MarionetteVolumeRow(plan).dot(z), c.volume, 1e-10);
+  EXPECT_LE(MaxPlanarity(plan, z), 1e-10);
+  EXPECT_GT((z - z0).norm(), (free - z0).norm());
+  // Unconstrained directions of the lift space: the guide matrix's null space of the
+  // constraint rows. None of them lowers the distance.
+  const Eigen::MatrixXd a = MarionetteGuideMatrix(plan);
+  Eigen::MatrixXd e(3, a.cols());
+  e << a.row(plan.Vertex(5, 4)), a.row(plan.Vertex(0, 0)), MarionetteVolumeRow(plan) * a;
+  const Eigen::MatrixXd directions = Eigen::FullPivLU<Eigen::MatrixXd>(e).kernel();
+  const Eigen::VectorXd gradient = (a * directions).transpose() * (z - z0);
+  EXPECT_LT(gradient.norm(), 1e-9 * (a * directions).norm() * (z - z0).norm());
+  // No constraint and unit weights: the plain fit of eq. 14.
+  EXPECT_LT((FitMarionette(plan, z0, w, {}) - free).norm(), 1e-10);
+}
+
+// A max height: no vertex above it, some at it, planar; without the bound the fit goes above.
+TEST(MarionetteConstraintsTest, MaxHeightHoldsWithSomeVerticesAtTheBound) {
+  const MarionettePlan plan = Plan(10, 8);
+  const Eigen::VectorXd z0 = Bump(plan), w = Eigen::VectorXd::Ones(plan.num_vertices());
+  const double bound = 0.4;
+  ASSERT_GT(FitMarionette(plan, z0).maxCoeff(), bound + 0.05);
+  MarionetteConstraints c;
+  c.with_max_height = true;
+  c.max_height = bound;
+  const Eigen::VectorXd z = FitMarionette(plan, z0, w, c);
+  EXPECT_LE(z.maxCoeff(), bound + 1e-10);
+  EXPECT_NEAR(z.maxCoeff(), bound, 1e-10);
+  EXPECT_LE(MaxPlanarity(plan, z), 1e-10);
+}
+
+// A partial target: heights given along the guide curves only (row 0 and column 0) determine
+// the lift, and the fit is the propagation from them; three vertices do not, and the error
+// says how many guide heights stay free.
+TEST(MarionetteConstraintsTest, PartialTargetsOnTheGuidesGiveTheLift) {
+  const MarionettePlan plan = Plan(7, 6);
+  Eigen::VectorXd row = Smooth(7, 0.3), column = Smooth(8, 1.1);
+  column[0] = row[0];
+  const Eigen::VectorXd lift = LiftMarionette(plan, row, column);
+  Eigen::VectorXd z0 = Eigen::VectorXd::Constant(plan.num_vertices(), 123.0);  // ignored
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(plan.num_vertices());
+  for (int j = 0; j <= 6; ++j) z0[plan.Vertex(0, j)] = row[j], w[plan.Vertex(0, j)] = 1.0;
+  for (int i = 0; i <= 7; ++i) z0[plan.Vertex(i, 0)] = column[i], w[plan.Vertex(i, 0)] = 1.0;
+  EXPECT_LT((FitMarionette(plan, z0, w, {}) - lift).cwiseAbs().maxCoeff(), 1e-10);
+  Eigen::VectorXd few = Eigen::VectorXd::Zero(plan.num_vertices());
+  few.head(3).setOnes();
+  try {
+    FitMarionette(plan, z0, few, {});
+    FAIL() << "three vertices cannot determine 14 guide heights";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("guide heights stay free"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
