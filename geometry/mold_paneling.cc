@@ -21,15 +21,30 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 // The ten monomials at (x, y) and their x and y derivatives.
-void Monomials(double x, double y, double* m, double* mx, double* my) {
-  const double xx = x * x, yy = y * y;
-  const double values[10] = {1, x, y, xx, x * y, yy, xx * x, xx * y, x * yy, yy * y};
-  const double dx[10] = {0, 1, 0, 2 * x, y, 0, 3 * xx, 2 * x * y, yy, 0};
-  const double dy[10] = {0, 0, 1, 0, x, 2 * y, 0, xx, 2 * x * y, 3 * yy};
+template <typename T>
+void Monomials(const T& x, const T& y, T* m, T* mx, T* my) {
+  const T xx = x * x, yy = y * y;
+  const T values[10] = {T(1), x, y, xx, x * y, yy, xx * x, xx * y, x * yy, yy * y};
+  const T dx[10] = {T(0), T(1), T(0), 2.0 * x, y, T(0), 3.0 * xx, 2.0 * x * y, yy, T(0)};
+  const T dy[10] = {T(0), T(0), T(1), T(0), x, 2.0 * y, T(0), xx, 2.0 * x * y, 3.0 * yy};
   for (int i = 0; i < 10; ++i) {
     m[i] = values[i];
     if (mx) mx[i] = dx[i];
     if (my) my[i] = dy[i];
+  }
+}
+
+// The mold's height f and slopes f_x, f_y at (x, y); T a scalar or a Jet.
+template <typename T>
+void CubicAt(const MoldShape& mold, const T& x, const T& y, T* f, T* fx, T* fy) {
+  T m[10], mx[10], my[10];
+  Monomials<T>(x / mold.scale, y / mold.scale, m, mx, my);
+  *f = *fx = *fy = T(0);
+  for (int i = 0; i < 10; ++i) {
+    if (mold.coefficients[i] == 0.0) continue;
+    *f += mold.coefficients[i] * m[i];
+    *fx += mold.coefficients[i] * mx[i] / mold.scale;
+    *fy += mold.coefficients[i] * my[i] / mold.scale;
   }
 }
 
@@ -109,7 +124,7 @@ MoldShape FitMold(const std::vector<const DesignPanel*>& panels,
     for (const Eigen::Vector3d& x : panels[i]->points) {
       const Eigen::Vector3d q = inverse * x;
       double m[10];
-      Monomials(q.x() / scale, q.y() / scale, m, nullptr, nullptr);
+      Monomials<double>(q.x() / scale, q.y() / scale, m, nullptr, nullptr);
       for (int c = 0; c < 7; ++c) a(r, c) = m[c + 3];
       z[r++] = q.z();
     }
@@ -231,18 +246,8 @@ void MovedMoldPoint(const MoldShape& mold, const Eigen::Isometry3d& base, const 
   const T shifted[3] = {T(q0.x()) - theta[3], T(q0.y()) - theta[4], T(q0.z()) - theta[5]};
   T q[3];
   ceres::AngleAxisRotatePoint(minus, shifted, q);  // M⁻¹ q0
-  const T xs = q[0] / mold.scale, ys = q[1] / mold.scale;
-  const T xx = xs * xs, yy = ys * ys;
-  const T values[10] = {T(1), xs, ys, xx, xs * ys, yy, xx * xs, xx * ys, xs * yy, yy * ys};
-  const T dx[10] = {T(0), T(1), T(0), 2.0 * xs, ys, T(0), 3.0 * xx, 2.0 * xs * ys, yy, T(0)};
-  const T dy[10] = {T(0), T(0), T(1), T(0), xs, 2.0 * ys, T(0), xx, 2.0 * xs * ys, 3.0 * yy};
-  T f(0), fx(0), fy(0);
-  for (int i = 0; i < 10; ++i) {
-    if (mold.coefficients[i] == 0.0) continue;
-    f += mold.coefficients[i] * values[i];
-    fx += mold.coefficients[i] * dx[i] / mold.scale;
-    fy += mold.coefficients[i] * dy[i] / mold.scale;
-  }
+  T f, fx, fy;
+  CubicAt(mold, q[0], q[1], &f, &fx, &fy);
   const T on_mold[3] = {q[0], q[1], f};
   T moved[3];
   ceres::AngleAxisRotatePoint(theta, on_mold, moved);
@@ -456,14 +461,8 @@ class SeamPositioning {
 double MoldShape::Height(double x, double y) const { return HeightAndSlope(x, y)[0]; }
 
 Eigen::Vector3d MoldShape::HeightAndSlope(double x, double y) const {
-  double m[10], mx[10], my[10];
-  Monomials(x / scale, y / scale, m, mx, my);
-  Eigen::Vector3d f = Eigen::Vector3d::Zero();
-  for (int i = 0; i < 10; ++i) {
-    f[0] += coefficients[i] * m[i];
-    f[1] += coefficients[i] * mx[i] / scale;
-    f[2] += coefficients[i] * my[i] / scale;
-  }
+  Eigen::Vector3d f;
+  CubicAt(*this, x, y, &f[0], &f[1], &f[2]);
   return f;
 }
 
