@@ -197,6 +197,11 @@ void RegisterWeingartenCommand(CLI::App* app, int* exit_code) {
                   "Multiresolution levels: insert a knot in every span and re-optimise")
       ->check(Within(0, 4))
       ->capture_default_str();
+  cmd->add_option("--refine-method", args->settings.refine_method,
+                  "How --refine refines: insert (a knot in every span: the same surface exactly) "
+                  "or refit (least squares on a net 1.4 times as dense, as 003 §4.1.1)")
+      ->check(CLI::IsMember({"insert", "refit"}))
+      ->capture_default_str();
   cmd->add_option("--max-iterations", args->settings.max_iterations,
                   "Guided-projection iterations per level (default 10)")
       ->check(Within(1, 100000));

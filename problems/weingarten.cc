@@ -106,6 +106,10 @@ bool WeingartenOptions::IsValid(std::string* why) const {
     *why = "tolerance must be ≥ 0 (0: none)";
     return false;
   }
+  if (refine_by_refit && !(refine_factor > 1.0 && refine_factor <= 4.0)) {
+    *why = "refine_factor must be in (1, 4]";
+    return false;
+  }
   if (solver.max_iterations < 1 || refine_levels < 0) {
     *why = "max_iterations must be ≥ 1 and refine_levels ≥ 0";
     return false;

@@ -100,7 +100,12 @@ WeingartenRun RunWeingarten(const BSplineSurface& input, const WeingartenOptions
     return !stopped;
   };
   for (int level = 0; level <= options.refine_levels && !stopped; ++level) {
-    if (level > 0) current = InsertKnotsUniform(current, 1);
+    if (level > 0)
+      current = options.refine_by_refit
+                    ? RefitBSpline(current,
+                                   static_cast<int>(std::ceil(options.refine_factor * current.nu)),
+                                   static_cast<int>(std::ceil(options.refine_factor * current.nv)))
+                    : InsertKnotsUniform(current, 1);
     WeingartenProblem problem(current, options);
     run.su = problem.maps().su;
     run.sv = problem.maps().sv;
@@ -151,7 +156,8 @@ nlohmann::json WeingartenReportJson(const WeingartenOptions& options, const Wein
       {"target", options.tolerance > 0.0 ? nlohmann::json(options.target_measure()) : nullptr},
       {"tolerance", options.tolerance},
       {"samples", {run.su, run.sv}},
-      {"levels", levels}};
+      {"levels", levels},
+      {"refine_method", options.refine_by_refit ? "refit" : "insert"}};
   if (run.after.worst_sample >= 0)
     extra["worst_sample"] = {run.after.worst_sample / run.sv, run.after.worst_sample % run.sv};
   if (run.with_relation)

@@ -60,6 +60,9 @@ WeingartenOptions WeingartenSettings::ToOptions() const {
   }
   if (no_auxiliaries) o.curvature_auxiliaries = false;
   o.refine_levels = refine_levels;
+  if (refine_method != "insert" && refine_method != "refit")
+    throw InputError("--refine-method must be insert or refit (got '" + refine_method + "')");
+  o.refine_by_refit = refine_method == "refit";
   std::string why;
   if (!o.IsValid(&why)) throw InputError(why);
   if (molds < 0) throw InputError("molds must be ≥ 0");

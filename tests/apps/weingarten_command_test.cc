@@ -121,6 +121,23 @@ TEST_F(WeingartenCommandTest, ToleranceStopsTheRunAndDecidesTheExitCode) {
 
 // With refinement the curvature table holds the input's and the result's H and K at the same
 // (last level's) samples.
+// --refine-method refit: the second level on a net 1.4 times as dense (003 §4.1.1), named in the
+// report.
+TEST_F(WeingartenCommandTest, RefitRefinementGoesToANetOnePointFourTimesAsDense) {
+  const CommandRun r =
+      Gproj("weingarten " + Data("freeform_10x10.json") + " -o " + Path("out.json") +
+            " --refine 1 --refine-method refit " + "--max-iterations 1 --report " + Path("r.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const nlohmann::json report = Json("r.json");
+  EXPECT_EQ(report["refine_method"], "refit");
+  ASSERT_EQ(report["levels"].size(), 2u);
+  EXPECT_EQ(report["levels"][1]["control_points"], nlohmann::json::array({14, 14}));
+  EXPECT_EQ(Gproj("weingarten " + Data("freeform_10x10.json") + " -o " + Path("x.json") +
+                  " --refine-method spline")
+                .exit_code,
+            1);
+}
+
 TEST_F(WeingartenCommandTest, RefinedRunWritesBeforeAndAfterAtTheSameSamples) {
   const CommandRun r = Gproj("weingarten " + Data("freeform_10x10.json") + " -o " +
                              Path("out.json") + " --refine 1 --max-iterations 2 --curvature " +

@@ -76,6 +76,35 @@ TEST(WeingartenTest, PresetsCarryTheWeightsOfTable1) {
   }
 }
 
+// 003 §4.1.1 multiresolution, both ways: knot insertion (gproj's default: a knot in each span,
+// the level starts on the same surface) and the paper's least-squares refit on a net 1.4 times
+// as dense (not nested in the coarse one, so the level starts slightly off). Both lower the
+// misalignment by about as much.
+TEST(WeingartenTest, MultiresolutionByKnotInsertionAndByRefit) {
+  const BSplineSurface input = Freeform(9, 9);
+  WeingartenOptions o = WeingartenPreset("fig1");
+  o.refine_levels = 1;
+  o.solver.max_iterations = 4;
+  const WeingartenRun inserted = RunWeingarten(input, o, false);
+  o.refine_by_refit = true;
+  const WeingartenRun refitted = RunWeingarten(input, o, false);
+  EXPECT_EQ(inserted.result.nu, 9 + 5);  // one knot in each of the 5 spans of a degree-4 net
+  EXPECT_EQ(refitted.result.nu, 13);     // ⌈1.4 × 9⌉: knots at ninths, not nested in fifths
+  for (const WeingartenRun* run : {&inserted, &refitted}) {
+    ASSERT_FALSE(run->report.failed);
+    ASSERT_EQ(run->levels.size(), 2u);
+    EXPECT_LT(run->after.misalignment, 0.6 * run->before.misalignment);
+    EXPECT_LT(run->after.max_deviation, 0.06);
+  }
+  std::printf("misalignment %.4f -> insert %.4f, refit %.4f; deviation %.4f / %.4f\n",
+              inserted.before.misalignment, inserted.after.misalignment,
+              refitted.after.misalignment, inserted.after.max_deviation,
+              refitted.after.max_deviation);
+  EXPECT_GT((inserted.result.control - refitted.result.control).cwiseAbs().maxCoeff(), 1e-6);
+  EXPECT_LT(refitted.after.misalignment, 2.0 * inserted.after.misalignment);
+  EXPECT_LT(inserted.after.misalignment, 2.0 * refitted.after.misalignment);
+}
+
 // The estimate counts the finest level's control points as knot insertion makes them (here
 // with a double interior knot along u, whose empty span gets no knot).
 TEST(WeingartenTest, MemoryEstimateFollowsRefinementAndDegree) {
