@@ -321,6 +321,10 @@ class SeamPositioning {
     double energy = Energy(theta), lambda = 1e-4;
     Eigen::SparseMatrix<double> normal(6 * n_, 6 * n_);
     std::vector<Eigen::Triplet<double>> triplets;
+    // The blocks' pattern is the same at every step: ordered and analysed once; each damping
+    // is a shift of the diagonal in the numeric factorisation.
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+    bool analysed = false;
     for (int it = 0; it < iterations; ++it) {
       Linearize(theta, &gradient);
       triplets.clear();
@@ -332,12 +336,12 @@ class SeamPositioning {
               triplets.emplace_back(6 * key.second + j, 6 * key.first + i, blocks_[index](i, j));
           }
       normal.setFromTriplets(triplets.begin(), triplets.end());
+      if (!analysed) ldlt.analyzePattern(normal), analysed = true;
       const double level = normal.diagonal().maxCoeff() + 1e-300;
       bool improved = false;
       for (int attempt = 0; attempt < 8 && !improved; ++attempt, lambda *= 10.0) {
-        Eigen::SparseMatrix<double> damped = normal;
-        for (int k = 0; k < 6 * n_; ++k) damped.coeffRef(k, k) += lambda * level;
-        const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(damped);
+        ldlt.setShift(lambda * level);
+        ldlt.factorize(normal);
         if (ldlt.info() != Eigen::Success) continue;
         const Eigen::VectorXd trial = theta - ldlt.solve(gradient);
         const double trial_energy = trial.allFinite() ? Energy(trial) : HUGE_VAL;

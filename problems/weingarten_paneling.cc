@@ -125,21 +125,21 @@ std::string SummarizePanels(const PanelComparison& c) {
 
 std::string SeamHistogramsSvg(const PanelComparison& c) {
   HistogramOptions o;
-  char title[200];
-  std::snprintf(title, sizeof(title), "Gaps at the seams, %d molds", c.settings.molds_asked());
-  o.title = title;
-  o.x_name = "gap (surface units)";
+  // Gaps, then kinks: each a histogram of the input against the result.
+  auto plot = [&](const char* what, const char* unit, const std::vector<double>& input,
+                  const std::vector<double>& result) {
+    char title[200];
+    std::snprintf(title, sizeof(title), "%s at the seams, %d molds", what,
+                  c.settings.molds_asked());
+    o.title = title;
+    o.x_name = unit;
+    return RenderHistogramSvg(
+        {{"input", "#c0392b", input}, {"Weingarten result", "#2c6fbb", result}}, o);
+  };
   const std::string gaps =
-      RenderHistogramSvg({{"input", "#c0392b", c.initial.seams.gaps},
-                          {"Weingarten result", "#2c6fbb", c.final.seams.gaps}},
-                         o);
-  std::snprintf(title, sizeof(title), "Kinks at the seams, %d molds", c.settings.molds_asked());
-  o.title = title;
-  o.x_name = "kink angle (deg)";
+      plot("Gaps", "gap (surface units)", c.initial.seams.gaps, c.final.seams.gaps);
   const std::string kinks =
-      RenderHistogramSvg({{"input", "#c0392b", c.initial.seams.kinks_deg},
-                          {"Weingarten result", "#2c6fbb", c.final.seams.kinks_deg}},
-                         o);
+      plot("Kinks", "kink angle (deg)", c.initial.seams.kinks_deg, c.final.seams.kinks_deg);
   // The two plots side by side, each a nested <svg> placed by x.
   char head[200];
   std::snprintf(head, sizeof(head),
