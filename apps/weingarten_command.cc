@@ -176,6 +176,9 @@ void RegisterWeingartenCommand(CLI::App* app, int* exit_code) {
       ->capture_default_str();
   cmd->add_flag("--no-auxiliaries", args->settings.no_auxiliaries,
                 "Control points are the only unknowns (needs --linear on the surface)");
+  cmd->add_flag("--allow-folds", args->settings.allow_folds,
+                "Keep steps that fold the surface (by default a step is refused when neighbouring "
+                "normals on a grid 4x as dense as the samples turn by more than 60 degrees)");
   WeingartenSettings& s = args->settings;
   for (const auto& [name, value, help, check] : std::initializer_list<
            std::tuple<const char*, std::optional<double>*, const char*, CLI::Validator>>{

@@ -550,28 +550,76 @@ BSplineSurface InsertKnotsUniform(const BSplineSurface& surface, int per_span) {
 }
 
 NormalTurn MinNormalCosine(const BSplineSurface& surface, int m, int n) {
-  NormalTurn turn;
-  std::vector<Eigen::Vector3d> normal(static_cast<size_t>(m + 1) * (n + 1));
-  auto at = [&](int a, int b) -> Eigen::Vector3d& { return normal[a * (n + 1) + b]; };
-  auto u = [&](int a) { return surface.u_min() + (surface.u_max() - surface.u_min()) * a / m; };
-  auto v = [&](int b) { return surface.v_min() + (surface.v_max() - surface.v_min()) * b / n; };
-  for (int a = 0; a <= m; ++a)
-    for (int b = 0; b <= n; ++b) {
-      const auto d = surface.Derivatives(u(a), v(b));
-      const Eigen::Vector3d cross = d[1].cross(d[2]);
+  return GridNormals(surface, m, n).MinCosine(surface.control);
+}
+
+GridNormals::GridNormals(const BSplineSurface& surface, int m, int n)
+    : m_(m), n_(n), nv_(surface.nv), pu_(surface.degree_u), pv_(surface.degree_v) {
+  ValidateBSpline(surface);
+  if (m < 1 || n < 1)
+    throw InputError("a normal-check grid needs at least 1 x 1 cells (got " + std::to_string(m) +
+                     " x " + std::to_string(n) + ")");
+  u0_ = surface.u_min();
+  v0_ = surface.v_min();
+  u_step_ = (surface.u_max() - surface.u_min()) / m;
+  v_step_ = (surface.v_max() - surface.v_min()) / n;
+  auto tabulate = [](const std::vector<double>& knots, int degree, int count, double t0,
+                     double step, int cells, std::vector<int>* first, Eigen::MatrixXd* b,
+                     Eigen::MatrixXd* db) {
+    first->resize(cells + 1);
+    b->resize(cells + 1, degree + 1);
+    db->resize(cells + 1, degree + 1);
+    for (int a = 0; a <= cells; ++a) {
+      const Basis basis = EvaluateBasis(knots, degree, count, t0 + a * step);
+      (*first)[a] = basis.span - degree;
+      b->row(a) = basis.ders.row(0);
+      db->row(a) = basis.ders.row(1);
+    }
+  };
+  tabulate(surface.knots_u, pu_, surface.nu, u0_, u_step_, m, &first_u_, &bu_, &dbu_);
+  tabulate(surface.knots_v, pv_, surface.nv, v0_, v_step_, n, &first_v_, &bv_, &dbv_);
+  along_u_.resize(static_cast<Eigen::Index>(m + 1) * nv_, 3);
+  along_du_.resize(along_u_.rows(), 3);
+  normal_.resize(static_cast<size_t>(m + 1) * (n + 1));
+}
+
+NormalTurn GridNormals::MinCosine(const Eigen::MatrixX3d& control) {
+  // First along u for every control column j, then along v at every grid point.
+  for (int a = 0; a <= m_; ++a)
+    for (int j = 0; j < nv_; ++j) {
+      Eigen::RowVector3d p = Eigen::RowVector3d::Zero(), dp = Eigen::RowVector3d::Zero();
+      for (int r = 0; r <= pu_; ++r) {
+        const auto c = control.row((first_u_[a] + r) * nv_ + j);
+        p += bu_(a, r) * c;
+        dp += dbu_(a, r) * c;
+      }
+      along_u_.row(a * nv_ + j) = p;
+      along_du_.row(a * nv_ + j) = dp;
+    }
+  auto at = [&](int a, int b) -> Eigen::Vector3d& { return normal_[a * (n_ + 1) + b]; };
+  for (int a = 0; a <= m_; ++a)
+    for (int b = 0; b <= n_; ++b) {
+      Eigen::RowVector3d su = Eigen::RowVector3d::Zero(), sv = Eigen::RowVector3d::Zero();
+      for (int c = 0; c <= pv_; ++c) {
+        const int row = a * nv_ + first_v_[b] + c;
+        su += bv_(b, c) * along_du_.row(row);
+        sv += dbv_(b, c) * along_u_.row(row);
+      }
+      const Eigen::Vector3d cross = su.cross(sv).transpose();
       const double length = cross.norm();
       at(a, b) = length > 0.0 && std::isfinite(length) ? Eigen::Vector3d(cross / length)
                                                        : Eigen::Vector3d::Zero();
     }
+  NormalTurn turn;
   auto compare = [&](int a, int b, int a2, int b2) {
     const Eigen::Vector3d &p = at(a, b), &q = at(a2, b2);
     const double c = p.isZero() || q.isZero() ? -1.0 : p.dot(q);
-    if (c < turn.min_cosine) turn = {c, u(a), v(b)};
+    if (c < turn.min_cosine) turn = {c, u0_ + a * u_step_, v0_ + b * v_step_};
   };
-  for (int a = 0; a <= m; ++a)
-    for (int b = 0; b <= n; ++b) {
-      if (a < m) compare(a, b, a + 1, b);
-      if (b < n) compare(a, b, a, b + 1);
+  for (int a = 0; a <= m_; ++a)
+    for (int b = 0; b <= n_; ++b) {
+      if (a < m_) compare(a, b, a + 1, b);
+      if (b < n_) compare(a, b, a, b + 1);
     }
   return turn;
 }

@@ -106,6 +106,27 @@ struct NormalTurn {
 };
 NormalTurn MinNormalCosine(const BSplineSurface& surface, int m, int n);
 
+// MinNormalCosine for a surface whose control points change (an optimisation checking every
+// trial): the basis values at the grid are computed once, and each call costs two tensor
+// contractions with no allocation.
+class GridNormals {
+ public:
+  GridNormals() = default;
+  // Throws InputError for an invalid surface or a grid smaller than 1 × 1.
+  GridNormals(const BSplineSurface& surface, int m, int n);
+  // control: the control points (row surface.Index(i, j)) of a surface with the knots and
+  // degrees given to the constructor.
+  NormalTurn MinCosine(const Eigen::MatrixX3d& control);
+
+ private:
+  int m_ = 0, n_ = 0, nv_ = 0, pu_ = 0, pv_ = 0;
+  double u0_ = 0.0, u_step_ = 0.0, v0_ = 0.0, v_step_ = 0.0;
+  std::vector<int> first_u_, first_v_;   // first control index of each grid parameter's span
+  Eigen::MatrixXd bu_, dbu_, bv_, dbv_;  // basis values and first derivatives per grid parameter
+  Eigen::MatrixX3d along_u_, along_du_;  // Σ_i N_i(u_a) c_ij and Σ_i N_i'(u_a) c_ij, row a nv + j
+  std::vector<Eigen::Vector3d> normal_;
+};
+
 // The control net as a quad mesh (vertex i * nv + j), for pictures and `gproj` outputs.
 PolyMesh ControlNetMesh(const BSplineSurface& surface);
 // The surface sampled on an (m + 1) × (n + 1) grid of the domain as a quad mesh.

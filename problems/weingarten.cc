@@ -16,6 +16,10 @@
 namespace gproj {
 namespace {
 
+// Fold prevention: neighbouring normals on the check grid (kFoldGridFactor × the samples per
+// direction, the grid RunWeingarten checks the result on) may turn by at most 60°.
+constexpr double kFoldCosine = 0.5;
+
 // Rows are multiplied by the weights of Table 1 (003 §3.3): a family's weight on φ² is ω².
 double Squared(double w) { return w * w; }
 
@@ -167,6 +171,7 @@ WeingartenOptions WeingartenPreset(const std::string& name) {
     // ε is only the floor of the adaptive damping here; at 1e-3 the nearly free tangential
     // motion of the control points makes the last digits converge very slowly.
     o.solver.epsilon = 1e-4;
+    o.samples_per_control = kRelationSamplesPerControl;
     return o;
   }
   if (name == "fig4b" || name == "fig4c") {
@@ -285,6 +290,10 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
   if (options.geodesic_parallel_weight > 0.0) AddGeodesicParallel();
   AddRelations(stencils);
   AddControlNetTerms();
+  if (options.prevent_folds) {
+    fold_grid_ = GridNormals(input, kFoldGridFactor * su, kFoldGridFactor * sv);
+    fold_cosine_ = std::min(kFoldCosine, MinNormalCosineAt(problem_.x()));
+  }
 }
 
 // Scale: mean |principal curvature| at the samples = target (003 Table 1 note).
@@ -604,15 +613,27 @@ void WeingartenProblem::SetSampleAuxiliaries(const VariableLayout& layout, int s
       a.tail<kCurvatureDim>();
 }
 
+void WeingartenProblem::GatherControlPoints(const Eigen::VectorXd& x) const {
+  const VariableLayout& layout = problem_.layout();
+  // Sized once: this runs after every step.
+  const int nc = reference_.num_control_points();
+  control_buffer_.resize(nc, 3);
+  for (int i = 0; i < nc; ++i)
+    control_buffer_.row(i) =
+        x.segment<3>(layout.ItemOffset(layout.Item(control_block_, i))).transpose();
+}
+
+double WeingartenProblem::MinNormalCosineAt(const Eigen::VectorXd& x) const {
+  GatherControlPoints(x);
+  return fold_grid_.MinCosine(control_buffer_).min_cosine;
+}
+
 void WeingartenProblem::SetCurvatureAuxiliaries(Eigen::VectorXd* x) const {
   if (curvature_block_ < 0) return;
   const VariableLayout& layout = problem_.layout();
   // Buffers sized once: this runs after every step.
-  const int nc = reference_.num_control_points(), ns = maps_.num_samples();
-  control_buffer_.resize(nc, 3);
-  for (int i = 0; i < nc; ++i)
-    control_buffer_.row(i) =
-        x->segment<3>(layout.ItemOffset(layout.Item(control_block_, i))).transpose();
+  const int ns = maps_.num_samples();
+  GatherControlPoints(*x);
   for (int k = 0; k < 5; ++k) {
     derivative_buffer_[k].resize(ns, 3);
     derivative_buffer_[k].noalias() = maps_.d[k + 1] * control_buffer_;
@@ -666,6 +687,10 @@ SolverOptions WeingartenProblem::solver_options() const {
     s.project_trial = [this](Eigen::VectorXd* x) {
       SetCurvatureAuxiliaries(x);
       SetGradientAuxiliaries(x);
+    };
+  if (options_.prevent_folds)
+    s.admissible_trial = [this](const Eigen::VectorXd& x) {
+      return MinNormalCosineAt(x) >= fold_cosine_;
     };
   return s;
 }

@@ -31,6 +31,13 @@ namespace gproj {
 
 enum class CurvatureRelation { kNone, kLinear, kBSpline };
 
+// Samples per control point and direction with a fixed relation (preset fig3, --linear). With
+// Table 2's 2 the samples outnumber the surface's normal freedom by only 4:1 and the tangential
+// freedom lets the surface meet the relation at the samples and miss it between them (the CMC
+// bump of Fig. 3, H = −0.1: 4.4e-5 at the samples, 1.3e-3 between them); with 3 the relation
+// holds between the samples as well as at them (README, "Relations between the samples").
+constexpr int kRelationSamplesPerControl = 3;
+
 // Guided projection's defaults for Weingarten surfaces (003 eq. 11): 10 iterations, ω_f = 0.2,
 // ε = 1e-3, no residual tolerance (the alignment is minimised, not driven to zero), auxiliaries
 // kept in the factorisation; soft_weight_decay 0.5 is the relaxation of the soft start.
@@ -66,7 +73,8 @@ struct WeingartenOptions {
   // unknowns are the control points, which only a fixed relation on the surface allows.
   bool curvature_auxiliaries = true;
   int bspline_relation_control_points = 6;
-  // Samples per direction; 0: samples_per_control × control points (Table 2: 2).
+  // Samples per direction; 0: samples_per_control × control points (Table 2: 2; with a fixed
+  // relation kRelationSamplesPerControl).
   int samples_u = 0, samples_v = 0;
   int samples_per_control = 2;
   // Continuation: the soft terms (closeness, shape, fairness) start soft_start times stronger
@@ -92,6 +100,11 @@ struct WeingartenOptions {
   // (the definitions then hold at every x^k and each step is a Gauss–Newton step on the
   // surface itself).
   bool project_auxiliaries = false;
+  // Steps that fold the surface are refused (see SolverOptions::admissible_trial): on the grid
+  // the result's regularity is checked on (4 × the samples per direction), the normals of
+  // neighbouring points may not turn by more than 60°, or by more than on the input where that
+  // is more. Guided projection only (Ceres' steps are not checked).
+  bool prevent_folds = true;
 
   CurvatureRelation relation() const;
   // The measure `tolerance` bounds: "max_relation_residual" or "misalignment".
@@ -116,6 +129,7 @@ struct WeingartenSettings {
   std::string relation_on;  // "surface" or "auxiliaries"; empty: the preset's
   std::string steps;        // "plain", "monotone" or "projected"; empty: the preset's
   bool no_auxiliaries = false;
+  bool allow_folds = false;  // keep steps that fold the surface (WeingartenOptions::prevent_folds)
   std::vector<int> samples;  // {NU, NV}, or empty: the preset's density
   std::optional<int> max_iterations;
   std::optional<double> alignment, closeness, shape, geodesic_parallel, boundary, epsilon, fairness,
@@ -131,6 +145,10 @@ struct WeingartenSettings {
 // The most samples a problem takes (12 unknowns each: 24 million unknowns); more is refused
 // before anything is allocated. WeingartenMemoryEstimate usually refuses less first.
 constexpr int64_t kMaxWeingartenSamples = 2000000;
+
+// Folds are looked for on a grid this many times as dense as the samples per direction: in
+// every trial step (WeingartenOptions::prevent_folds) and in the result (WeingartenRun).
+constexpr int kFoldGridFactor = 4;
 
 // Bytes a run of `input` with `options` needs at its last (finest) level, the largest: about
 // 25 KB per sample plus 1.6 KB per sample and control point of its stencil, (du + 1)(dv + 1)
@@ -238,6 +256,10 @@ class WeingartenProblem : public GuidedProblem {
   void SetSampleAuxiliaries(const VariableLayout& layout, int s,
                             const Eigen::Matrix<double, 12, 1>& a, Eigen::VectorXd* x) const;
   void SetGradientAuxiliaries(Eigen::VectorXd* x) const;
+  // The smallest cosine between the normals of neighbouring points of the fold-check grid.
+  double MinNormalCosineAt(const Eigen::VectorXd& x) const;
+  // Copies the control points of x into control_buffer_.
+  void GatherControlPoints(const Eigen::VectorXd& x) const;
 
   WeingartenOptions options_;
   BSplineSurface reference_;  // input units
@@ -252,6 +274,9 @@ class WeingartenProblem : public GuidedProblem {
   // Buffers of SetCurvatureAuxiliaries (it runs after every step; sized once).
   mutable Eigen::MatrixX3d control_buffer_;
   mutable std::array<Eigen::MatrixX3d, 5> derivative_buffer_;
+  // Fold prevention: the normals on the check grid and the smallest admissible cosine.
+  mutable GridNormals fold_grid_;
+  double fold_cosine_ = 0.5;
   Problem problem_;
   int control_block_ = -1, forms_block_ = -1, curvature_block_ = -1, gradient_block_ = -1;
   class LinearWeingarten* linear_ = nullptr;

@@ -131,8 +131,8 @@ WeingartenRun RunWeingarten(const BSplineSurface& input, const WeingartenOptions
                             run.relation[2]));
   run.report.final = ToNamedValues(run.after, with_relation);
   run.dense = DenseCheck(current, input, 2 * run.su, 2 * run.sv, run.relation, with_relation);
-  run.normals_before = MinNormalCosine(input, 4 * run.su, 4 * run.sv);
-  run.normals_after = MinNormalCosine(current, 4 * run.su, 4 * run.sv);
+  run.normals_before = MinNormalCosine(input, kFoldGridFactor * run.su, kFoldGridFactor * run.sv);
+  run.normals_after = MinNormalCosine(current, kFoldGridFactor * run.su, kFoldGridFactor * run.sv);
   if (molds > 0) {
     run.molds = ClusterMolds(run.after.h, run.after.k, molds);
     run.molds_before = ClusterMolds(run.before.h, run.before.k, molds);

@@ -18,6 +18,7 @@ void ApplyRelation(const WeingartenSettings& s, WeingartenOptions* o) {
                        std::to_string(s.linear.size()));
     o->fixed_linear_relation = true;
     o->linear_coefficients = Eigen::Vector3d(s.linear.data());
+    o->samples_per_control = kRelationSamplesPerControl;
     if (o->linear_relation_weight == 0.0) o->linear_relation_weight = 1.0;
     o->bspline_relation_weight = 0.0;
   }
@@ -59,6 +60,7 @@ WeingartenOptions WeingartenSettings::ToOptions() const {
     o.project_auxiliaries = steps == "projected";
   }
   if (no_auxiliaries) o.curvature_auxiliaries = false;
+  if (allow_folds) o.prevent_folds = false;
   o.refine_levels = refine_levels;
   if (refine_method != "insert" && refine_method != "refit")
     throw InputError("--refine-method must be insert or refit (got '" + refine_method + "')");

@@ -22,7 +22,7 @@ struct Overrides {
 
 WeingartenSettings Settings(const std::string& preset, const std::string& relation,
                             const std::vector<double>& linear, const std::string& relation_on,
-                            const std::string& steps, bool no_auxiliaries,
+                            const std::string& steps, bool no_auxiliaries, bool allow_folds,
                             const std::vector<int>& samples, std::optional<int> max_iterations,
                             int refine, int molds, const Overrides& o) {
   WeingartenSettings s;
@@ -32,6 +32,7 @@ WeingartenSettings Settings(const std::string& preset, const std::string& relati
   s.relation_on = relation_on;
   s.steps = steps;
   s.no_auxiliaries = no_auxiliaries;
+  s.allow_folds = allow_folds;
   s.samples = samples;
   s.max_iterations = max_iterations;
   s.refine_levels = refine;
@@ -49,23 +50,21 @@ WeingartenSettings Settings(const std::string& preset, const std::string& relati
   return s;
 }
 
-py::tuple RunWeingartenFromPython(const py::object& surface, const std::string& preset,
-                                  const std::string& relation, const std::vector<double>& linear,
-                                  const std::string& relation_on, const std::string& steps,
-                                  bool no_auxiliaries, const std::vector<int>& samples,
-                                  std::optional<int> max_iterations, int refine, int molds,
-                                  const std::string& solver, const py::object& callback,
-                                  std::optional<double> alignment, std::optional<double> closeness,
-                                  std::optional<double> shape,
-                                  std::optional<double> geodesic_parallel,
-                                  std::optional<double> epsilon, std::optional<double> soft_start,
-                                  std::optional<double> fairness, std::optional<double> definitions,
-                                  std::optional<double> boundary, std::optional<double> tolerance) {
+py::tuple RunWeingartenFromPython(
+    const py::object& surface, const std::string& preset, const std::string& relation,
+    const std::vector<double>& linear, const std::string& relation_on, const std::string& steps,
+    bool no_auxiliaries, bool allow_folds, const std::vector<int>& samples,
+    std::optional<int> max_iterations, int refine, int molds, const std::string& solver,
+    const py::object& callback, std::optional<double> alignment, std::optional<double> closeness,
+    std::optional<double> shape, std::optional<double> geodesic_parallel,
+    std::optional<double> epsilon, std::optional<double> soft_start, std::optional<double> fairness,
+    std::optional<double> definitions, std::optional<double> boundary,
+    std::optional<double> tolerance) {
   if (solver != "gp" && solver != "ceres")
     throw InputError("solver must be gp or ceres, not '" + solver + "'");
   if (refine < 0 || refine > 4) throw InputError("refine must be in [0, 4]");
   const WeingartenSettings settings =
-      Settings(preset, relation, linear, relation_on, steps, no_auxiliaries, samples,
+      Settings(preset, relation, linear, relation_on, steps, no_auxiliaries, allow_folds, samples,
                max_iterations, refine, molds,
                {alignment, closeness, shape, geodesic_parallel, epsilon, soft_start, fairness,
                 definitions, boundary, tolerance});
@@ -133,6 +132,8 @@ isolines of H and K align, keeping it close to the input.
     relation_on: "" (the preset's), "surface" or "auxiliaries".
     steps: "" (the preset's), "plain", "monotone" or "projected".
     no_auxiliaries: control points are the only unknowns (only with linear on the surface).
+    allow_folds: keep steps that fold the surface (by default refused: neighbouring normals on
+        a grid 4x as dense as the samples may not turn by more than 60 degrees).
     samples: [NU, NV] samples (default: 2 per control point and direction).
     max_iterations: guided-projection iterations per level (None: the preset's).
     refine: multiresolution levels (a knot inserted in every span, re-optimised), 0..4.
@@ -155,7 +156,7 @@ void BindWeingarten(py::module_& m) {
   m.def("weingarten", &RunWeingartenFromPython, kWeingartenDoc, py::arg("surface"), py::kw_only(),
         py::arg("preset") = "fig1", py::arg("relation") = "",
         py::arg("linear") = std::vector<double>(), py::arg("relation_on") = "",
-        py::arg("steps") = "", py::arg("no_auxiliaries") = false,
+        py::arg("steps") = "", py::arg("no_auxiliaries") = false, py::arg("allow_folds") = false,
         py::arg("samples") = std::vector<int>(), py::arg("max_iterations") = py::none(),
         py::arg("refine") = 0, py::arg("molds") = 0, py::arg("solver") = "gp",
         py::arg("callback") = py::none(), py::arg("alignment") = py::none(),

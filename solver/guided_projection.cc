@@ -268,6 +268,7 @@ class Minimizer {
     const double floor = EpsilonFloor(residual_at_start);
     double epsilon = options_.monotone ? std::max(floor, damping_) : floor;
     record_ = IterationRecord();
+    growth_ = 2.0;
     int failures = 0, rejections = 0;
     for (;;) {
       if (!SolveTrial(epsilon)) {
@@ -281,15 +282,16 @@ class Minimizer {
         epsilon *= options_.epsilon_growth;
         continue;
       }
-      if (!options_.monotone) break;
+      const bool admissible = !options_.admissible_trial || options_.admissible_trial(trial_);
+      if (admissible && !options_.monotone) break;
       bool failed = false;
-      const bool accepted = Accepts(energy, epsilon, &failed);
+      if (admissible && Accepts(energy, epsilon, &failed)) break;
       if (failed) return Finish(TerminationType::kFailure, why_);
-      if (accepted) break;
       if (++rejections > options_.max_rejections)
-        return Finish(
-            TerminationType::kConvergence,
-            "no step lowers the energy (epsilon raised to " + std::to_string(epsilon) + ")");
+        return Finish(TerminationType::kConvergence,
+                      std::string(admissible ? "no step lowers the energy"
+                                             : "no admissible step (the last trial was refused)") +
+                          " (epsilon raised to " + std::to_string(epsilon) + ")");
       epsilon *= std::sqrt(growth_);
       growth_ *= 2.0;
     }

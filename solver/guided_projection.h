@@ -65,6 +65,11 @@ struct SolverOptions {
   // Applied to every trial point x^k + d before it is assessed, e.g. to set auxiliary unknowns
   // to their exact values from the primary ones (null: none).
   std::function<void(Eigen::VectorXd*)> project_trial;
+  // Whether a trial point (after project_trial) may be kept, e.g. a surface that does not fold
+  // (null: every finite trial). A refused trial counts as a rejection: ε grows and the step is
+  // recomputed from the same linearisation; after max_rejections refusals in a row the solver
+  // stops (converged: no admissible step lowers the energy).
+  std::function<bool(const Eigen::VectorXd&)> admissible_trial;
   LinearSolverType linear_solver = LinearSolverType::kCholmod;
   // Eliminate the items of eliminable blocks (per-element auxiliaries such as face normals)
   // with a Schur complement before factorising; the factor then covers the rest only.

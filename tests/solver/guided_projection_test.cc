@@ -285,6 +285,33 @@ TEST(GuidedProjectionMonotoneTest, TrialPointsAreProjected) {
   EXPECT_NEAR(problem.x()[0], 1.0, 1e-6);
 }
 
+// A trial the predicate refuses is never kept: on Rosenbrock's valley with x ≤ 0.5 admissible
+// (the minimum is at x = 1), every iterate stays admissible, plain or monotone, and the run
+// still moves towards the minimum up to the admissible set's edge.
+TEST(GuidedProjectionMonotoneTest, RefusedTrialsAreNeverKept) {
+  for (bool monotone : {false, true}) {
+    SolverOptions options;
+    options.max_iterations = 60;
+    options.monotone = monotone;
+    int refused = 0;
+    options.admissible_trial = [&refused](const Eigen::VectorXd& x) {
+      refused += x[0] > 0.5;
+      return x[0] <= 0.5;
+    };
+    Problem problem = MakeRosenbrockProblem();
+    double worst = -HUGE_VAL;
+    const SolverSummary s =
+        Solve(options, &problem, [&](const IterationRecord&, const Eigen::VectorXd& x) {
+          worst = std::max(worst, x[0]);
+          return CallbackResult::kContinue;
+        });
+    EXPECT_NE(s.termination, TerminationType::kFailure) << s.FullReport();
+    EXPECT_GT(refused, 0) << monotone;
+    EXPECT_LE(worst, 0.5) << monotone;
+    EXPECT_GT(problem.x()[0], 0.3) << monotone << "\n" << s.FullReport();
+  }
+}
+
 TEST(GuidedProjectionFailureTest, InvalidOptionsAreRejected) {
   Problem problem = MakeCircleProblem(4, 0.1);
   SolverOptions options;
