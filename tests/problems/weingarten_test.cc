@@ -7,6 +7,7 @@
 #include <iterator>
 #include <string>
 
+#include "constraints/curvature_relations.h"
 #include "solver/ceres_adapter.h"
 
 namespace gproj {
@@ -211,6 +212,51 @@ TEST(WeingartenTest, DefaultPresetAlignsIsolinesOfAFreeformSurface) {
   EXPECT_LE(after.misalignment, before.misalignment / 4.0)
       << before.misalignment << " -> " << after.misalignment;
   EXPECT_LE(after.max_deviation, 0.02);
+}
+
+// Largest distance of the (H, K) points to the line fitted to them, in units of the mean
+// |principal curvature|.
+double LineSpread(const WeingartenMeasures& m) {
+  const Eigen::Vector3d abc = LinearWeingarten::FitLine(m.h, m.k);
+  double worst = 0.0;
+  for (size_t s = 0; s < m.h.size(); ++s)
+    worst = std::max(worst, std::abs(abc[0] * m.h[s] + abc[1] * m.k[s] + abc[2]));
+  return worst / m.mean_abs_principal_curvature;
+}
+
+// 003 Fig. 2 on two generated surfaces: the alignment of the curvature isolines alone (fig2b),
+// a B-spline curvature relation (fig2c) and a linear one (fig2d) each reach their own target
+// (a curve relation between H and K aligns their isolines: the misalignment measures it), and,
+// as the paper observes, the alignment alone stays closest to the reference shape.
+TEST(WeingartenTest, Fig2AlignmentAloneApproximatesTheShapeBest) {
+  struct Case {
+    const char* name;
+    BSplineSurface surface;
+  };
+  const Case cases[] = {{"wavy 12x9", MakeWavyBSpline(12, 9, 4, 0.6)},
+                        {"bump 12x12", MakeBumpBSpline(12)}};
+  for (const Case& c : cases) {
+    const WeingartenRun b = RunWeingarten(c.surface, WeingartenPreset("fig2b"), false);
+    const WeingartenRun curve = RunWeingarten(c.surface, WeingartenPreset("fig2c"), false);
+    const WeingartenRun line = RunWeingarten(c.surface, WeingartenPreset("fig2d"), false);
+    std::printf(
+        "%s: deviation max/mean (%% of the bbox diagonal) alignment %.2f/%.2f, B-spline "
+        "relation %.2f/%.2f, linear relation %.2f/%.2f; misalignment %.3f -> %.3f (B-spline "
+        "relation %.3f); line spread %.3f -> %.3f\n",
+        c.name, 100 * b.after.max_deviation, 100 * b.after.mean_deviation,
+        100 * curve.after.max_deviation, 100 * curve.after.mean_deviation,
+        100 * line.after.max_deviation, 100 * line.after.mean_deviation, b.before.misalignment,
+        b.after.misalignment, curve.after.misalignment, LineSpread(line.before),
+        LineSpread(line.after));
+    EXPECT_LT(b.after.misalignment, b.before.misalignment / 4.0) << c.name;
+    EXPECT_LT(curve.after.misalignment, curve.before.misalignment / 3.0) << c.name;
+    EXPECT_LT(LineSpread(line.after), LineSpread(line.before) / 3.0) << c.name;
+    EXPECT_LT(b.after.max_deviation, curve.after.max_deviation) << c.name;
+    EXPECT_LT(b.after.max_deviation, line.after.max_deviation) << c.name;
+    EXPECT_LT(b.after.mean_deviation, curve.after.mean_deviation) << c.name;
+    EXPECT_LT(b.after.mean_deviation, line.after.mean_deviation) << c.name;
+    for (const WeingartenRun* r : {&b, &curve, &line}) EXPECT_FALSE(r->folds()) << c.name;
+  }
 }
 
 // A bicubic wavy surface (11 × 11, amplitude 1.4) that fig1 folds when every step is kept: the
