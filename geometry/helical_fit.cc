@@ -132,4 +132,17 @@ HelicalDeviation MeasureHelicalDeviation(const BSplineSurface& surface, int m, i
   return out;
 }
 
+BSplineSurface MakeHelicalBSpline(int nu, int nv, int degree, const HelicalTestSurface& spec) {
+  return FitBSpline(
+      [&spec](double u, double v) {
+        const double r = 1.0 + u, theta = M_PI * v;
+        const double z =
+            0.3 * (r - 1.5) * (r - 1.5) + spec.pitch * theta +
+            spec.bump * std::exp(-20.0 * ((u - 0.5) * (u - 0.5) + (v - 0.4) * (v - 0.4))) +
+            spec.pitch_drift * theta * theta + spec.profile_drift * (r - 1.5) * (r - 1.5) * v;
+        return Eigen::Vector3d(r * std::cos(theta), r * std::sin(theta), z);
+      },
+      degree, degree, nu, nv);
+}
+
 }  // namespace gproj

@@ -45,4 +45,15 @@ struct HelicalDeviation {
 HelicalDeviation MeasureHelicalDeviation(const BSplineSurface& surface, int m, int n,
                                          int profile_degree = 6);
 
+// A helical test surface and perturbations of it: the profile z = 0.3 (r − 1.5)², r ∈ [1, 2],
+// turned by half a turn (θ ∈ [0, π]) about the z-axis, advancing `pitch` per radian; z gains
+// bump · exp(−20 ((u − ½)² + (v − 0.4)²)) (a local dent), pitch_drift · θ² (the pitch changing
+// along the turn) and profile_drift · (r − 1.5)² · v (the profile changing along the turn).
+// Fitted by a B-spline of nu × nv control points and bi-degree (degree, degree).
+struct HelicalTestSurface {
+  double pitch = 0.4;
+  double bump = 0.0, pitch_drift = 0.0, profile_drift = 0.0;
+};
+BSplineSurface MakeHelicalBSpline(int nu, int nv, int degree, const HelicalTestSurface& spec = {});
+
 }  // namespace gproj

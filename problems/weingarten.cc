@@ -460,24 +460,11 @@ void WeingartenProblem::AddGeodesicParallel() {
   gradient_scales_ = {k_scale > 0.0 ? k_scale : 1.0, h_scale > 0.0 ? h_scale : 1.0};
   definitions2->SetGradientScales(gradient_scales_[0], gradient_scales_[1]);
   SetGradientAuxiliaries(&x);
-  // Normalised like the alignment rows, by the RMS of |∇‖∇ψ‖²| |∇ψ| at the start.
-  double product = 0.0;
-  int count = 0;
-  for (int a = 2; a + 2 < su; ++a)
-    for (int b = 2; b + 2 < sv; ++b)
-      for (int p = 0; p < 2; ++p) {
-        const int off = p == 0 ? kCurvatureK : kCurvatureH, goff = p == 0 ? kGradK : kGradH;
-        auto gradient = [&](auto item, int o) {
-          auto at = [&](int aa, int bb) { return x[layout.ItemOffset(item(aa, bb)) + o]; };
-          return CentralGradient(at(a + 1, b), at(a - 1, b), at(a, b + 1), at(a, b - 1), inv_du_[a],
-                                 inv_dv_[b]);
-        };
-        product += Squared(GradientNormProduct(gradient(grad, goff), gradient(aux, off)));
-        ++count;
-      }
-  const double gp_scale = count > 0 && product > 0.0 ? 1.0 / std::sqrt(product / count) : 1.0;
-  auto* parallel = problem_.AddFamily<GeodesicParallelIsolines>(
-      Squared(options.geodesic_parallel_weight * gp_scale));
+  // Each row is divided by |∇‖∇ψ‖²| |∇ψ| at x^k (GeodesicParallelIsolines::Update): it is the
+  // sine of the angle between the two gradients, like a normalised alignment row, and ω_gp
+  // weighs it directly.
+  auto* parallel =
+      problem_.AddFamily<GeodesicParallelIsolines>(Squared(options.geodesic_parallel_weight));
   for (int a = 2; a + 2 < su; ++a)
     for (int b = 2; b + 2 < sv; ++b)
       parallel->AddSample({grad(a + 1, b), grad(a - 1, b), grad(a, b + 1), grad(a, b - 1)},

@@ -20,6 +20,7 @@
 #include "constraints/curvature_auxiliaries.h"
 #include "geometry/bspline_surface.h"
 #include "geometry/curvature_diagram.h"
+#include "geometry/helical_fit.h"
 #include "geometry/mesh_io.h"
 #include "problems/guided_problem.h"
 #include "problems/report_json.h"
@@ -324,6 +325,9 @@ struct WeingartenRun {
   // normal turning over between neighbouring points) makes the result unusable.
   NormalTurn normals_before, normals_after;
   WeingartenDenseCheck dense;  // the result between the samples
+  // With geodesic parallel isolines (003 Fig. 4): the input's and the result's deviation from
+  // the nearest helical surface (kinematic surfaces are the W-surfaces with such isolines).
+  std::optional<HelicalDeviation> helical_before, helical_after;
   bool folds() const { return normals_after.min_cosine < 0.0; }
 };
 

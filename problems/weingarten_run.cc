@@ -133,6 +133,10 @@ WeingartenRun RunWeingarten(const BSplineSurface& input, const WeingartenOptions
   run.dense = DenseCheck(current, input, 2 * run.su, 2 * run.sv, run.relation, with_relation);
   run.normals_before = MinNormalCosine(input, kFoldGridFactor * run.su, kFoldGridFactor * run.sv);
   run.normals_after = MinNormalCosine(current, kFoldGridFactor * run.su, kFoldGridFactor * run.sv);
+  if (options.geodesic_parallel_weight > 0.0) {
+    run.helical_before = MeasureHelicalDeviation(input, 2 * run.su, 2 * run.sv);
+    run.helical_after = MeasureHelicalDeviation(current, 2 * run.su, 2 * run.sv);
+  }
   if (molds > 0) {
     run.molds = ClusterMolds(run.after.h, run.after.k, molds);
     run.molds_before = ClusterMolds(run.before.h, run.before.k, molds);
@@ -172,6 +176,16 @@ nlohmann::json WeingartenReportJson(const WeingartenOptions& options, const Wein
   extra["min_normal_cosine"] = {{"initial", run.normals_before.min_cosine},
                                 {"final", run.normals_after.min_cosine},
                                 {"final_at", {run.normals_after.u, run.normals_after.v}}};
+  if (run.helical_after) {
+    auto helical = [](const HelicalDeviation& d) {
+      return nlohmann::json{{"max_percent", d.max_percent},
+                            {"mean_percent", d.mean_percent},
+                            {"pitch", d.motion.pitch},
+                            {"radius", d.mean_radius}};
+    };
+    extra["helical_deviation"] = {{"initial", helical(*run.helical_before)},
+                                  {"final", helical(*run.helical_after)}};
+  }
   if (run.molds)
     extra["molds"] = {{"clusters", run.molds->num_clusters},
                       {"cells_per_axis", run.molds->cells_per_axis},
@@ -226,6 +240,13 @@ std::string SummarizeWeingartenRun(const WeingartenRun& run) {
                      "regularity: min cosine of neighbouring normals %.4f -> %.4f%s\n",
                      run.normals_before.min_cosine, run.normals_after.min_cosine,
                      run.folds() ? " (the result folds)" : "");
+  if (run.helical_after)
+    n += std::snprintf(text + n, sizeof(text) - n,
+                       "deviation from the nearest helical surface (%% of its radius): max %.3f "
+                       "-> %.3f, mean %.3f -> %.3f (pitch %.4g per radian)\n",
+                       run.helical_before->max_percent, run.helical_after->max_percent,
+                       run.helical_before->mean_percent, run.helical_after->mean_percent,
+                       run.helical_after->motion.pitch);
   if (run.molds)
     std::snprintf(text + n, sizeof(text) - n,
                   "molds: %d clusters in the (H, sqrt K) plane (grid %d x %d)\n",

@@ -9,6 +9,7 @@
 
 #include "apps/command_test_util.h"
 #include "geometry/bspline_surface.h"
+#include "geometry/helical_fit.h"
 
 namespace gproj {
 namespace {
@@ -56,6 +57,25 @@ TEST_F(WeingartenCommandTest, RefusesStepsThatFoldUnlessAllowed) {
       Gproj("weingarten " + Path("wavy.json") + " -o " + Path("folded.json") + " --allow-folds");
   EXPECT_EQ(folding.exit_code, 3) << folding.err << folding.out;
   EXPECT_NE(folding.err.find("the result folds"), std::string::npos) << folding.err;
+}
+
+// 003 Fig. 4 as a user runs it: a surface near a helical one (its profile changing along the
+// turn), with geodesic parallel isolines; the report and the log give the deviation from the
+// nearest helical surface before and after, and it falls.
+TEST_F(WeingartenCommandTest, GeodesicParallelIsolinesReportTheHelicalDeviation) {
+  HelicalTestSurface spec;
+  spec.profile_drift = 0.1;
+  WriteBSplineJson(MakeHelicalBSpline(10, 12, 4, spec), Path("helical.json"));
+  const CommandRun r = Gproj("weingarten " + Path("helical.json") + " -o " + Path("out.json") +
+                             " --preset fig4c --closeness 0.01 --fairness 0.01 "
+                             "--max-iterations 30 --report " +
+                             Path("r.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const nlohmann::json h = Json("r.json")["helical_deviation"];
+  EXPECT_LT(h["final"]["max_percent"].get<double>(),
+            h["initial"]["max_percent"].get<double>() / 3.0);
+  EXPECT_NEAR(h["final"]["pitch"].get<double>(), 0.4, 0.02);
+  EXPECT_NE(r.out.find("deviation from the nearest helical surface"), std::string::npos) << r.out;
 }
 
 // 003 §4.2 on the shipped surface: the input and the result paneled alike (8 × 8 panels,

@@ -9,18 +9,11 @@
 namespace gproj {
 namespace {
 
-// A helical surface: the profile z = 0.3 (r − 1.5)², r ∈ [1, 2], swept by half a turn about the
-// z-axis with pitch 0.4 (per radian), plus `bump` × a smooth bump that breaks the symmetry;
-// fitted by a bi-quartic B-spline of 10 × 12 control points.
+// The helical test surface (10 × 12 bi-quartic), with a dent that breaks the symmetry.
 BSplineSurface Helical(double bump) {
-  return FitBSpline(
-      [bump](double u, double v) {
-        const double r = 1.0 + u, theta = M_PI * v;
-        const double z = 0.3 * (r - 1.5) * (r - 1.5) + 0.4 * theta +
-                         bump * std::exp(-20.0 * ((u - 0.5) * (u - 0.5) + (v - 0.4) * (v - 0.4)));
-        return Eigen::Vector3d(r * std::cos(theta), r * std::sin(theta), z);
-      },
-      4, 4, 10, 12);
+  HelicalTestSurface spec;
+  spec.bump = bump;
+  return MakeHelicalBSpline(10, 12, 4, spec);
 }
 
 TEST(HelicalFitTest, RecoversTheMotionOfAHelicalSurface) {
