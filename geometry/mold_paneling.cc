@@ -548,32 +548,44 @@ Paneling PanelSurface(const BSplineSurface& surface, const PanelingOptions& opti
     SeamPositioning(panels, seams, p.fitted_seams, options.hold_weight, &p)
         .Run(options.positioning_iterations);
   p.seams = MeasureSeams(panels, p, seams);
+  int points = 0;
+  for (size_t i = 0; i < panels.size(); ++i)
+    for (const Eigen::Vector3d& x : panels[i].points) {
+      Eigen::Vector3d point, normal;
+      MoldPoint(p.molds[p.mold_of_panel[i]], p.placement[i], x, &point, &normal);
+      const double d = (point - x).norm();
+      p.mean_deviation += d;
+      p.max_deviation = std::max(p.max_deviation, d);
+      ++points;
+    }
+  p.mean_deviation /= std::max(points, 1);
   return p;
 }
 
 int MoldsForTolerance(const BSplineSurface& surface, PanelingOptions options, double max_gap,
                       double max_kink_deg, Paneling* result) {
-  auto meets = [&](int molds, Paneling* out) {
-    options.molds = molds;
-    *out = PanelSurface(surface, options);
-    return out->seams.max_gap <= max_gap && out->seams.max_kink_deg <= max_kink_deg;
+  auto meets = [&](const Paneling& p) {
+    return p.seams.max_gap <= max_gap && p.seams.max_kink_deg <= max_kink_deg;
   };
   const int panels = options.panels_u * options.panels_v;
-  Paneling best;
-  if (!meets(panels, &best)) {
+  options.molds = panels;
+  Paneling best = PanelSurface(surface, options);
+  if (!meets(best)) {
     if (result) *result = best;
     return -1;
   }
-  int lo = 0, hi = panels;  // lo fails (or is 0), hi meets
-  while (hi - lo > 1) {
-    const int mid = lo + (hi - lo) / 2;
-    Paneling trial;
-    if (meets(mid, &trial)) {
-      hi = mid;
-      best = std::move(trial);
-    } else {
-      lo = mid;
-    }
+  // Down from one mold per panel to the first count that fails. Counts whose clustering is the
+  // previous count's give its paneling again and are not recomputed.
+  const std::vector<double> h = best.h, k = best.k;
+  std::vector<int> previous = best.mold_of_panel;
+  for (int molds = panels - 1; molds >= 1; --molds) {
+    const MoldClustering clusters = ClusterMolds(h, k, molds);
+    if (clusters.cluster == previous) continue;
+    previous = clusters.cluster;
+    options.molds = molds;
+    Paneling trial = PanelSurface(surface, options);
+    if (!meets(trial)) break;
+    best = std::move(trial);
   }
   if (result) *result = best;
   return best.num_molds;

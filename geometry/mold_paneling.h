@@ -76,6 +76,9 @@ struct Paneling {
   std::vector<double> h, k;   // at each panel's centre
   SeamMeasures seams;         // of the final placements
   SeamMeasures fitted_seams;  // of the placements that fit each panel to its design panel
+  // How far the built panels are from the design surface: at every panel point, the distance
+  // between the mold point over the design point and the design point (surface units).
+  double mean_deviation = 0.0, max_deviation = 0.0;
   int num_panels() const { return panels_u * panels_v; }
 };
 
@@ -83,10 +86,13 @@ struct Paneling {
 // options or a degenerate surface (s_u × s_v = 0 at a panel centre).
 Paneling PanelSurface(const BSplineSurface& surface, const PanelingOptions& options);
 
-// The smallest number of molds asked from ClusterMolds (1 … panels) whose paneling has
-// max gap ≤ max_gap and max kink ≤ max_kink_deg, found by bisection (more molds usually mean
-// smaller seams; the answer is checked, not assumed); the paneling reached is returned in
-// *result. −1 when even one mold per panel does not meet the tolerance.
+// The fewest molds from which on every larger number meets max gap ≤ max_gap and max kink ≤
+// max_kink_deg, up to one mold per panel: the counts are tried downwards from one mold per
+// panel to the first that fails. (More molds do not always mean smaller seams: a clustering
+// may happen to meet the tolerance at a count below others that miss it, so the fewest count
+// that meets it once is not a robust answer.) The paneling reached is returned in *result;
+// −1 when even one mold per panel does not meet the tolerance. Costs up to one paneling per
+// distinct clustering between the answer and the panel count.
 int MoldsForTolerance(const BSplineSurface& surface, PanelingOptions options, double max_gap,
                       double max_kink_deg, Paneling* result = nullptr);
 

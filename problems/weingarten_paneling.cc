@@ -38,7 +38,9 @@ nlohmann::json SeamsJson(const Paneling& p) {
           {"mean_gap", p.seams.mean_gap},
           {"max_gap", p.seams.max_gap},
           {"mean_kink_deg", p.seams.mean_kink_deg},
-          {"max_kink_deg", p.seams.max_kink_deg}};
+          {"max_kink_deg", p.seams.max_kink_deg},
+          {"mean_deviation", p.mean_deviation},
+          {"max_deviation", p.max_deviation}};
 }
 
 }  // namespace
@@ -104,9 +106,10 @@ std::string SummarizePanels(const PanelComparison& c) {
   for (const auto& [name, p, needed] : {std::tuple{"input ", &c.initial, c.initial_molds_needed},
                                         std::tuple{"result", &c.final, c.final_molds_needed}}) {
     std::snprintf(line, sizeof(line),
-                  "  %s: %d molds, gap mean %.3g max %.3g, kink mean %.3g max %.3g deg\n", name,
-                  p->num_molds, p->seams.mean_gap, p->seams.max_gap, p->seams.mean_kink_deg,
-                  p->seams.max_kink_deg);
+                  "  %s: %d molds, gap mean %.3g max %.3g, kink mean %.3g max %.3g deg, "
+                  "panels off the design surface by mean %.3g max %.3g\n",
+                  name, p->num_molds, p->seams.mean_gap, p->seams.max_gap, p->seams.mean_kink_deg,
+                  p->seams.max_kink_deg, p->mean_deviation, p->max_deviation);
     out += line;
     if (s.with_tolerance()) {
       if (needed < 0)

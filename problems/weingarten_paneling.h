@@ -37,8 +37,9 @@ PanelComparison ComparePaneling(const BSplineSurface& input, const BSplineSurfac
                                 const PanelSettings& settings);
 
 // The report's "panels" object: count, grid, molds (asked), mold_factor, and initial / final
-// each with molds (used), mean_gap, max_gap, mean_kink_deg, max_kink_deg (and molds_needed with
-// a tolerance, which then appears as tolerance: {max_gap, max_kink_deg}).
+// each with molds (used), mean_gap, max_gap, mean_kink_deg, max_kink_deg, mean_deviation,
+// max_deviation (the panels from the design surface; and molds_needed with a tolerance, which
+// then appears as tolerance: {max_gap, max_kink_deg}).
 nlohmann::json PanelsJson(const PanelComparison& c);
 // A few lines for the log.
 std::string SummarizePanels(const PanelComparison& c);

@@ -19,7 +19,9 @@ BSplineSurface Optimised(const BSplineSurface& input) {
 
 // 003 §4.2's claim on generated surfaces that were not shipped: paneled alike (10 × 10 panels,
 // 3 √100 = 30 molds asked), the Weingarten result's seams are smaller than the input's on
-// average (the largest gap or kink may grow where the surface moved most).
+// average (the largest gap or kink may grow where the surface moved most), and for a tolerance
+// (gap ≤ 0.002, kink ≤ 2°) the result needs no more molds than the input (measured: 80 → 56,
+// 49 → 28, 89 → 88, 15 → 4).
 TEST(WeingartenPanelingTest, TheResultHasSmallerSeamsWithTheSameMolds) {
   struct Case {
     const char* name;
@@ -31,6 +33,9 @@ TEST(WeingartenPanelingTest, TheResultHasSmallerSeamsWithTheSameMolds) {
                         {"bump 12x12", MakeBumpBSpline(12)}};
   PanelSettings settings;
   settings.panels_u = settings.panels_v = 10;
+  settings.max_gap = 0.002;
+  settings.max_kink_deg = 2.0;
+  int initial_needed = 0, final_needed = 0;
   for (const Case& c : cases) {
     const BSplineSurface result = Optimised(c.surface);
     // A usable result first: no fold anywhere (neighbouring normals on a fine grid agree).
@@ -38,16 +43,21 @@ TEST(WeingartenPanelingTest, TheResultHasSmallerSeamsWithTheSameMolds) {
     const PanelComparison p = ComparePaneling(c.surface, result, settings);
     std::printf(
         "%s: %d -> %d molds, gap mean %.4g -> %.4g, max %.4g -> %.4g; kink mean %.3g -> "
-        "%.3g, max %.3g -> %.3g deg\n",
+        "%.3g, max %.3g -> %.3g deg; molds needed %d -> %d\n",
         c.name, p.initial.num_molds, p.final.num_molds, p.initial.seams.mean_gap,
         p.final.seams.mean_gap, p.initial.seams.max_gap, p.final.seams.max_gap,
         p.initial.seams.mean_kink_deg, p.final.seams.mean_kink_deg, p.initial.seams.max_kink_deg,
-        p.final.seams.max_kink_deg);
+        p.final.seams.max_kink_deg, p.initial_molds_needed, p.final_molds_needed);
+    EXPECT_GT(p.final_molds_needed, 0) << c.name;
+    EXPECT_LE(p.final_molds_needed, p.initial_molds_needed) << c.name;
+    initial_needed += p.initial_molds_needed;
+    final_needed += p.final_molds_needed;
     EXPECT_LE(p.initial.num_molds, 30) << c.name;
     EXPECT_LE(p.final.num_molds, 30) << c.name;
     EXPECT_LT(p.final.seams.mean_gap, p.initial.seams.mean_gap) << c.name;
     EXPECT_LT(p.final.seams.mean_kink_deg, p.initial.seams.mean_kink_deg) << c.name;
   }
+  EXPECT_LT(final_needed, 0.8 * initial_needed);
 }
 
 TEST(WeingartenPanelingTest, ReportObjectAndSettings) {
