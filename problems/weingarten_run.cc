@@ -217,11 +217,13 @@ std::string SummarizeWeingartenRun(const WeingartenRun& run) {
   char text[2048];
   int n = std::snprintf(
       text, sizeof(text),
-      "misalignment %.4e -> %.4e (%.1fx lower), deviation max %.3e (sample %d, %d) / mean "
+      "misalignment %.4e -> %.4e (%.1fx %s), deviation max %.3e (sample %d, %d) / mean "
       "%.3e of the bbox diagonal\n",
-      before, after.misalignment, before / std::max(after.misalignment, 1e-300),
-      after.max_deviation, after.worst_sample / run.sv, after.worst_sample % run.sv,
-      after.mean_deviation);
+      before, after.misalignment,
+      after.misalignment <= before ? before / std::max(after.misalignment, 1e-300)
+                                   : after.misalignment / std::max(before, 1e-300),
+      after.misalignment <= before ? "lower" : "higher", after.max_deviation,
+      after.worst_sample / run.sv, after.worst_sample % run.sv, after.mean_deviation);
   if (run.with_relation)
     n += std::snprintf(text + n, sizeof(text) - n,
                        "linear relation %.6g H + %.6g K + %.6g = 0 (input units): max residual "
