@@ -1,6 +1,6 @@
 #pragma once
-// What `gproj combescure`, `gproj invert` and `gproj canal` (circular meshes by construction,
-// 000) share: their registrations (RegisterSuperCanalCommands calls all three), vector options,
+// What `gproj combescure`, `gproj invert`, `gproj canal` and `gproj beams` (circular meshes,
+// 000) share: their registrations (RegisterSuperCanalCommands calls all four), vector options,
 // the measures line and the writing of a mesh with its picture and report.
 
 #include <CLI/CLI.hpp>
@@ -17,6 +17,7 @@ namespace gproj {
 void RegisterCombescureCommand(CLI::App* app, int* exit_code);
 void RegisterInvertCommand(CLI::App* app, int* exit_code);
 void RegisterCanalCommand(CLI::App* app, int* exit_code);
+void RegisterBeamsCommand(CLI::App* app, int* exit_code);
 
 // x, y, z from a comma-separated option; throws InputError naming `option` unless the values
 // are three finite numbers.

@@ -48,6 +48,11 @@ echo "== Canal surface from a circular strip on a shipped curve, smoothed (000 e
   -o out/demo/canal.obj --strip out/demo/canal_strip.obj --picture out/demo/canal.svg \
   --report out/demo/canal_report.json
 echo
+echo "== Torsion-free beams of constant height on the canal mesh (000 §4.3): planar beams, parallel offset =="
+./build/gproj beams out/demo/canal.obj --height 0.1 -o out/demo/beams.obj \
+  --axes out/demo/beam_axes.obj --offset out/demo/beam_offset.obj --picture out/demo/beams.svg \
+  --report out/demo/beams_report.json
+echo
 echo "== Combescure transformation of a circular surface of revolution (edge lengths along row 0 vary) =="
 LENGTHS=$(awk 'BEGIN { for (j = 0; j < 16; ++j) printf "%s%.4f", (j ? "," : ""), 0.09 + 0.05 * sin(j / 5.0) }')
 ./build/gproj combescure examples/data/revolution_13x17.obj --row-lengths "$LENGTHS" \
@@ -82,6 +87,8 @@ echo "  enneper_hnet_report.json      A-net and H-net history, tangent-plane ang
 echo "  marionette.obj                Marionette mesh (planar quads, plan view kept)"
 echo "  marionette_valence6.obj, marionette_tower.obj, marionette_strip.obj   and their reports"
 echo "  canal.obj, canal.svg          canal surface meshed by circular quads; canal_strip.obj its strip"
+echo "  beams.obj, beams.svg          torsion-free beams on the canal mesh; beam_axes.obj the node axes,"
+echo "                                beam_offset.obj the parallel offset mesh"
 echo "  combescure.obj, .svg          parallel mesh of the surface of revolution (still circular)"
 echo "  weingarten.json               the optimised B-spline (SPEC §4 JSON); weingarten_surface.obj sampled"
 echo "  weingarten_diagram.svg        curvature diagram (H, K) before and after: a curve after"

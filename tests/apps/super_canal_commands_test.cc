@@ -1,4 +1,5 @@
-// `gproj combescure`, `gproj invert` and `gproj canal` as a user runs them, on the shipped data.
+// `gproj combescure`, `gproj invert`, `gproj canal` and `gproj beams` as a user runs them, on
+// the shipped data.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -148,6 +149,51 @@ TEST_F(SuperCanalCommandTest, CanalRefusesBadCurveFilesAndLengths) {
                            " --first-point -0.5,0.5,2 --length 50 -o " + Path("out.obj")),
                      "shorter than the circle's diameter");
   EXPECT_FALSE(Exists("out.obj"));
+}
+
+// 000 §4.3 from the command line: beams on the inverted surface of revolution (circular, no
+// symmetry left). Planar beams, a parallel offset at the height, axes written as OBJ segments,
+// the height gaps lowered by the optimisation; a non-circular mesh and a wrong axes format are
+// refused with nothing written; a gap tolerance that is not met exits 3.
+TEST_F(SuperCanalCommandTest, BeamsOnACircularMeshArePlanarWithAParallelOffset) {
+  ASSERT_EQ(Gproj("invert " + Data("revolution_13x17.obj") + " --centre 2,-1,3 -o " +
+                  Path("circular.obj"))
+                .exit_code,
+            0);
+  const CommandRun r =
+      Gproj("beams " + Path("circular.obj") + " --height 0.05 -o " + Path("beams.obj") +
+            " --axes " + Path("axes.obj") + " --offset " + Path("offset.obj") + " --picture " +
+            Path("beams.svg") + " --report " + Path("r.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const nlohmann::json report = Json("r.json");
+  const nlohmann::json& f = report["final"];
+  EXPECT_LT(f["max_beam_planarity"].get<double>(), 1e-10);
+  EXPECT_LT(f["max_offset_angle"].get<double>(), 1e-10);
+  EXPECT_LT(f["max_offset_distance_error"].get<double>(), 1e-10);
+  EXPECT_LE(f["max_height_gap"].get<double>(), report["initial"]["max_height_gap"].get<double>());
+  EXPECT_EQ(report["command"], "beams");
+  const std::string axes = Slurp(dir_ / "axes.obj");
+  EXPECT_NE(axes.find("\nl 1 2\n"), std::string::npos);
+  EXPECT_NE(Slurp(dir_ / "beams.svg").find("<svg"), std::string::npos);
+  EXPECT_NE(r.out.find("height gaps at the nodes"), std::string::npos) << r.out;
+  // The offset is a mesh gproj reads back, with the input's size.
+  EXPECT_EQ(
+      Gproj("beams " + Path("offset.obj") + " --height 0.05 -o " + Path("again.obj")).exit_code, 0);
+
+  ExpectOneLineError(
+      Gproj("beams " + Data("noisy_grid_21x21.obj") + " --height 0.05 -o " + Path("out.obj")),
+      "not inscribed in a circle");
+  ExpectOneLineError(Gproj("beams " + Path("circular.obj") + " --height 0.05 -o " +
+                           Path("out.obj") + " --axes " + Path("axes.txt")),
+                     "--axes");
+  ExpectOneLineError(Gproj("beams " + Path("circular.obj") + " --height 0 -o " + Path("out.obj")),
+                     "--height");
+  EXPECT_FALSE(Exists("out.obj"));
+  const CommandRun strict = Gproj("beams " + Path("circular.obj") + " --height 0.05 -o " +
+                                  Path("strict.obj") + " --gap-tolerance 1e-9");
+  EXPECT_EQ(strict.exit_code, 3) << strict.err << strict.out;
+  EXPECT_NE(strict.err.find("max_height_gap"), std::string::npos) << strict.err;
+  EXPECT_TRUE(Exists("strict.obj"));
 }
 
 }  // namespace
