@@ -1,5 +1,7 @@
 // `gproj canal`: a canal surface meshed by circular quads from a circular strip on a curve
 // (000 §3.2–3.3, §4.1), optionally smoothed (000 eq. 5).
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -9,6 +11,7 @@
 
 #include "apps/super_canal_commands.h"
 #include "geometry/text_input.h"
+#include "problems/canal_from_curves.h"
 #include "problems/canal_surface.h"
 #include "problems/circular_mesh.h"
 
@@ -16,7 +19,7 @@ namespace gproj {
 namespace {
 
 struct CanalArgs {
-  std::string curve, strip;
+  std::string curve, strip, second_curve;
   MeshOutputs outputs;
   std::vector<double> first_point, lengths, normal;
   double length = 0.0, psi = 0.0;
@@ -26,6 +29,8 @@ struct CanalArgs {
 // The canal surface of the options; its frame's normal is --normal or the default.
 std::unique_ptr<CanalSurface> CanalFromArgs(const CanalArgs& args) {
   args.outputs.Check({{"curve", args.curve}}, {{"--strip", args.strip, true}});
+  if (args.first_point.empty())
+    throw InputError("--first-point x,y,z is needed (or --second-curve with --normal)");
   const CircularStripInput input =
       MakeCircularStripInput(ReadPoints(args.curve), Vector3(args.first_point, "--first-point"),
                              args.lengths, args.length);
@@ -37,7 +42,63 @@ std::unique_ptr<CanalSurface> CanalFromArgs(const CanalArgs& args) {
   return std::make_unique<CanalSurface>(input, angles, args.options);
 }
 
+// 000 §4.1 from two curves: spheres equidistant from the line of curvature and the second
+// curve (eq. 6), their circles, the circular mesh between them.
+int RunCanalFromCurves(const CanalArgs& args) {
+  CanalFromCurves canal;
+  RunReport report;
+  try {
+    args.outputs.Check({{"curve", args.curve}, {"--second-curve", args.second_curve}});
+    if (!args.strip.empty() || args.options.smooth || !args.first_point.empty() ||
+        !args.lengths.empty() || args.length != 0.0)
+      throw InputError(
+          "--second-curve builds the spheres from the two curves: --strip, --smooth, "
+          "--first-point and --length(s) belong to the circular-strip construction");
+    if (args.normal.empty())
+      throw InputError("--second-curve needs --normal x,y,z, the surface normal at P_0");
+    const std::vector<Eigen::Vector3d> curve1 = ReadPoints(args.curve, 3);
+    const std::vector<Eigen::Vector3d> curve2 = ReadPoints(args.second_curve, 2);
+    std::printf(
+        "gproj canal: %s (line of curvature, %zu points) and %s (%zu points): spheres "
+        "equidistant from both (000 eq. 6, Newton)\n",
+        args.curve.c_str(), curve1.size(), args.second_curve.c_str(), curve2.size());
+    CanalFromCurvesOptions options;
+    options.segments = args.options.segments;
+    const auto start = std::chrono::steady_clock::now();
+    canal = FitCanalToCurves(curve1, curve2, Vector3(args.normal, "--normal"), options);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    report = ConstructionReport("spheres from two curves", {}, canal.measures, true, seconds);
+  } catch (const InputError& e) {
+    std::cerr << "gproj canal: " << e.what() << "\n";
+    return kExitInputError;
+  }
+  const NamedValues& m = canal.measures;
+  std::printf("%zu spheres: radius %.4g .. %.4g; max |R_k - dist(C_k, curve 2)| %.3e\n",
+              canal.radii.size(), *std::min_element(canal.radii.begin(), canal.radii.end()),
+              *std::max_element(canal.radii.begin(), canal.radii.end()),
+              ValueOf(m, "max_sphere_fit"));
+  std::printf(
+      "%zu circles S_k & S_k+1; they pass curve 1 within %.3g and curve 2's contact "
+      "points within %.3g\n",
+      canal.circles.size(), ValueOf(m, "max_curve1_distance"), ValueOf(m, "max_curve2_distance"));
+  PrintMeasures("canal mesh", m);
+  nlohmann::json extra = {{"curve", args.curve}, {"second_curve", args.second_curve}};
+  for (size_t k = 0; k < canal.radii.size(); ++k) {
+    extra["spheres"].push_back(
+        {{"centre", {canal.centres[k].x(), canal.centres[k].y(), canal.centres[k].z()}},
+         {"radius", canal.radii[k]},
+         {"fit_residual", canal.fit_residuals[k]}});
+  }
+  extra["mesh"] = {{"circles", canal.circles.size()}, {"segments", args.options.segments}};
+  char title[160];
+  std::snprintf(title, sizeof(title), "Canal surface from two curves, %zu circular quads",
+                canal.mesh.n_faces());
+  return WriteAndConclude("canal", report, canal.mesh, title, args.outputs, extra, "", 0.0);
+}
+
 int RunCanal(const CanalArgs& args) {
+  if (!args.second_curve.empty()) return RunCanalFromCurves(args);
   std::unique_ptr<CanalSurface> canal;
   RunReport report;
   PolyMesh mesh;
@@ -87,7 +148,9 @@ void RegisterCanalCommand(CLI::App* app, int* exit_code) {
       "point fixing the first circle and the lengths |P_k Q_k| give a strip of circular quads "
       "by propagation; a frame at P_0 makes it a cyclidic net whose crossing arcs are the "
       "canal surface's circles; the surface is meshed by circular quads between them. "
-      "--smooth minimises 000 eq. 5 (Ceres line-search BFGS). Exit codes as for planarize.");
+      "--smooth minimises 000 eq. 5 (Ceres line-search BFGS). With --second-curve and --normal "
+      "instead: spheres equidistant from the curve and a second curve (000 §4.1, eq. 6), meshed "
+      "by circular quads between their circles. Exit codes as for planarize.");
   cmd->add_option("curve", args->curve,
                   "Curve points P_0..P_n: one 'x y z' per line ('#' comments)")
       ->required();
@@ -96,8 +159,10 @@ void RegisterCanalCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--first-point", args->first_point,
                   "x,y,z of the point that fixes the first circle (with P_0 and P_1)")
       ->check(Finite())
-      ->delimiter(',')
-      ->required();
+      ->delimiter(',');
+  cmd->add_option("--second-curve", args->second_curve,
+                  "Fit the canal surface to a second curve instead (000 §4.1): the curve is "
+                  "then a line of curvature and --normal the surface normal at P_0");
   cmd->add_option("--lengths", args->lengths, "|P_k Q_k| for every curve point (comma separated)")
       ->check(Finite())
       ->delimiter(',');

@@ -48,6 +48,11 @@ echo "== Canal surface from a circular strip on a shipped curve, smoothed (000 e
   -o out/demo/canal.obj --strip out/demo/canal_strip.obj --picture out/demo/canal.svg \
   --report out/demo/canal_report.json
 echo
+echo "== Canal surface fitted to two shipped curves (000 §4.1, eq. 6): spheres touching both, circular mesh =="
+./build/gproj canal examples/data/canal_curve_fine.txt --second-curve examples/data/canal_second_curve.txt \
+  --normal 0,0,1 -o out/demo/canal_two_curves.obj --picture out/demo/canal_two_curves.svg \
+  --report out/demo/canal_two_curves_report.json
+echo
 echo "== Torsion-free beams of constant height on the canal mesh (000 §4.3): planar beams, parallel offset =="
 ./build/gproj beams out/demo/canal.obj --height 0.1 -o out/demo/beams.obj \
   --axes out/demo/beam_axes.obj --offset out/demo/beam_offset.obj --picture out/demo/beams.svg \
@@ -87,6 +92,7 @@ echo "  enneper_hnet_report.json      A-net and H-net history, tangent-plane ang
 echo "  marionette.obj                Marionette mesh (planar quads, plan view kept)"
 echo "  marionette_valence6.obj, marionette_tower.obj, marionette_strip.obj   and their reports"
 echo "  canal.obj, canal.svg          canal surface meshed by circular quads; canal_strip.obj its strip"
+echo "  canal_two_curves.obj, .svg    canal surface whose spheres touch two curves (its report: the spheres)"
 echo "  beams.obj, beams.svg          torsion-free beams on the canal mesh; beam_axes.obj the node axes,"
 echo "                                beam_offset.obj the parallel offset mesh"
 echo "  combescure.obj, .svg          parallel mesh of the surface of revolution (still circular)"

@@ -196,5 +196,31 @@ TEST_F(SuperCanalCommandTest, BeamsOnACircularMeshArePlanarWithAParallelOffset) 
   EXPECT_TRUE(Exists("strict.obj"));
 }
 
+// 000 §4.1 from the command line: the shipped line of curvature and second curve; every sphere
+// equidistant from both, the mesh circular, the spheres in the report; mixing in the strip's
+// options or leaving out the normal is refused with nothing written.
+TEST_F(SuperCanalCommandTest, CanalFromTwoCurvesFitsSpheresAndMeshesCircularQuads) {
+  const std::string curves =
+      Data("canal_curve_fine.txt") + " --second-curve " + Data("canal_second_curve.txt");
+  const CommandRun r = Gproj("canal " + curves + " --normal 0,0,1 --segments 6 -o " +
+                             Path("two.obj") + " --report " + Path("r.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const nlohmann::json report = Json("r.json");
+  EXPECT_LT(report["final"]["max_sphere_fit"].get<double>(), 1e-10);
+  EXPECT_LT(report["final"]["max_concyclicity"].get<double>(), 1e-10);
+  EXPECT_LT(report["final"]["max_planarity"].get<double>(), 1e-10);
+  EXPECT_LT(report["final"]["max_curve1_distance"].get<double>(), 0.05);
+  EXPECT_EQ(report["spheres"].size(), 49u);
+  EXPECT_GT(report["spheres"][0]["radius"].get<double>(), 0.0);
+  EXPECT_NE(r.out.find("max |R_k - dist(C_k, curve 2)|"), std::string::npos) << r.out;
+  ExpectOneLineError(Gproj("canal " + curves + " -o " + Path("out.obj")), "--normal");
+  ExpectOneLineError(Gproj("canal " + curves + " --normal 0,0,1 --length 2 -o " + Path("out.obj")),
+                     "--second-curve");
+  ExpectOneLineError(
+      Gproj("canal " + Data("canal_curve.txt") + " --length 2 -o " + Path("out.obj")),
+      "--first-point");
+  EXPECT_FALSE(Exists("out.obj"));
+}
+
 }  // namespace
 }  // namespace gproj

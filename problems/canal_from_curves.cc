@@ -1,0 +1,205 @@
+#include "problems/canal_from_curves.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "problems/canal_surface.h"
+#include "problems/circular_mesh.h"
+
+namespace gproj {
+namespace {
+
+std::string Format(const char* pattern, int k, double value) {
+  char text[240];
+  std::snprintf(text, sizeof(text), pattern, k, value);
+  return text;
+}
+
+// The point of `circle` nearest to p (any point of it if p is on its axis).
+Eigen::Vector3d NearestOnCircle(const Circle& circle, const Eigen::Vector3d& p) {
+  Eigen::Vector3d d = p - circle.centre;
+  d -= d.dot(circle.normal) * circle.normal;
+  if (d.norm() < 1e-14 * (1.0 + circle.radius)) d = circle.normal.unitOrthogonal();
+  return circle.centre + circle.radius * d.normalized();
+}
+
+// The point of `circle` nearest to the polyline: the best of 720 angles, refined by golden
+// sections on the bracketing interval.
+Eigen::Vector3d NearestOnCircleTo(const Circle& circle, const std::vector<Eigen::Vector3d>& line) {
+  const Eigen::Vector3d e1 = circle.normal.unitOrthogonal(), e2 = circle.normal.cross(e1);
+  auto at = [&](double a) {
+    return Eigen::Vector3d(circle.centre + circle.radius * (std::cos(a) * e1 + std::sin(a) * e2));
+  };
+  auto distance = [&](double a) { return (ClosestPointOnPolyline(line, at(a)) - at(a)).norm(); };
+  constexpr int kSteps = 720;
+  double best = 0.0, nearest = HUGE_VAL;
+  for (int i = 0; i < kSteps; ++i) {
+    const double a = 2.0 * M_PI * i / kSteps, d = distance(a);
+    if (d < nearest) nearest = d, best = a;
+  }
+  double lo = best - 2.0 * M_PI / kSteps, hi = best + 2.0 * M_PI / kSteps;
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  for (int i = 0; i < 60; ++i) {
+    const double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+    if (distance(a) < distance(b))
+      hi = b;
+    else
+      lo = a;
+  }
+  return at(0.5 * (lo + hi));
+}
+
+}  // namespace
+
+bool CanalFromCurvesOptions::IsValid(std::string* why) const {
+  if (segments < 1 || segments > 100000) {
+    *why = "segments must be in [1, 100000]";
+    return false;
+  }
+  if (max_newton_steps < 1) {
+    *why = "max_newton_steps must be >= 1";
+    return false;
+  }
+  if (!(fit_tolerance > 0.0)) {
+    *why = "fit_tolerance must be > 0";
+    return false;
+  }
+  return true;
+}
+
+Eigen::Vector3d ClosestPointOnPolyline(const std::vector<Eigen::Vector3d>& polyline,
+                                       const Eigen::Vector3d& p) {
+  Eigen::Vector3d best = polyline.front();
+  double nearest = (p - best).squaredNorm();
+  for (size_t i = 0; i + 1 < polyline.size(); ++i) {
+    const Eigen::Vector3d a = polyline[i], ab = polyline[i + 1] - a;
+    const double length2 = ab.squaredNorm();
+    const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+    const Eigen::Vector3d q = a + t * ab;
+    if ((p - q).squaredNorm() < nearest) nearest = (p - q).squaredNorm(), best = q;
+  }
+  return best;
+}
+
+CanalFromCurves FitCanalToCurves(const std::vector<Eigen::Vector3d>& curve1,
+                                 const std::vector<Eigen::Vector3d>& curve2,
+                                 const Eigen::Vector3d& normal,
+                                 const CanalFromCurvesOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError(why);
+  const int n = static_cast<int>(curve1.size()) - 1;
+  if (n < 2) throw InputError("the line of curvature needs at least 3 points");
+  if (curve2.size() < 2) throw InputError("the second curve needs at least 2 points");
+  double length = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const double l = (curve1[k + 1] - curve1[k]).norm();
+    if (!(l > 0.0)) throw InputError(Format("curve 1: points %d and %d coincide", k, k + 1));
+    length += l;
+  }
+  CanalFromCurves out;
+  // The normal at P_0, made orthogonal to the curve's tangent there: the tangent at P_0 of the
+  // circle through P_0, P_1, P_2 (the chord if they are collinear). Mirror images in the
+  // bisector planes then keep every n_k orthogonal to the tangent of the circle through
+  // P_{k−1}, P_k, P_{k+1} wherever the curve is a circle (exact on circles and lines).
+  Eigen::Vector3d t0 = (curve1[1] - curve1[0]).normalized();
+  const Circle first = CircleThrough<double>(curve1[0], curve1[1], curve1[2]);
+  if (std::isfinite(first.radius) && first.radius < 1e8 * length)
+    t0 = first.normal.cross(curve1[0] - first.centre).normalized();
+  Eigen::Vector3d n0 = normal - normal.dot(t0) * t0;
+  if (!normal.allFinite() || !(n0.norm() > 1e-6 * normal.norm()))
+    throw InputError(
+        "the normal at P_0 runs along the curve (or is zero): it fixes no "
+        "developable of normals");
+  out.normals.push_back(n0.normalized());
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Vector3d e = (curve1[k + 1] - curve1[k]).normalized();
+    const Eigen::Vector3d& nk = out.normals.back();
+    out.normals.push_back(nk - 2.0 * nk.dot(e) * e);
+  }
+  // Eq. 6 per sphere: h(s) = σ s − |C(s) C'(s)| = 0 on the side σ of the second curve, by
+  // Newton's method from s = 0 (C = P_k); h'(s) = σ − u · n_k with u the unit vector from C'.
+  const double tolerance = options.fit_tolerance * length;
+  for (int k = 0; k <= n; ++k) {
+    const Eigen::Vector3d &p = curve1[k], &nk = out.normals[k];
+    const Eigen::Vector3d start = ClosestPointOnPolyline(curve2, p);
+    const double sigma = (start - p).dot(nk) >= 0.0 ? 1.0 : -1.0;
+    double s = 0.0, residual = HUGE_VAL;
+    for (int step = 0; step < options.max_newton_steps; ++step) {
+      const Eigen::Vector3d c = p + s * nk, closest = ClosestPointOnPolyline(curve2, c);
+      const Eigen::Vector3d away = c - closest;
+      const double d = away.norm();
+      residual = sigma * s - d;
+      if (std::abs(residual) <= 1e-3 * tolerance) break;
+      const double slope = sigma - (d > 0.0 ? away.dot(nk) / d : 0.0);
+      if (!(std::abs(slope) > 1e-12)) break;
+      s -= residual / slope;
+    }
+    const Eigen::Vector3d c = p + s * nk;
+    const double fit = std::abs(std::abs(s) - (ClosestPointOnPolyline(curve2, c) - c).norm());
+    if (!(fit <= tolerance) || !std::isfinite(s))
+      throw InputError(
+          Format("sphere %d: no centre on the normal line is as far from the second "
+                 "curve as from P_k (|R - dist| = %.3g after Newton's method)",
+                 k, fit));
+    out.centres.push_back(c);
+    out.radii.push_back(std::abs(s));
+    out.fit_residuals.push_back(fit);
+  }
+  // 𝒞_k = S_k ∩ S_{k+1}.
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Vector3d axis = out.centres[k + 1] - out.centres[k];
+    const double d = axis.norm(), r0 = out.radii[k], r1 = out.radii[k + 1];
+    if (!(d > 0.0))
+      throw InputError(Format("spheres %d and %d are concentric: they share no circle", k, k + 1));
+    const double a = (d * d + r0 * r0 - r1 * r1) / (2.0 * d), rho2 = r0 * r0 - a * a;
+    if (!(rho2 > 0.0))
+      throw InputError(
+          Format("spheres %d and the next do not meet (their circle would have "
+                 "squared radius %.3g): refine the line of curvature",
+                 k, rho2));
+    Circle circle;
+    circle.normal = axis / d;
+    circle.centre = out.centres[k] + a * circle.normal;
+    circle.radius = std::sqrt(rho2);
+    out.circles.push_back(circle);
+  }
+  // The mesh between consecutive circles: first vertices nearest to the line of curvature,
+  // the first circle's arc (the shorter way round) to its point nearest to the second curve.
+  CyclidicStrip net;
+  net.circles = out.circles;
+  for (int k = 0; k < n; ++k)
+    net.strip.p.push_back(NearestOnCircle(out.circles[k], 0.5 * (curve1[k] + curve1[k + 1])));
+  net.strip.q = net.strip.p;
+  net.strip.q[0] = NearestOnCircleTo(out.circles[0], curve2);
+  {
+    Circle& c0 = net.circles[0];
+    const Eigen::Vector3d from = net.strip.p[0] - c0.centre, to = net.strip.q[0] - c0.centre;
+    if (c0.normal.dot(from.cross(to)) < 0.0) c0.normal = -c0.normal;
+  }
+  out.mesh = MeshCanalSurface(net, options.segments);
+  // How closely the surface's circles pass the two curves: each circle's first vertex from the
+  // line of curvature, and each sphere's contact point with the second curve from the nearer
+  // of the sphere's two circles.
+  double curve1_distance = 0.0, curve2_distance = 0.0, sphere_fit = 0.0;
+  for (int k = 0; k < n; ++k)
+    curve1_distance = std::max(
+        curve1_distance, (net.strip.p[k] - ClosestPointOnPolyline(curve1, net.strip.p[k])).norm());
+  for (int k = 0; k <= n; ++k) {
+    const Eigen::Vector3d contact = ClosestPointOnPolyline(curve2, out.centres[k]);
+    double nearest = HUGE_VAL;
+    for (int c : {k - 1, k})
+      if (c >= 0 && c < n) nearest = std::min(nearest, DistanceToCircle(contact, out.circles[c]));
+    curve2_distance = std::max(curve2_distance, nearest);
+  }
+  for (double f : out.fit_residuals) sphere_fit = std::max(sphere_fit, f);
+  out.measures = {{"max_sphere_fit", sphere_fit},
+                  {"max_curve1_distance", curve1_distance},
+                  {"max_curve2_distance", curve2_distance}};
+  const NamedValues circular = MeasureCircularMesh(out.mesh);
+  out.measures.insert(out.measures.end(), circular.begin(), circular.end());
+  return out;
+}
+
+}  // namespace gproj
