@@ -1,0 +1,45 @@
+#pragma once
+// Principal curvatures and directions at the vertices of a triangle mesh by a jet fit, and the
+// asymptotic directions where the Gaussian curvature is negative (004 §3.1: "the curvature
+// tensor … estimated by a 3rd-order jet fit"). CGAL's Monge_via_jet_fitting (Cazals & Pouget,
+// "Estimating differential quantities using polynomial fitting of osculating jets", CAGD 22,
+// 2005) fits a bivariate polynomial height function to the vertex and its neighbours within a
+// few rings, in a frame from their principal axes, and returns its Monge form.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "geometry/mesh_io.h"
+
+namespace gproj {
+
+struct VertexCurvature {
+  bool fitted = false;  // false: too few neighbours or a degenerate fit
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // unit, on the side of the mesh's normal
+  Eigen::Vector3d d1 = Eigen::Vector3d::Zero();      // unit principal direction of k1
+  Eigen::Vector3d d2 = Eigen::Vector3d::Zero();      // unit principal direction of k2
+  double k1 = 0.0, k2 = 0.0;                         // k1 ≥ k2, with respect to `normal`
+  double gaussian() const { return k1 * k2; }
+  double mean() const { return 0.5 * (k1 + k2); }
+  // The two asymptotic directions (unit tangents, where the normal curvature vanishes)
+  // cos θ d1 ± sin θ d2 with tan² θ = −k1 / k2; false where K ≥ 0 (none, or a flat point).
+  bool Asymptotic(Eigen::Vector3d* a, Eigen::Vector3d* b) const;
+};
+
+struct CurvatureFitOptions {
+  int fit_degree = 3;    // degree of the fitted jet (004: 3)
+  int monge_degree = 2;  // degree of the Monge form returned (≤ fit_degree)
+  int min_points = 20;   // rings are added until the neighbourhood has this many vertices
+  int max_rings = 6;
+  bool IsValid(std::string* why) const;
+};
+
+// One VertexCurvature per vertex. Throws InputError for invalid options or a mesh without
+// faces.
+std::vector<VertexCurvature> FitVertexCurvatures(const PolyMesh& mesh,
+                                                 const CurvatureFitOptions& options = {});
+
+// Angle in degrees between two lines (directions up to sign), in [0, 90].
+double LineAngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b);
+
+}  // namespace gproj

@@ -1,0 +1,185 @@
+#include "geometry/curvature_field.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <random>
+
+#include "geometry/input_error.h"
+
+namespace gproj {
+namespace {
+
+using Surface = std::function<Eigen::Vector3d(double, double)>;
+
+// An irregular triangle mesh of f over [u0, u1] × [v0, v1]: an n × n grid whose inner
+// parameters are jittered by up to 30% of a cell, each cell split along a random diagonal.
+// *uv receives every vertex's parameters.
+PolyMesh Triangulate(const Surface& f, double u0, double u1, double v0, double v1, int n,
+                     std::vector<Eigen::Vector2d>* uv) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  PolyMesh mesh;
+  std::vector<PolyMesh::VertexHandle> v;
+  const double du = (u1 - u0) / n, dv = (v1 - v0) / n;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) {
+      const bool inner = i > 0 && i < n && j > 0 && j < n;
+      const double u = u0 + (i + (inner ? jitter(random) : 0.0)) * du;
+      const double w = v0 + (j + (inner ? jitter(random) : 0.0)) * dv;
+      uv->emplace_back(u, w);
+      const Eigen::Vector3d p = f(u, w);
+      v.push_back(mesh.add_vertex(PolyMesh::Point(p.x(), p.y(), p.z())));
+    }
+  std::bernoulli_distribution diagonal(0.5);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const auto a = v[i * (n + 1) + j], b = v[(i + 1) * (n + 1) + j],
+                 c = v[(i + 1) * (n + 1) + j + 1], d = v[i * (n + 1) + j + 1];
+      if (diagonal(random)) {
+        mesh.add_face({a, b, c});
+        mesh.add_face({a, c, d});
+      } else {
+        mesh.add_face({a, b, d});
+        mesh.add_face({b, c, d});
+      }
+    }
+  return mesh;
+}
+
+// Largest angle (degrees) between the fitted asymptotic directions and the analytic pair
+// (matched either way round), over the vertices whose parameters lie in the inner region.
+double WorstAsymptoticError(
+    const std::vector<VertexCurvature>& fit, const std::vector<Eigen::Vector2d>& uv,
+    const std::function<bool(const Eigen::Vector2d&)>& inner,
+    const std::function<std::pair<Eigen::Vector3d, Eigen::Vector3d>(const Eigen::Vector2d&)>& exact,
+    int* checked) {
+  double worst = 0.0;
+  *checked = 0;
+  for (size_t k = 0; k < fit.size(); ++k) {
+    if (!inner(uv[k])) continue;
+    Eigen::Vector3d a, b;
+    EXPECT_TRUE(fit[k].Asymptotic(&a, &b)) << k;
+    if (!fit[k].Asymptotic(&a, &b)) continue;
+    const auto [x, y] = exact(uv[k]);
+    const double straight = std::max(LineAngleDeg(a, x), LineAngleDeg(b, y));
+    const double crossed = std::max(LineAngleDeg(a, y), LineAngleDeg(b, x));
+    worst = std::max(worst, std::min(straight, crossed));
+    ++*checked;
+  }
+  return worst;
+}
+
+// z = xy: K < 0 everywhere, the asymptotic lines are the rulings x = const and y = const,
+// with tangents (1, 0, y) and (0, 1, x).
+TEST(CurvatureFieldTest, AsymptoticDirectionsOfTheHyperbolicParaboloid) {
+  std::vector<Eigen::Vector2d> uv;
+  const PolyMesh mesh = Triangulate([](double x, double y) { return Eigen::Vector3d(x, y, x * y); },
+                                    -1.0, 1.0, -1.0, 1.0, 40, &uv);
+  const std::vector<VertexCurvature> fit = FitVertexCurvatures(mesh);
+  int checked = 0;
+  const double worst = WorstAsymptoticError(
+      fit, uv, [](const Eigen::Vector2d& p) { return p.cwiseAbs().maxCoeff() < 0.8; },
+      [](const Eigen::Vector2d& p) {
+        return std::pair(Eigen::Vector3d(1, 0, p.y()), Eigen::Vector3d(0, 1, p.x()));
+      },
+      &checked);
+  std::printf("z = xy: %d vertices, worst asymptotic direction error %.3f deg\n", checked, worst);
+  EXPECT_GT(checked, 900);
+  EXPECT_LT(worst, 1.0);
+}
+
+// Enneper's surface: a minimal surface whose parameter lines are lines of curvature, so the
+// asymptotic directions bisect them: x_u ± x_v.
+TEST(CurvatureFieldTest, AsymptoticDirectionsOfEnneperSurface) {
+  auto enneper = [](double u, double v) {
+    return Eigen::Vector3d(u - u * u * u / 3 + u * v * v, v - v * v * v / 3 + u * u * v,
+                           u * u - v * v);
+  };
+  std::vector<Eigen::Vector2d> uv;
+  const PolyMesh mesh = Triangulate(enneper, -0.8, 0.8, -0.8, 0.8, 40, &uv);
+  const std::vector<VertexCurvature> fit = FitVertexCurvatures(mesh);
+  int checked = 0;
+  const double worst = WorstAsymptoticError(
+      fit, uv, [](const Eigen::Vector2d& p) { return p.cwiseAbs().maxCoeff() < 0.6; },
+      [](const Eigen::Vector2d& p) {
+        const double u = p.x(), v = p.y();
+        const Eigen::Vector3d xu(1 - u * u + v * v, 2 * u * v, 2 * u);
+        const Eigen::Vector3d xv(2 * u * v, 1 - v * v + u * u, -2 * v);
+        return std::pair(Eigen::Vector3d(xu + xv), Eigen::Vector3d(xu - xv));
+      },
+      &checked);
+  std::printf("Enneper: %d vertices, worst asymptotic direction error %.3f deg\n", checked, worst);
+  EXPECT_GT(checked, 500);
+  EXPECT_LT(worst, 1.0);
+  // Minimal: H = 0 against |K| (relative).
+  double h = 0.0, k = 0.0;
+  for (const VertexCurvature& c : fit)
+    if (c.fitted) h = std::max(h, std::abs(c.mean())), k = std::max(k, std::sqrt(-c.gaussian()));
+  EXPECT_LT(h, 0.05 * k);
+}
+
+// An ellipsoid patch (semi-axes 3, 2, 1.5), K > 0: principal directions against the analytic
+// ones (eigenvectors of the second fundamental form relative to the first), away from the
+// umbilics; no asymptotic directions.
+TEST(CurvatureFieldTest, PrincipalDirectionsOfAnEllipsoidPatch) {
+  const double a = 3.0, b = 2.0, c = 1.5;
+  auto ellipsoid = [=](double u, double v) {
+    return Eigen::Vector3d(a * std::cos(u) * std::cos(v), b * std::cos(u) * std::sin(v),
+                           c * std::sin(u));
+  };
+  std::vector<Eigen::Vector2d> uv;
+  const PolyMesh mesh = Triangulate(ellipsoid, -0.6, 0.6, -0.6, 0.6, 40, &uv);
+  const std::vector<VertexCurvature> fit = FitVertexCurvatures(mesh);
+  double worst = 0.0;
+  int checked = 0;
+  for (size_t k = 0; k < fit.size(); ++k) {
+    if (uv[k].cwiseAbs().maxCoeff() > 0.45) continue;
+    const double u = uv[k].x(), v = uv[k].y();
+    const Eigen::Vector3d xu(-a * std::sin(u) * std::cos(v), -b * std::sin(u) * std::sin(v),
+                             c * std::cos(u));
+    const Eigen::Vector3d xv(-a * std::cos(u) * std::sin(v), b * std::cos(u) * std::cos(v), 0);
+    const Eigen::Vector3d xuu(-a * std::cos(u) * std::cos(v), -b * std::cos(u) * std::sin(v),
+                              -c * std::sin(u));
+    const Eigen::Vector3d xuv(a * std::sin(u) * std::sin(v), -b * std::sin(u) * std::cos(v), 0);
+    const Eigen::Vector3d xvv(-a * std::cos(u) * std::cos(v), -b * std::cos(u) * std::sin(v), 0);
+    const Eigen::Vector3d n = xu.cross(xv).normalized();
+    Eigen::Matrix2d first, second;
+    first << xu.dot(xu), xu.dot(xv), xu.dot(xv), xv.dot(xv);
+    second << xuu.dot(n), xuv.dot(n), xuv.dot(n), xvv.dot(n);
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> shape(second, first);
+    const double gap = std::abs(shape.eigenvalues()[1] - shape.eigenvalues()[0]);
+    if (gap < 0.05) continue;  // near an umbilic the directions are not defined
+    const Eigen::Vector2d w = shape.eigenvectors().col(1);
+    const Eigen::Vector3d exact = w.x() * xu + w.y() * xv;
+    Eigen::Vector3d p, q;
+    EXPECT_FALSE(fit[k].Asymptotic(&p, &q)) << k;
+    // d1 or d2, whichever belongs to the same eigenvalue (the normal's side may differ).
+    const double along = std::min(LineAngleDeg(fit[k].d1, exact), LineAngleDeg(fit[k].d2, exact));
+    worst = std::max(worst, along);
+    ++checked;
+  }
+  std::printf("ellipsoid: %d vertices, worst principal direction error %.3f deg\n", checked, worst);
+  EXPECT_GT(checked, 300);
+  EXPECT_LT(worst, 1.0);
+}
+
+TEST(CurvatureFieldTest, InvalidOptionsAreRefused) {
+  std::vector<Eigen::Vector2d> uv;
+  const PolyMesh mesh =
+      Triangulate([](double x, double y) { return Eigen::Vector3d(x, y, 0); }, 0, 1, 0, 1, 4, &uv);
+  CurvatureFitOptions o;
+  o.min_points = 5;
+  EXPECT_THROW(FitVertexCurvatures(mesh, o), InputError);
+  o = CurvatureFitOptions();
+  o.monge_degree = 4;
+  EXPECT_THROW(FitVertexCurvatures(mesh, o), InputError);
+  EXPECT_THROW(FitVertexCurvatures(PolyMesh()), InputError);
+}
+
+}  // namespace
+}  // namespace gproj
