@@ -74,6 +74,7 @@ int RunBeams(const BeamsArgs& args) {
   initial.push_back({"max_height_gap", ValueOf(m, "initial_max_height_gap")});
   const bool met = args.gap_tolerance <= 0.0 || ValueOf(m, "max_height_gap") <= args.gap_tolerance;
   const RunReport report = ConstructionReport("mirror images", initial, m, met, seconds);
+  if (report.failed) return ConcludeRun("beams", report, "max_height_gap", args.gap_tolerance, {});
   nlohmann::json extra = {{"input", args.input},         {"height", args.options.height},
                           {"root_vertex", layout.root},  {"optimised", args.options.optimise},
                           {"output", args.outputs.mesh}, {"axes", args.axes},
@@ -138,8 +139,8 @@ void RegisterBeamsCommand(CLI::App* app, int* exit_code) {
                   "Largest height gap at a node (in units of the height) for exit 0")
       ->check(Positive());
   cmd->add_option("--circularity-tolerance", args->options.circularity_tolerance,
-                  "Largest closing angle (rad) of the axes around a face")
-      ->check(Positive())
+                  "Largest closing angle (rad) of the axes around a face, at most 0.01")
+      ->check(Within(1e-300, 1e-2))
       ->capture_default_str();
   cmd->add_option("--report", args->outputs.report, "Write a JSON report");
   cmd->add_option("--picture", args->outputs.picture, "Write a shaded SVG picture of the beams");

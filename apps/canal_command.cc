@@ -49,11 +49,17 @@ int RunCanalFromCurves(const CanalArgs& args) {
   RunReport report;
   try {
     args.outputs.Check({{"curve", args.curve}, {"--second-curve", args.second_curve}});
+    const CanalSmoothingOptions defaults;
+    const CanalSmoothingOptions& smoothing = args.options.smoothing;
     if (!args.strip.empty() || args.options.smooth || !args.first_point.empty() ||
-        !args.lengths.empty() || args.length != 0.0)
+        !args.lengths.empty() || args.length != 0.0 || args.psi != 0.0 ||
+        smoothing.optimize_lengths != defaults.optimize_lengths ||
+        smoothing.max_iterations != defaults.max_iterations ||
+        smoothing.length_weight != defaults.length_weight)
       throw InputError(
           "--second-curve builds the spheres from the two curves: --strip, --smooth, "
-          "--first-point and --length(s) belong to the circular-strip construction");
+          "--first-point, --length(s), --psi, --fixed-lengths, --max-iterations and "
+          "--length-weight belong to the circular-strip construction");
     if (args.normal.empty())
       throw InputError("--second-curve needs --normal x,y,z, the surface normal at P_0");
     const std::vector<Eigen::Vector3d> curve1 = ReadPoints(args.curve, 3);

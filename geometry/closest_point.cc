@@ -1,5 +1,6 @@
 #include "geometry/closest_point.h"
 
+#include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
@@ -80,6 +81,42 @@ void ClosestPointQuery::Project(const Eigen::Vector3d& q, Eigen::Vector3d* p,
     if (blended.norm() > 0.0) blended.normalize();
   }
   *n = blended;
+}
+
+using Segment = Kernel::Segment_3;
+using SegmentIterator = std::vector<Segment>::const_iterator;
+using SegmentTree = CGAL::AABB_tree<
+    CGAL::AABB_traits<Kernel, CGAL::AABB_segment_primitive<Kernel, SegmentIterator>>>;
+
+struct PolylineClosestPoint::Impl {
+  std::vector<Segment> segments;
+  SegmentTree tree;
+  Kernel::Point_3 single;  // a polyline of coincident points
+  bool degenerate = true;
+};
+
+PolylineClosestPoint::PolylineClosestPoint(const std::vector<Eigen::Vector3d>& points)
+    : impl_(std::make_unique<Impl>()) {
+  if (points.size() < 2) throw InputError("a polyline needs at least 2 points");
+  impl_->single = Kernel::Point_3(points[0].x(), points[0].y(), points[0].z());
+  for (size_t i = 0; i + 1 < points.size(); ++i) {
+    if (points[i] == points[i + 1]) continue;  // CGAL refuses zero-length segments
+    impl_->segments.emplace_back(
+        Kernel::Point_3(points[i].x(), points[i].y(), points[i].z()),
+        Kernel::Point_3(points[i + 1].x(), points[i + 1].y(), points[i + 1].z()));
+  }
+  impl_->degenerate = impl_->segments.empty();
+  if (!impl_->degenerate) {
+    impl_->tree.insert(impl_->segments.begin(), impl_->segments.end());
+    impl_->tree.accelerate_distance_queries();
+  }
+}
+
+PolylineClosestPoint::~PolylineClosestPoint() = default;
+
+Eigen::Vector3d PolylineClosestPoint::Closest(const Eigen::Vector3d& q) const {
+  if (impl_->degenerate) return ToEigen(impl_->single);
+  return ToEigen(impl_->tree.closest_point(Kernel::Point_3(q.x(), q.y(), q.z())));
 }
 
 }  // namespace gproj

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <vector>
 
 #include "geometry/mesh_io.h"
 
@@ -20,6 +21,22 @@ class ClosestPointQuery {
 
   // Closest point p of the surface to q and the unit normal n there.
   void Project(const Eigen::Vector3d& q, Eigen::Vector3d* p, Eigen::Vector3d* n) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Closest points on a polyline (its segments in CGAL's AABB tree: a query costs O(log n)).
+class PolylineClosestPoint {
+ public:
+  // Throws InputError for fewer than 2 points.
+  explicit PolylineClosestPoint(const std::vector<Eigen::Vector3d>& points);
+  ~PolylineClosestPoint();
+  PolylineClosestPoint(const PolylineClosestPoint&) = delete;
+  PolylineClosestPoint& operator=(const PolylineClosestPoint&) = delete;
+
+  Eigen::Vector3d Closest(const Eigen::Vector3d& q) const;
 
  private:
   struct Impl;

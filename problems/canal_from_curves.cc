@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "geometry/closest_point.h"
 #include "problems/canal_surface.h"
 #include "problems/circular_mesh.h"
 
@@ -27,12 +28,12 @@ Eigen::Vector3d NearestOnCircle(const Circle& circle, const Eigen::Vector3d& p) 
 
 // The point of `circle` nearest to the polyline: the best of 720 angles, refined by golden
 // sections on the bracketing interval.
-Eigen::Vector3d NearestOnCircleTo(const Circle& circle, const std::vector<Eigen::Vector3d>& line) {
+Eigen::Vector3d NearestOnCircleTo(const Circle& circle, const PolylineClosestPoint& line) {
   const Eigen::Vector3d e1 = circle.normal.unitOrthogonal(), e2 = circle.normal.cross(e1);
   auto at = [&](double a) {
     return Eigen::Vector3d(circle.centre + circle.radius * (std::cos(a) * e1 + std::sin(a) * e2));
   };
-  auto distance = [&](double a) { return (ClosestPointOnPolyline(line, at(a)) - at(a)).norm(); };
+  auto distance = [&](double a) { return (line.Closest(at(a)) - at(a)).norm(); };
   constexpr int kSteps = 720;
   double best = 0.0, nearest = HUGE_VAL;
   for (int i = 0; i < kSteps; ++i) {
@@ -69,35 +70,16 @@ bool CanalFromCurvesOptions::IsValid(std::string* why) const {
   return true;
 }
 
-Eigen::Vector3d ClosestPointOnPolyline(const std::vector<Eigen::Vector3d>& polyline,
-                                       const Eigen::Vector3d& p) {
-  Eigen::Vector3d best = polyline.front();
-  double nearest = (p - best).squaredNorm();
-  for (size_t i = 0; i + 1 < polyline.size(); ++i) {
-    const Eigen::Vector3d a = polyline[i], ab = polyline[i + 1] - a;
-    const double length2 = ab.squaredNorm();
-    const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-    const Eigen::Vector3d q = a + t * ab;
-    if ((p - q).squaredNorm() < nearest) nearest = (p - q).squaredNorm(), best = q;
-  }
-  return best;
-}
+namespace {
 
-CanalFromCurves FitCanalToCurves(const std::vector<Eigen::Vector3d>& curve1,
-                                 const std::vector<Eigen::Vector3d>& curve2,
-                                 const Eigen::Vector3d& normal,
-                                 const CanalFromCurvesOptions& options) {
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError(why);
+// FitCanalToCurves on curves scaled so that curve 1 has unit length.
+CanalFromCurves FitAtUnitScale(const std::vector<Eigen::Vector3d>& curve1,
+                               const std::vector<Eigen::Vector3d>& curve2,
+                               const Eigen::Vector3d& normal,
+                               const CanalFromCurvesOptions& options) {
   const int n = static_cast<int>(curve1.size()) - 1;
-  if (n < 2) throw InputError("the line of curvature needs at least 3 points");
-  if (curve2.size() < 2) throw InputError("the second curve needs at least 2 points");
-  double length = 0.0;
-  for (int k = 0; k < n; ++k) {
-    const double l = (curve1[k + 1] - curve1[k]).norm();
-    if (!(l > 0.0)) throw InputError(Format("curve 1: points %d and %d coincide", k, k + 1));
-    length += l;
-  }
+  const double length = 1.0;
+  const PolylineClosestPoint first_curve(curve1), second_curve(curve2);
   CanalFromCurves out;
   // The normal at P_0, made orthogonal to the curve's tangent there: the tangent at P_0 of the
   // circle through P_0, P_1, P_2 (the chord if they are collinear). Mirror images in the
@@ -123,11 +105,16 @@ CanalFromCurves FitCanalToCurves(const std::vector<Eigen::Vector3d>& curve1,
   const double tolerance = options.fit_tolerance * length;
   for (int k = 0; k <= n; ++k) {
     const Eigen::Vector3d &p = curve1[k], &nk = out.normals[k];
-    const Eigen::Vector3d start = ClosestPointOnPolyline(curve2, p);
+    const Eigen::Vector3d start = second_curve.Closest(p);
+    if (!((start - p).norm() > 1e-9 * length))
+      throw InputError(
+          Format("the second curve passes through point %d of the line of curvature "
+                 "(a sphere of radius 0 there): the curves must not touch (%.3g)",
+                 k, (start - p).norm()));
     const double sigma = (start - p).dot(nk) >= 0.0 ? 1.0 : -1.0;
     double s = 0.0, residual = HUGE_VAL;
     for (int step = 0; step < options.max_newton_steps; ++step) {
-      const Eigen::Vector3d c = p + s * nk, closest = ClosestPointOnPolyline(curve2, c);
+      const Eigen::Vector3d c = p + s * nk, closest = second_curve.Closest(c);
       const Eigen::Vector3d away = c - closest;
       const double d = away.norm();
       residual = sigma * s - d;
@@ -137,7 +124,7 @@ CanalFromCurves FitCanalToCurves(const std::vector<Eigen::Vector3d>& curve1,
       s -= residual / slope;
     }
     const Eigen::Vector3d c = p + s * nk;
-    const double fit = std::abs(std::abs(s) - (ClosestPointOnPolyline(curve2, c) - c).norm());
+    const double fit = std::abs(std::abs(s) - (second_curve.Closest(c) - c).norm());
     if (!(fit <= tolerance) || !std::isfinite(s))
       throw InputError(
           Format("sphere %d: no centre on the normal line is as far from the second "
@@ -172,7 +159,7 @@ CanalFromCurves FitCanalToCurves(const std::vector<Eigen::Vector3d>& curve1,
   for (int k = 0; k < n; ++k)
     net.strip.p.push_back(NearestOnCircle(out.circles[k], 0.5 * (curve1[k] + curve1[k + 1])));
   net.strip.q = net.strip.p;
-  net.strip.q[0] = NearestOnCircleTo(out.circles[0], curve2);
+  net.strip.q[0] = NearestOnCircleTo(out.circles[0], second_curve);
   {
     Circle& c0 = net.circles[0];
     const Eigen::Vector3d from = net.strip.p[0] - c0.centre, to = net.strip.q[0] - c0.centre;
@@ -184,10 +171,10 @@ CanalFromCurves FitCanalToCurves(const std::vector<Eigen::Vector3d>& curve1,
   // of the sphere's two circles.
   double curve1_distance = 0.0, curve2_distance = 0.0, sphere_fit = 0.0;
   for (int k = 0; k < n; ++k)
-    curve1_distance = std::max(
-        curve1_distance, (net.strip.p[k] - ClosestPointOnPolyline(curve1, net.strip.p[k])).norm());
+    curve1_distance =
+        std::max(curve1_distance, (net.strip.p[k] - first_curve.Closest(net.strip.p[k])).norm());
   for (int k = 0; k <= n; ++k) {
-    const Eigen::Vector3d contact = ClosestPointOnPolyline(curve2, out.centres[k]);
+    const Eigen::Vector3d contact = second_curve.Closest(out.centres[k]);
     double nearest = HUGE_VAL;
     for (int c : {k - 1, k})
       if (c >= 0 && c < n) nearest = std::min(nearest, DistanceToCircle(contact, out.circles[c]));
@@ -199,6 +186,54 @@ CanalFromCurves FitCanalToCurves(const std::vector<Eigen::Vector3d>& curve1,
                   {"max_curve2_distance", curve2_distance}};
   const NamedValues circular = MeasureCircularMesh(out.mesh);
   out.measures.insert(out.measures.end(), circular.begin(), circular.end());
+  return out;
+}
+
+}  // namespace
+
+CanalFromCurves FitCanalToCurves(const std::vector<Eigen::Vector3d>& curve1,
+                                 const std::vector<Eigen::Vector3d>& curve2,
+                                 const Eigen::Vector3d& normal,
+                                 const CanalFromCurvesOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError(why);
+  const int n = static_cast<int>(curve1.size()) - 1;
+  if (n < 2) throw InputError("the line of curvature needs at least 3 points");
+  if (curve2.size() < 2) throw InputError("the second curve needs at least 2 points");
+  double length = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const double l = (curve1[k + 1] - curve1[k]).stableNorm();
+    if (!(l > 0.0)) throw InputError(Format("curve 1: points %d and %d coincide", k, k + 1));
+    length += l;
+  }
+  if (!std::isfinite(length)) throw InputError("curve 1 is too long to measure");
+  const Eigen::Vector3d origin = curve1[0];
+  auto to_unit = [&](const std::vector<Eigen::Vector3d>& curve) {
+    std::vector<Eigen::Vector3d> unit;
+    unit.reserve(curve.size());
+    for (const Eigen::Vector3d& p : curve) unit.push_back((p - origin) / length);
+    return unit;
+  };
+  const double largest = normal.cwiseAbs().maxCoeff();
+  const Eigen::Vector3d direction =
+      largest > 0.0 && std::isfinite(largest) ? Eigen::Vector3d(normal / largest) : normal;
+  CanalFromCurves out = FitAtUnitScale(to_unit(curve1), to_unit(curve2), direction, options);
+  for (Eigen::Vector3d& c : out.centres) c = c * length + origin;
+  for (double& r : out.radii) r *= length;
+  for (double& f : out.fit_residuals) f *= length;
+  for (Circle& c : out.circles) {
+    c.centre = c.centre * length + origin;
+    c.radius *= length;
+  }
+  for (auto v : out.mesh.vertices()) {
+    const auto& q = out.mesh.point(v);
+    const Eigen::Vector3d p = Eigen::Vector3d(q[0], q[1], q[2]) * length + origin;
+    out.mesh.set_point(v, PolyMesh::Point(p.x(), p.y(), p.z()));
+  }
+  for (NamedValue& m : out.measures)
+    if (m.name == "max_sphere_fit" || m.name == "max_curve1_distance" ||
+        m.name == "max_curve2_distance")
+      m.value *= length;
   return out;
 }
 

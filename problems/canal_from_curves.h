@@ -48,16 +48,14 @@ struct CanalFromCurves {
 };
 
 // curve1: P_0..P_n (n ≥ 2); curve2: a polyline (≥ 2 points); normal at P_0 (not along the
-// first segment). Throws InputError naming the sphere or circle that cannot be built: a normal
-// along the curve, a Newton iteration that finds no equidistant centre, two consecutive
-// spheres that do not meet.
+// first segment). Computed at unit scale (curve 1 translated to its first point and divided by
+// its length), so far or huge coordinates lose nothing. Throws InputError naming the sphere or
+// circle that cannot be built: a normal along the curve, a second curve through a point of the
+// first (a sphere of radius 0), a Newton iteration that finds no equidistant centre, two
+// consecutive spheres that do not meet.
 CanalFromCurves FitCanalToCurves(const std::vector<Eigen::Vector3d>& curve1,
                                  const std::vector<Eigen::Vector3d>& curve2,
                                  const Eigen::Vector3d& normal,
                                  const CanalFromCurvesOptions& options);
-
-// The closest point of the polyline to p.
-Eigen::Vector3d ClosestPointOnPolyline(const std::vector<Eigen::Vector3d>& polyline,
-                                       const Eigen::Vector3d& p);
 
 }  // namespace gproj

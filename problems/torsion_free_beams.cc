@@ -107,7 +107,7 @@ Eigen::Vector3d MeanFaceNormal(const PolyMesh& mesh, PolyMesh::VertexHandle v) {
     std::vector<Eigen::Vector3d> p;
     for (auto fv = mesh.cfv_iter(*f); fv.is_valid(); ++fv) p.push_back(Point(mesh, *fv));
     Eigen::Vector3d n = Eigen::Vector3d::Zero();
-    for (size_t k = 0; k < p.size(); ++k) n += p[k].cross(p[(k + 1) % p.size()]);
+    for (size_t k = 1; k + 1 < p.size(); ++k) n += (p[k] - p[0]).cross(p[k + 1] - p[0]);
     sum += n.normalized();
   }
   return sum.normalized();
@@ -214,17 +214,20 @@ bool BeamOptions::IsValid(std::string* why) const {
     *why = "the beam width must be a finite number >= 0";
     return false;
   }
-  if (!(circularity_tolerance > 0.0)) {
-    *why = "the circularity tolerance must be > 0";
+  if (!(circularity_tolerance > 0.0 && circularity_tolerance <= 1e-2)) {
+    *why =
+        "the circularity tolerance must be in (0, 0.01] rad (a looser one gives beams that "
+        "are not planar)";
     return false;
   }
   return true;
 }
 
-BeamLayout TorsionFreeBeams(const PolyMesh& mesh, const BeamOptions& options) {
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError(why);
-  if (mesh.n_faces() == 0) throw InputError("the mesh has no faces");
+namespace {
+
+// The layout of a mesh scaled to unit mean edge length (h and width in those units).
+BeamLayout BeamsAtUnitScale(const PolyMesh& mesh, double h, double width,
+                            const BeamOptions& options) {
   BeamLayout out;
   out.root = CentralVertex(mesh);
   const Layout layout = Propagate(mesh, out.root);
@@ -260,12 +263,10 @@ BeamLayout TorsionFreeBeams(const PolyMesh& mesh, const BeamOptions& options) {
   out.axis = axes_of(root_axis);
   const Gaps gaps = MeasureGaps(mesh, out.axis);
   out.node_gap = gaps.gap;
-  const double h = options.height;
   out.edge_lift.resize(mesh.n_edges());
   for (size_t e = 0; e < gaps.lift.size(); ++e) out.edge_lift[e] = h * gaps.lift[e];
 
   const double unit = MeanEdgeLength(mesh);
-  const double width = options.width > 0.0 ? options.width : 0.04 * unit;
   out.offset = mesh;
   for (auto v : out.offset.vertices()) {
     const Eigen::Vector3d p = Point(mesh, v) + h * out.axis[v.idx()];
@@ -293,6 +294,58 @@ BeamLayout TorsionFreeBeams(const PolyMesh& mesh, const BeamOptions& options) {
                   {"max_height_gap", gaps.max},
                   {"mean_height_gap", gaps.mean},
                   {"initial_max_height_gap", initial.max}};
+  return out;
+}
+
+// p · scale + shift for every vertex.
+void MapBack(double scale, const Eigen::Vector3d& shift, PolyMesh* mesh) {
+  for (auto v : mesh->vertices()) {
+    const Eigen::Vector3d p = Point(*mesh, v) * scale + shift;
+    mesh->set_point(v, PolyMesh::Point(p.x(), p.y(), p.z()));
+  }
+}
+
+}  // namespace
+
+BeamLayout TorsionFreeBeams(const PolyMesh& mesh, const BeamOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError(why);
+  if (mesh.n_faces() == 0) throw InputError("the mesh has no faces");
+  for (auto f : mesh.faces())
+    if (mesh.valence(f) % 2 != 0)
+      throw InputError("face " + std::to_string(f.idx()) + " has " +
+                       std::to_string(mesh.valence(f)) +
+                       " vertices: mirror images of the node axes close only around faces with "
+                       "an even number of vertices (a circular quad mesh is needed)");
+  // Computed at unit scale about the centroid, so that far or huge or tiny coordinates lose
+  // nothing (edge differences are formed before any product).
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (auto v : mesh.vertices()) centre += Point(mesh, v) / static_cast<double>(mesh.n_vertices());
+  double unit = 0.0;
+  for (auto e : mesh.edges()) {
+    const auto h = mesh.halfedge_handle(e, 0);
+    unit += (Point(mesh, mesh.to_vertex_handle(h)) - Point(mesh, mesh.from_vertex_handle(h)))
+                .stableNorm() /
+            static_cast<double>(mesh.n_edges());
+  }
+  if (!(unit > 0.0) || !std::isfinite(unit) || !centre.allFinite())
+    throw InputError("the mesh's edge lengths are zero or not finite");
+  const double h = options.height / unit;
+  if (!(h >= 1e-9 && h <= 1e6)) {
+    char text[200];
+    std::snprintf(text, sizeof(text),
+                  "the beam height %g is %.3g times the mean edge length %g: it must be between "
+                  "1e-9 and 1e6 times it",
+                  options.height, h, unit);
+    throw InputError(text);
+  }
+  PolyMesh scaled = mesh;
+  MapBack(1.0 / unit, -centre / unit, &scaled);
+  BeamLayout out =
+      BeamsAtUnitScale(scaled, h, options.width > 0.0 ? options.width / unit : 0.04, options);
+  MapBack(unit, centre, &out.offset);
+  MapBack(unit, centre, &out.beams);
+  for (double& lift : out.edge_lift) lift *= unit;
   return out;
 }
 

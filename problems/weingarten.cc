@@ -118,8 +118,9 @@ bool WeingartenOptions::IsValid(std::string* why) const {
     *why = "max_iterations must be ≥ 1 and refine_levels ≥ 0";
     return false;
   }
-  if (fixed_linear_relation && !(linear_coefficients.head<2>().norm() > 0.0)) {
-    *why = "the linear relation needs a or b non-zero";
+  if (fixed_linear_relation && (!linear_coefficients.allFinite() ||
+                                !(linear_coefficients.head<2>().cwiseAbs().maxCoeff() > 0.0))) {
+    *why = "the linear relation needs finite coefficients with a or b non-zero";
     return false;
   }
   if (!curvature_auxiliaries &&
@@ -479,7 +480,10 @@ void WeingartenProblem::AddRelations(const std::vector<SampleTerms>& stencils) {
   if (options.linear_relation_weight > 0.0) {
     // Input units → scaled: κ_scaled = κ / scale, so a H + b K + c = 0 becomes
     // (a scale) H' + (b scale²) K' + c = 0.
+    // Divided by its largest coefficient first (the same relation), so that coefficients of
+    // any magnitude neither overflow nor underflow below.
     Eigen::Vector3d abc = options.linear_coefficients;
+    if (abc.cwiseAbs().maxCoeff() > 0.0) abc /= abc.cwiseAbs().maxCoeff();
     abc = Eigen::Vector3d(abc[0] * scale_, abc[1] * scale_ * scale_, abc[2]);
     abc /= abc.head<2>().norm();
     if (options.fixed_linear_relation && options.relation_on_surface) {

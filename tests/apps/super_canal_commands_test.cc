@@ -188,6 +188,10 @@ TEST_F(SuperCanalCommandTest, BeamsOnACircularMeshArePlanarWithAParallelOffset) 
                      "--axes");
   ExpectOneLineError(Gproj("beams " + Path("circular.obj") + " --height 0 -o " + Path("out.obj")),
                      "--height");
+  ExpectOneLineError(Gproj("beams " + Path("circular.obj") + " --height 1e300 -o " +
+                           Path("out.obj") + " --report " + Path("out.json")),
+                     "times the mean edge length");
+  EXPECT_FALSE(Exists("out.json"));
   EXPECT_FALSE(Exists("out.obj"));
   const CommandRun strict = Gproj("beams " + Path("circular.obj") + " --height 0.05 -o " +
                                   Path("strict.obj") + " --gap-tolerance 1e-9");
@@ -216,6 +220,8 @@ TEST_F(SuperCanalCommandTest, CanalFromTwoCurvesFitsSpheresAndMeshesCircularQuad
   ExpectOneLineError(Gproj("canal " + curves + " -o " + Path("out.obj")), "--normal");
   ExpectOneLineError(Gproj("canal " + curves + " --normal 0,0,1 --length 2 -o " + Path("out.obj")),
                      "--second-curve");
+  ExpectOneLineError(Gproj("canal " + curves + " --normal 0,0,1 --psi 1 -o " + Path("out.obj")),
+                     "--psi");
   ExpectOneLineError(
       Gproj("canal " + Data("canal_curve.txt") + " --length 2 -o " + Path("out.obj")),
       "--first-point");

@@ -135,6 +135,29 @@ TEST(CanalFromCurvesTest, BadInputsAreNamed) {
             std::string::npos);
   EXPECT_NE(message({{0, 0, 0}, {0, 0, 0}, {1, 0, 0}}, Eigen::Vector3d(0, 0, 1)).find("coincide"),
             std::string::npos);
+  // A second curve through a point of the first: a sphere of radius 0.
+  try {
+    FitCanalToCurves(line, line, Eigen::Vector3d(0, 0, 1), {});
+    ADD_FAILURE() << "accepted touching curves";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("must not touch"), std::string::npos) << e.what();
+  }
+}
+
+// Computed at unit scale: the cylinder's construction far from the origin and at 1e200 times
+// the size gives the same spheres, scaled.
+TEST(CanalFromCurvesTest, ScaleAndPositionDoNotMatter) {
+  for (const auto& [scale, shift] : {std::pair{1e200, 0.0}, std::pair{1.0, 1e9}}) {
+    std::vector<Eigen::Vector3d> ruling, other;
+    for (int k = 0; k <= 10; ++k) ruling.push_back(Eigen::Vector3d(2.0, 0.0, 0.3 * k) * scale);
+    other = {Eigen::Vector3d(2 * std::cos(1.1), 2 * std::sin(1.1), -1.0) * scale,
+             Eigen::Vector3d(2 * std::cos(1.1), 2 * std::sin(1.1), 5.0) * scale};
+    for (auto* curve : {&ruling, &other})
+      for (Eigen::Vector3d& p : *curve) p.z() += shift;
+    const CanalFromCurves c = FitCanalToCurves(ruling, other, Eigen::Vector3d(1e308, 0, 0), {});
+    for (double r : c.radii) EXPECT_NEAR(r / scale, 2.0, 1e-9) << scale;
+    EXPECT_LT(Measure(c, "max_concyclicity"), 1e-10) << scale;
+  }
 }
 
 }  // namespace

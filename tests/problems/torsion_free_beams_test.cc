@@ -116,5 +116,48 @@ TEST(TorsionFreeBeamsTest, AxesObjHasOneSegmentPerVertex) {
   EXPECT_EQ(vertices, 2 * mesh.n_vertices());
 }
 
+// The layout is computed at unit scale: the same mesh far from the origin or scaled by 1e±100
+// (with the height scaled alike) gives the same beams; heights out of proportion, faces with an
+// odd number of vertices and a loose circularity tolerance are refused with the reason.
+TEST(TorsionFreeBeamsTest, ScaleAndPositionDoNotMatterAndBadInputsAreNamed) {
+  const PolyMesh mesh = InvertMesh(Revolution(6, 6), Eigen::Vector3d(3.0, -1.0, 2.5), 4.0);
+  BeamOptions o;
+  o.height = 0.1;
+  const BeamLayout reference = TorsionFreeBeams(mesh, o);
+  for (const auto& [scale, shift] :
+       {std::pair{1.0, 1e6}, std::pair{1e100, 0.0}, std::pair{1e-100, 0.0}}) {
+    PolyMesh moved = mesh;
+    for (auto v : moved.vertices())
+      moved.set_point(v, moved.point(v) * scale + PolyMesh::Point(shift, shift, 0));
+    BeamOptions scaled = o;
+    scaled.height = o.height * scale;
+    const BeamLayout b = TorsionFreeBeams(moved, scaled);
+    // Up to the rounding of the moved input (1e-10 of 1e6 on edges of about 0.5).
+    EXPECT_LT(Measure(b, "max_beam_planarity"), 1e-7) << scale << " " << shift;
+    EXPECT_NEAR(Measure(b, "max_height_gap"), Measure(reference, "max_height_gap"), 1e-6)
+        << scale << " " << shift;
+  }
+  auto refusal = [](const PolyMesh& m, const BeamOptions& options) {
+    try {
+      TorsionFreeBeams(m, options);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  BeamOptions huge = o;
+  huge.height = 1e300;
+  EXPECT_NE(refusal(mesh, huge).find("times the mean edge length"), std::string::npos);
+  BeamOptions loose = o;
+  loose.circularity_tolerance = 10.0;
+  EXPECT_NE(refusal(mesh, loose).find("circularity tolerance"), std::string::npos);
+  PolyMesh triangles;
+  const auto a = triangles.add_vertex(PolyMesh::Point(0, 0, 0));
+  const auto b = triangles.add_vertex(PolyMesh::Point(1, 0, 0));
+  const auto c = triangles.add_vertex(PolyMesh::Point(0, 1, 0));
+  triangles.add_face(a, b, c);
+  EXPECT_NE(refusal(triangles, o).find("an even number of vertices"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace gproj

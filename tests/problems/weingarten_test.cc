@@ -632,6 +632,21 @@ TEST(WeingartenTest, ToleranceOnTheRelationStopsTheRunWhenMet) {
   EXPECT_EQ(missed.iterations, 3);
 }
 
+// A fixed relation is the same relation at any magnitude of its coefficients: 1e308 and 1e-200
+// neither overflow nor underflow.
+TEST(WeingartenTest, FixedRelationCoefficientsOfAnyMagnitude) {
+  for (double m : {1e308, 1e-200}) {
+    WeingartenOptions o = Fig3Options(m, 0.0, 0.1 * m);
+    o.curvature_auxiliaries = false;
+    std::string why;
+    ASSERT_TRUE(o.IsValid(&why)) << why;
+    WeingartenProblem problem(Bump(6), o);
+    const Eigen::Vector3d r = problem.LinearRelation();
+    EXPECT_NEAR(r[0], 1.0, 1e-12) << m;
+    EXPECT_NEAR(r[2], 0.1, 1e-12) << m;
+  }
+}
+
 TEST(WeingartenTest, WithoutAuxiliariesOnlyTheSurfaceRelationIsAllowed) {
   WeingartenOptions o = WeingartenPreset("fig1");
   o.curvature_auxiliaries = false;
