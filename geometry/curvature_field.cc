@@ -6,6 +6,7 @@
 #include <CGAL/Monge_via_jet_fitting.h>
 #include <CGAL/Simple_cartesian.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -110,6 +111,80 @@ std::vector<VertexCurvature> FitVertexCurvatures(const PolyMesh& mesh,
 double LineAngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   const double c = std::abs(a.normalized().dot(b.normalized()));
   return std::acos(std::min(1.0, c)) * 180.0 / M_PI;
+}
+
+namespace {
+
+Eigen::Vector3d At(const PolyMesh& mesh, PolyMesh::VertexHandle v) {
+  const auto& p = mesh.point(v);
+  return Eigen::Vector3d(p[0], p[1], p[2]);
+}
+
+// Signed angle from a to b about the unit axis n, in (−π, π].
+double SignedAngle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& n) {
+  return std::atan2(a.cross(b).dot(n), a.dot(b));
+}
+
+}  // namespace
+
+std::vector<double> LineFieldIndices(const PolyMesh& mesh,
+                                     const std::vector<Eigen::Vector3d>& lines) {
+  if (lines.size() != mesh.n_vertices())
+    throw InputError("a line field needs one line per vertex (" +
+                     std::to_string(mesh.n_vertices()) + "), got " + std::to_string(lines.size()));
+  // Per face: unit normal and the matched, averaged line in its plane (zero if none).
+  std::vector<Eigen::Vector3d> normal(mesh.n_faces()), line(mesh.n_faces());
+  for (auto f : mesh.faces()) {
+    std::vector<Eigen::Vector3d> p, d;
+    for (auto fv = mesh.cfv_iter(f); fv.is_valid(); ++fv) {
+      p.push_back(At(mesh, *fv));
+      d.push_back(lines[fv->idx()]);
+    }
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    for (size_t k = 1; k + 1 < p.size(); ++k) n += (p[k] - p[0]).cross(p[k + 1] - p[0]);
+    normal[f.idx()] = n.normalized();
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    bool complete = true;
+    for (const Eigen::Vector3d& x : d) {
+      if (!(x.norm() > 0.0)) complete = false;
+      sum += x.dot(d[0]) < 0.0 ? Eigen::Vector3d(-x) : x;
+    }
+    sum -= sum.dot(normal[f.idx()]) * normal[f.idx()];
+    line[f.idx()] = complete && sum.norm() > 0.0 ? sum.normalized() : Eigen::Vector3d::Zero();
+  }
+  std::vector<double> index(mesh.n_vertices(), 0.0);
+  for (auto v : mesh.vertices()) {
+    if (mesh.is_boundary(v) || mesh.is_isolated(v)) continue;
+    // Faces counter-clockwise about the normal; the angle defect from their corners at v.
+    std::vector<PolyMesh::FaceHandle> faces;
+    for (auto f = mesh.cvf_ccwiter(v); f.is_valid(); ++f) faces.push_back(*f);
+    double defect = 2.0 * M_PI, turning = 0.0;
+    bool complete = true;
+    for (auto h = mesh.cvoh_ccwiter(v); h.is_valid(); ++h) {
+      const auto next = mesh.next_halfedge_handle(*h);
+      const Eigen::Vector3d a = At(mesh, mesh.to_vertex_handle(*h)) - At(mesh, v);
+      const Eigen::Vector3d b = At(mesh, mesh.to_vertex_handle(next)) - At(mesh, v);
+      if (!mesh.face_handle(*h).is_valid()) continue;
+      defect -= std::atan2(a.cross(b).norm(), a.dot(b));
+    }
+    for (size_t i = 0; i < faces.size(); ++i) {
+      const int f = faces[i].idx(), g = faces[(i + 1) % faces.size()].idx();
+      if (!(line[f].norm() > 0.0) || !(line[g].norm() > 0.0)) complete = false;
+      // Unfold g onto f's plane: the rotation taking g's normal to f's.
+      const Eigen::Vector3d axis = normal[g].cross(normal[f]);
+      Eigen::Vector3d moved = line[g];
+      if (axis.norm() > 1e-15)
+        moved = Eigen::AngleAxisd(std::atan2(axis.norm(), normal[g].dot(normal[f])),
+                                  axis.normalized()) *
+                line[g];
+      double delta = SignedAngle(line[f], moved, normal[f]);
+      if (delta > M_PI / 2) delta -= M_PI;
+      if (delta <= -M_PI / 2) delta += M_PI;
+      turning += delta;
+    }
+    if (complete) index[v.idx()] = (turning + defect) / (2.0 * M_PI);
+  }
+  return index;
 }
 
 }  // namespace gproj

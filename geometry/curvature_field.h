@@ -42,4 +42,16 @@ std::vector<VertexCurvature> FitVertexCurvatures(const PolyMesh& mesh,
 // Angle in degrees between two lines (directions up to sign), in [0, 90].
 double LineAngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b);
 
+// Index of a line field (one tangent line per vertex: a direction up to sign; zero where there
+// is none) at every inner vertex, a multiple of ½ (Ray, Vallet, Li, Lévy, "N-symmetry direction
+// field design", ACM TOG 27, 2008, with N = 2). Per face the field is its corners' lines
+// matched to the first and averaged; around the vertex it turns by Σ Δθ, each Δθ the angle
+// (in (−π/2, π/2]) between consecutive faces' lines after unfolding the next face about their
+// common edge; with the angle defect K_v, index = (Σ Δθ + K_v) / 2π. The asymptotic net's
+// singularities are those of the principal line field, which bisects it (004 Theorem 6: an
+// ordinary flat point has index −½). Boundary vertices, and vertices with a face without a
+// line, get 0.
+std::vector<double> LineFieldIndices(const PolyMesh& mesh,
+                                     const std::vector<Eigen::Vector3d>& lines);
+
 }  // namespace gproj
