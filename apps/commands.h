@@ -20,5 +20,7 @@ void RegisterMarionetteCommand(CLI::App* app, int* exit_code);
 void RegisterSuperCanalCommands(CLI::App* app, int* exit_code);
 // Registers `gproj weingarten`.
 void RegisterWeingartenCommand(CLI::App* app, int* exit_code);
+// Registers `gproj field` (curvature direction fields of triangle meshes).
+void RegisterFieldCommand(CLI::App* app, int* exit_code);
 
 }  // namespace gproj

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   gproj::RegisterMarionetteCommand(&app, &exit_code);
   gproj::RegisterSuperCanalCommands(&app, &exit_code);
   gproj::RegisterWeingartenCommand(&app, &exit_code);
+  gproj::RegisterFieldCommand(&app, &exit_code);
   gproj::RefuseEmptyValues(&app);
   try {
     app.parse(argc, argv);

@@ -21,6 +21,10 @@ echo "== H-net: smooth skin of rational bilinear patches from a jittered asympto
   -o out/demo/enneper_hnet.json --surface-mesh out/demo/enneper_hnet_surface.obj --samples 6 \
   --picture out/demo/enneper_hnet.svg --report out/demo/enneper_hnet_report.json
 echo
+echo "== Curvature field of a shipped triangle mesh (004 §3.1): asymptotic directions, singularities =="
+./build/gproj field examples/data/monkey_saddle_tri.obj -o out/demo/monkey_saddle_field.obj \
+  --picture out/demo/monkey_saddle_field.svg --report out/demo/monkey_saddle_field_report.json
+echo
 echo "== Marionette mesh: planar quads over a fixed plan view, lifted from two guide curves =="
 ROW=$(awk 'BEGIN { for (j = 0; j <= 20; ++j) printf "%s%.4f", (j ? "," : ""), 0.4 * sin(j / 4.0) }')
 COLUMN=$(awk 'BEGIN { for (i = 0; i <= 20; ++i) printf "%s%.4f", (i ? "," : ""), 0.3 * (1 - cos(i / 5.0)) }')
@@ -89,6 +93,8 @@ echo "  enneper_hnet.json             H-net: vertices, quads, four corner weight
 echo "  enneper_hnet_surface.obj      the smooth patchwork sampled as a triangle mesh"
 echo "  enneper_hnet.svg              a shaded picture of it (open in a web browser)"
 echo "  enneper_hnet_report.json      A-net and H-net history, tangent-plane angles, weights"
+echo "  monkey_saddle_field.obj       asymptotic directions of a triangle mesh (OBJ segments); its report"
+echo "                                lists the singularities (one, index -1/2, at the flat point)"
 echo "  marionette.obj                Marionette mesh (planar quads, plan view kept)"
 echo "  marionette_valence6.obj, marionette_tower.obj, marionette_strip.obj   and their reports"
 echo "  canal.obj, canal.svg          canal surface meshed by circular quads; canal_strip.obj its strip"

@@ -187,4 +187,55 @@ std::vector<double> LineFieldIndices(const PolyMesh& mesh,
   return index;
 }
 
+DirectionField EstimateDirectionField(const PolyMesh& mesh, DirectionKind kind,
+                                      const CurvatureFitOptions& options) {
+  for (auto f : mesh.faces())
+    if (mesh.valence(f) != 3)
+      throw InputError("face " + std::to_string(f.idx()) + " has " +
+                       std::to_string(mesh.valence(f)) +
+                       " vertices: the curvature field needs a triangle mesh");
+  DirectionField field;
+  field.kind = kind;
+  field.curvature = FitVertexCurvatures(mesh, options);
+  const size_t n = mesh.n_vertices();
+  field.first.assign(n, Eigen::Vector3d::Zero());
+  field.second.assign(n, Eigen::Vector3d::Zero());
+  std::vector<double> area(n, 0.0);
+  for (auto f : mesh.faces()) {
+    std::vector<Eigen::Vector3d> p;
+    for (auto fv = mesh.cfv_iter(f); fv.is_valid(); ++fv) p.push_back(At(mesh, *fv));
+    const double third = (p[1] - p[0]).cross(p[2] - p[0]).norm() / 6.0;
+    for (auto fv = mesh.cfv_iter(f); fv.is_valid(); ++fv) area[fv->idx()] += third;
+  }
+  double total = 0.0, negative = 0.0;
+  for (size_t v = 0; v < n; ++v) {
+    const VertexCurvature& c = field.curvature[v];
+    if (!c.fitted) continue;
+    ++field.fitted;
+    total += area[v];
+    if (c.gaussian() < 0.0) negative += area[v];
+    if (kind == DirectionKind::kPrincipal) {
+      field.first[v] = c.d1;
+      field.second[v] = c.d2;
+    } else {
+      c.Asymptotic(&field.first[v], &field.second[v]);
+    }
+  }
+  field.negative_area_fraction = total > 0.0 ? negative / total : 0.0;
+  if (kind == DirectionKind::kAsymptotic && !(negative > 0.0))
+    throw InputError(
+        "K >= 0 at every vertex: asymptotic directions exist only where the "
+        "Gaussian curvature is negative (use the principal directions)");
+  // The principal line field carries the singularities of both nets (it bisects the
+  // asymptotic pair).
+  std::vector<Eigen::Vector3d> principal(n, Eigen::Vector3d::Zero());
+  for (size_t v = 0; v < n; ++v)
+    if (field.curvature[v].fitted) principal[v] = field.curvature[v].d1;
+  const std::vector<double> index = LineFieldIndices(mesh, principal);
+  for (size_t v = 0; v < n; ++v)
+    if (std::abs(index[v]) >= 0.25)
+      field.singularities.push_back({static_cast<int>(v), std::round(2.0 * index[v]) / 2.0});
+  return field;
+}
+
 }  // namespace gproj

@@ -7,6 +7,7 @@
 // few rings, in a frame from their principal axes, and returns its Monge form.
 
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
 #include "geometry/mesh_io.h"
@@ -53,5 +54,28 @@ double LineAngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b);
 // line, get 0.
 std::vector<double> LineFieldIndices(const PolyMesh& mesh,
                                      const std::vector<Eigen::Vector3d>& lines);
+
+// The direction field a quad remeshing follows (004 §3.1): the principal directions, or the
+// asymptotic pair where K < 0, per vertex from the jet fit, with the singularities of its line
+// field. Not smoothed: near flat points and umbilics the directions are those of the fit.
+enum class DirectionKind { kPrincipal, kAsymptotic };
+struct Singularity {
+  int vertex = -1;
+  double index = 0.0;  // a multiple of ½
+};
+struct DirectionField {
+  DirectionKind kind = DirectionKind::kAsymptotic;
+  std::vector<VertexCurvature> curvature;
+  // Per vertex the field's lines: d1, d2 (principal) or the asymptotic pair; zero vectors where
+  // there is none (not fitted, or K ≥ 0 for the asymptotic pair).
+  std::vector<Eigen::Vector3d> first, second;
+  std::vector<Singularity> singularities;  // inner vertices with |index| ≥ ¼
+  int fitted = 0;                          // vertices with a fitted jet
+  double negative_area_fraction = 0.0;     // area (vertex shares) where K < 0
+};
+// Throws InputError for a face that is not a triangle (naming it), or, for the asymptotic
+// pair, when K ≥ 0 at every vertex (asymptotic directions need K < 0).
+DirectionField EstimateDirectionField(const PolyMesh& mesh, DirectionKind kind,
+                                      const CurvatureFitOptions& options = {});
 
 }  // namespace gproj

@@ -1,0 +1,153 @@
+// `gproj field`: the curvature direction field of a triangle mesh (004 §3.1), the first step of
+// remeshing a surface into a net that follows it.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include "apps/commands.h"
+#include "geometry/curvature_field.h"
+#include "geometry/face_colours.h"
+#include "geometry/svg_render.h"
+#include "problems/circular_mesh.h"
+#include "problems/report_json.h"
+
+namespace gproj {
+namespace {
+
+struct FieldArgs {
+  std::string input, output, report, picture, directions = "asymptotic";
+  CurvatureFitOptions fit;
+};
+
+double MeanEdge(const PolyMesh& mesh) {
+  double sum = 0.0;
+  for (auto e : mesh.edges()) sum += mesh.calc_edge_length(e);
+  return sum / std::max<size_t>(mesh.n_edges(), 1);
+}
+
+// Both lines at every vertex as OBJ segments of `length` centred on the vertex.
+std::string FieldObj(const PolyMesh& mesh, const DirectionField& field, double length) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "# gproj field: " << (field.kind == DirectionKind::kPrincipal ? "principal" : "asymptotic")
+      << " directions, two segments per vertex\n";
+  int written = 0;
+  for (auto v : mesh.vertices()) {
+    const auto& q = mesh.point(v);
+    const Eigen::Vector3d p(q[0], q[1], q[2]);
+    for (const Eigen::Vector3d& d : {field.first[v.idx()], field.second[v.idx()]}) {
+      if (!(d.norm() > 0.0)) continue;
+      const Eigen::Vector3d a = p - 0.5 * length * d, b = p + 0.5 * length * d;
+      out << "v " << a.x() << ' ' << a.y() << ' ' << a.z() << "\nv " << b.x() << ' ' << b.y() << ' '
+          << b.z() << '\n';
+      ++written;
+    }
+  }
+  for (int k = 0; k < written; ++k) out << "l " << 2 * k + 1 << ' ' << 2 * k + 2 << '\n';
+  return out.str();
+}
+
+int RunField(const FieldArgs& args) {
+  PolyMesh mesh;
+  DirectionField field;
+  double seconds = 0.0;
+  const DirectionKind kind =
+      args.directions == "principal" ? DirectionKind::kPrincipal : DirectionKind::kAsymptotic;
+  try {
+    CheckOutputPaths(
+        {{"input", args.input}},
+        {{"--output", args.output}, {"--report", args.report}, {"--picture", args.picture}});
+    mesh = ReadMesh(args.input);
+    std::printf(
+        "gproj field: %s: %zu vertices, %zu faces; %s directions by a degree-%d jet fit "
+        "on at least %d vertices\n",
+        args.input.c_str(), mesh.n_vertices(), mesh.n_faces(), args.directions.c_str(),
+        args.fit.fit_degree, args.fit.min_points);
+    const auto start = std::chrono::steady_clock::now();
+    field = EstimateDirectionField(mesh, kind, args.fit);
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  } catch (const InputError& e) {
+    std::cerr << "gproj field: " << e.what() << "\n";
+    return kExitInputError;
+  }
+  std::printf("fitted %d of %zu vertices in %.3f s; K < 0 on %.1f%% of the area%s\n", field.fitted,
+              mesh.n_vertices(), seconds, 100.0 * field.negative_area_fraction,
+              kind == DirectionKind::kAsymptotic && field.negative_area_fraction < 1.0
+                  ? " (no asymptotic directions elsewhere)"
+                  : "");
+  int half_negative = 0, half_positive = 0, other = 0;
+  for (const Singularity& s : field.singularities)
+    (s.index == -0.5 ? half_negative : s.index == 0.5 ? half_positive : other)++;
+  std::printf("singularities of the line field: %zu (index -1/2: %d, +1/2: %d, other: %d)\n",
+              field.singularities.size(), half_negative, half_positive, other);
+  const NamedValues measures = {{"fitted_vertices", static_cast<double>(field.fitted)},
+                                {"negative_area_fraction", field.negative_area_fraction},
+                                {"singularities", static_cast<double>(field.singularities.size())}};
+  const RunReport report = ConstructionReport("jet fit", {}, measures, true, seconds);
+  nlohmann::json extra = {
+      {"input", args.input}, {"directions", args.directions}, {"output", args.output}};
+  extra["singularities"] = nlohmann::json::array();
+  for (const Singularity& s : field.singularities) {
+    const auto& p = mesh.point(mesh.vertex_handle(s.vertex));
+    extra["singularities"].push_back(
+        {{"vertex", s.vertex}, {"index", s.index}, {"position", {p[0], p[1], p[2]}}});
+  }
+  try {
+    OutputFiles files;
+    files.AddText(args.output, FieldObj(mesh, field, 0.6 * MeanEdge(mesh)));
+    if (!args.picture.empty()) {
+      // Faces by the sign of K at their corners: blue K < 0, red K > 0.
+      std::vector<double> sign;
+      for (auto f : mesh.faces()) {
+        double k = 0.0;
+        for (auto fv = mesh.cfv_iter(f); fv.is_valid(); ++fv)
+          k += field.curvature[fv->idx()].gaussian();
+        sign.push_back(k < 0.0 ? 0.0 : 1.0);
+      }
+      SvgOptions svg;
+      svg.title = "Curvature field: K < 0 blue, K > 0 red; " +
+                  std::to_string(field.singularities.size()) + " singularities";
+      svg.face_colours = ColoursOf(sign, ColourScale{"sign of K", 0.0, 1.0, false});
+      files.AddText(args.picture, RenderMeshSvg(mesh, svg));
+    }
+    if (!args.report.empty())
+      files.AddText(args.report, ReportJson("field", report, extra).dump(2) + "\n");
+    files.Commit();
+  } catch (const InputError& e) {
+    std::cerr << "gproj field: " << e.what() << "\n";
+    return kExitInputError;
+  }
+  return ConcludeRun("field", report, "", 0.0, {args.output, args.picture, args.report});
+}
+
+}  // namespace
+
+void RegisterFieldCommand(CLI::App* app, int* exit_code) {
+  auto args = std::make_shared<FieldArgs>();
+  CLI::App* cmd = app->add_subcommand(
+      "field",
+      "Curvature direction field of a triangle mesh (004 §3.1): principal curvatures and "
+      "directions per vertex by a 3rd-order jet fit (CGAL), the asymptotic pair where K < 0, and "
+      "the singularities of the line field with their indices. Not smoothed. Exit codes as for "
+      "planarize.");
+  cmd->add_option("mesh", args->input, "Triangle mesh (.obj, .off, .ply)")->required();
+  cmd->add_option("-o,--output", args->output, "The field as OBJ line segments, two per vertex")
+      ->required();
+  cmd->add_option("--directions", args->directions, "asymptotic (where K < 0) or principal")
+      ->check(CLI::IsMember({"asymptotic", "principal"}))
+      ->capture_default_str();
+  cmd->add_option("--neighbours", args->fit.min_points,
+                  "Vertices per jet fit at least (rings are added until there are as many)")
+      ->check(Within(10, 1000))
+      ->capture_default_str();
+  cmd->add_option("--report", args->report, "Write a JSON report (with every singularity)");
+  cmd->add_option("--picture", args->picture,
+                  "Write an SVG picture of the mesh coloured by the sign of K");
+  cmd->callback([args, exit_code]() { *exit_code = RunField(*args); });
+}
+
+}  // namespace gproj
