@@ -21,6 +21,7 @@ namespace {
 struct FieldArgs {
   std::string input, output, report, picture, directions = "asymptotic";
   CurvatureFitOptions fit;
+  double smooth = 0.0;  // alignment weight of the smoothing (0: the fitted lines as they are)
 };
 
 double MeanEdge(const PolyMesh& mesh) {
@@ -68,7 +69,10 @@ int RunField(const FieldArgs& args) {
         args.input.c_str(), mesh.n_vertices(), mesh.n_faces(), args.directions.c_str(),
         args.fit.fit_degree, args.fit.min_points);
     const auto start = std::chrono::steady_clock::now();
-    field = EstimateDirectionField(mesh, kind, args.fit);
+    if (args.smooth > 0.0)
+      std::printf("smoothing the principal lines (alignment weight %g; Knöppel et al. 2013)\n",
+                  args.smooth);
+    field = EstimateDirectionField(mesh, kind, args.fit, args.smooth);
     seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   } catch (const InputError& e) {
     std::cerr << "gproj field: " << e.what() << "\n";
@@ -90,6 +94,7 @@ int RunField(const FieldArgs& args) {
   const RunReport report = ConstructionReport("jet fit", {}, measures, true, seconds);
   nlohmann::json extra = {
       {"input", args.input}, {"directions", args.directions}, {"output", args.output}};
+  extra["smoothing"] = args.smooth;
   extra["singularities"] = nlohmann::json::array();
   for (const Singularity& s : field.singularities) {
     const auto& p = mesh.point(mesh.vertex_handle(s.vertex));
@@ -132,8 +137,8 @@ void RegisterFieldCommand(CLI::App* app, int* exit_code) {
       "field",
       "Curvature direction field of a triangle mesh (004 §3.1): principal curvatures and "
       "directions per vertex by a 3rd-order jet fit (CGAL), the asymptotic pair where K < 0, and "
-      "the singularities of the line field with their indices. Not smoothed. Exit codes as for "
-      "planarize.");
+      "the singularities of the line field with their indices; --smooth smooths the lines first. "
+      "Exit codes as for planarize.");
   cmd->add_option("mesh", args->input, "Triangle mesh (.obj, .off, .ply)")->required();
   cmd->add_option("-o,--output", args->output, "The field as OBJ line segments, two per vertex")
       ->required();
@@ -144,6 +149,10 @@ void RegisterFieldCommand(CLI::App* app, int* exit_code) {
                   "Vertices per jet fit at least (rings are added until there are as many)")
       ->check(Within(10, 1000))
       ->capture_default_str();
+  cmd->add_option("--smooth", args->smooth,
+                  "Smooth the principal lines first, with this weight on the fitted ones against "
+                  "the smoothness (e.g. 1; for noisy meshes)")
+      ->check(Positive());
   cmd->add_option("--report", args->report, "Write a JSON report (with every singularity)");
   cmd->add_option("--picture", args->picture,
                   "Write an SVG picture of the mesh coloured by the sign of K");

@@ -7,6 +7,7 @@
 #include <CGAL/Simple_cartesian.h>
 
 #include <Eigen/Geometry>
+#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -187,8 +188,81 @@ std::vector<double> LineFieldIndices(const PolyMesh& mesh,
   return index;
 }
 
+std::vector<Eigen::Vector3d> SmoothPrincipalField(const PolyMesh& mesh,
+                                                  const std::vector<VertexCurvature>& curvature,
+                                                  double alignment_weight) {
+  const int n = static_cast<int>(mesh.n_vertices());
+  if (static_cast<int>(curvature.size()) != n)
+    throw InputError("the curvature field needs one entry per vertex");
+  if (!(alignment_weight > 0.0) || !std::isfinite(alignment_weight))
+    throw InputError("the field's alignment weight must be a finite number > 0");
+  // Tangent frames: the fitted normal (or the faces') and any orthogonal e1, e2 = n × e1.
+  std::vector<Eigen::Vector3d> normal(n), e1(n), e2(n);
+  for (auto v : mesh.vertices()) {
+    Eigen::Vector3d nv =
+        curvature[v.idx()].fitted ? curvature[v.idx()].normal : VertexNormal(mesh, v).normalized();
+    if (!nv.allFinite() || !(nv.norm() > 0.0)) nv = Eigen::Vector3d::UnitZ();
+    normal[v.idx()] = nv;
+    e1[v.idx()] = nv.unitOrthogonal();
+    e2[v.idx()] = nv.cross(e1[v.idx()]);
+  }
+  double mean_anisotropy = 0.0;
+  int fitted = 0;
+  for (const VertexCurvature& c : curvature)
+    if (c.fitted) mean_anisotropy += c.k1 - c.k2, ++fitted;
+  mean_anisotropy = fitted > 0 && mean_anisotropy > 0.0 ? mean_anisotropy / fitted : 1.0;
+  // Real form of the complex system: z_v = (x, y) at rows 2v, 2v + 1.
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(2 * n);
+  auto add_block = [&](int a, int b, const Eigen::Matrix2d& m) {
+    for (int r = 0; r < 2; ++r)
+      for (int c = 0; c < 2; ++c) entries.emplace_back(2 * a + r, 2 * b + c, m(r, c));
+  };
+  for (auto e : mesh.edges()) {
+    const auto h = mesh.halfedge_handle(e, 0);
+    const int i = mesh.from_vertex_handle(h).idx(), j = mesh.to_vertex_handle(h).idx();
+    // e1_i carried to j's plane by the minimal rotation; its angle there is the transport.
+    const Eigen::Quaterniond q = Eigen::Quaterniond::FromTwoVectors(normal[i], normal[j]);
+    const Eigen::Vector3d moved = q * e1[i];
+    const double rho = 2.0 * std::atan2(moved.dot(e2[j]), moved.dot(e1[j]));
+    Eigen::Matrix2d r;
+    r << std::cos(rho), -std::sin(rho), std::sin(rho), std::cos(rho);
+    // |z_j − R z_i|²: (i, i) += I, (j, j) += I, (i, j) −= Rᵀ, (j, i) −= R.
+    add_block(i, i, Eigen::Matrix2d::Identity());
+    add_block(j, j, Eigen::Matrix2d::Identity());
+    add_block(i, j, -r.transpose());
+    add_block(j, i, -r);
+  }
+  for (int v = 0; v < n; ++v) {
+    const VertexCurvature& c = curvature[v];
+    double weight = 1e-8;  // keeps the system definite where nothing is fitted
+    Eigen::Vector2d target = Eigen::Vector2d::Zero();
+    if (c.fitted) {
+      weight += alignment_weight * (c.k1 - c.k2) / mean_anisotropy;
+      const double alpha = std::atan2(c.d1.dot(e2[v]), c.d1.dot(e1[v]));
+      target = Eigen::Vector2d(std::cos(2.0 * alpha), std::sin(2.0 * alpha));
+    }
+    add_block(v, v, weight * Eigen::Matrix2d::Identity());
+    rhs.segment<2>(2 * v) = weight * target;
+  }
+  Eigen::SparseMatrix<double> a(2 * n, 2 * n);
+  a.setFromTriplets(entries.begin(), entries.end());
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(a);
+  if (solver.info() != Eigen::Success)
+    throw InputError("the field smoothing system could not be factorised");
+  const Eigen::VectorXd z = solver.solve(rhs);
+  std::vector<Eigen::Vector3d> out(n, Eigen::Vector3d::Zero());
+  for (int v = 0; v < n; ++v) {
+    const Eigen::Vector2d zv = z.segment<2>(2 * v);
+    if (!(zv.norm() > 0.0) || !zv.allFinite()) continue;
+    const double alpha = 0.5 * std::atan2(zv.y(), zv.x());
+    out[v] = std::cos(alpha) * e1[v] + std::sin(alpha) * e2[v];
+  }
+  return out;
+}
+
 DirectionField EstimateDirectionField(const PolyMesh& mesh, DirectionKind kind,
-                                      const CurvatureFitOptions& options) {
+                                      const CurvatureFitOptions& options, double smoothing) {
   for (auto f : mesh.faces())
     if (mesh.valence(f) != 3)
       throw InputError("face " + std::to_string(f.idx()) + " has " +
@@ -198,6 +272,16 @@ DirectionField EstimateDirectionField(const PolyMesh& mesh, DirectionKind kind,
   field.kind = kind;
   field.curvature = FitVertexCurvatures(mesh, options);
   const size_t n = mesh.n_vertices();
+  if (smoothing > 0.0) {
+    const std::vector<Eigen::Vector3d> smooth =
+        SmoothPrincipalField(mesh, field.curvature, smoothing);
+    for (size_t v = 0; v < n; ++v) {
+      VertexCurvature& c = field.curvature[v];
+      if (!c.fitted || !(smooth[v].norm() > 0.0)) continue;
+      c.d1 = smooth[v];
+      c.d2 = c.normal.cross(c.d1).normalized();
+    }
+  }
   field.first.assign(n, Eigen::Vector3d::Zero());
   field.second.assign(n, Eigen::Vector3d::Zero());
   std::vector<double> area(n, 0.0);

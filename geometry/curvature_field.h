@@ -55,6 +55,17 @@ double LineAngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b);
 std::vector<double> LineFieldIndices(const PolyMesh& mesh,
                                      const std::vector<Eigen::Vector3d>& lines);
 
+// A smoothed line field (N = 2; Knöppel, Crane, Pinkall, Schröder, "Globally optimal direction
+// fields", ACM TOG 32, 2013): per vertex the line as a unit complex number z = e^{2iα} in a
+// tangent frame; z minimises Σ_edges |z_j − r_ij z_i|² + w Σ_v a_v |z_v − g_v|², r_ij the
+// doubled-angle transport from vertex i's frame to j's (the minimal rotation of the tangent
+// planes), g_v the fitted principal line d1, a_v its anisotropy |κ1 − κ2| / mean |κ1 − κ2| (so
+// umbilics and flat points, where d1 means nothing, follow their neighbours). One sparse
+// symmetric solve. Returns unit tangents (zero where a vertex has no fit and no neighbour).
+std::vector<Eigen::Vector3d> SmoothPrincipalField(const PolyMesh& mesh,
+                                                  const std::vector<VertexCurvature>& curvature,
+                                                  double alignment_weight);
+
 // The direction field a quad remeshing follows (004 §3.1): the principal directions, or the
 // asymptotic pair where K < 0, per vertex from the jet fit, with the singularities of its line
 // field. Not smoothed: near flat points and umbilics the directions are those of the fit.
@@ -75,7 +86,10 @@ struct DirectionField {
 };
 // Throws InputError for a face that is not a triangle (naming it), or, for the asymptotic
 // pair, when K ≥ 0 at every vertex (asymptotic directions need K < 0).
+// smoothing > 0: the principal lines are first smoothed by SmoothPrincipalField with that
+// alignment weight (the asymptotic pair follows: it is symmetric about d1 at the fitted angle).
 DirectionField EstimateDirectionField(const PolyMesh& mesh, DirectionKind kind,
-                                      const CurvatureFitOptions& options = {});
+                                      const CurvatureFitOptions& options = {},
+                                      double smoothing = 0.0);
 
 }  // namespace gproj

@@ -32,6 +32,12 @@ TEST_F(FieldCommandTest, MonkeySaddleHasOneSingularityOfIndexMinusHalf) {
   EXPECT_EQ(segments, 2u * 961u);
   EXPECT_NE(Slurp(dir_ / "field.svg").find("<svg"), std::string::npos);
   EXPECT_NE(r.out.find("index -1/2: 1"), std::string::npos) << r.out;
+  // Smoothed: the same singularity.
+  const CommandRun smooth = Gproj("field " + Data("monkey_saddle_tri.obj") + " -o " +
+                                  Path("smooth.obj") + " --smooth 1 --report " + Path("s.json"));
+  ASSERT_EQ(smooth.exit_code, 0) << smooth.err;
+  EXPECT_EQ(Json("s.json")["singularities"].size(), 1u);
+  EXPECT_EQ(Json("s.json")["smoothing"].get<double>(), 1.0);
 }
 
 // A quad mesh, and asymptotic directions on a surface with K > 0 everywhere, are refused with
