@@ -83,6 +83,15 @@ int RunField(const FieldArgs& args) {
               kind == DirectionKind::kAsymptotic && field.negative_area_fraction < 1.0
                   ? " (no asymptotic directions elsewhere)"
                   : "");
+  if (field.fitted < static_cast<int>(mesh.n_vertices()))
+    std::printf(
+        "note: %zu vertices have fewer than %d vertices within %d rings and no field "
+        "(lower --neighbours to fit them)\n",
+        mesh.n_vertices() - field.fitted, args.fit.min_points, args.fit.max_rings);
+  if (field.undefined_area_fraction > 0.0)
+    std::printf("principal directions undefined (flat or umbilic) on %.1f%% of the area%s\n",
+                100.0 * field.undefined_area_fraction,
+                field.singularities_reliable ? "" : ": no singularities reported");
   int half_negative = 0, half_positive = 0, other = 0;
   for (const Singularity& s : field.singularities)
     (s.index == -0.5 ? half_negative : s.index == 0.5 ? half_positive : other)++;
@@ -90,11 +99,14 @@ int RunField(const FieldArgs& args) {
               field.singularities.size(), half_negative, half_positive, other);
   const NamedValues measures = {{"fitted_vertices", static_cast<double>(field.fitted)},
                                 {"negative_area_fraction", field.negative_area_fraction},
+                                {"undefined_area_fraction", field.undefined_area_fraction},
                                 {"singularities", static_cast<double>(field.singularities.size())}};
   const RunReport report = ConstructionReport("jet fit", {}, measures, true, seconds);
+  if (report.failed) return ConcludeRun("field", report, "", 0.0, {});
   nlohmann::json extra = {
       {"input", args.input}, {"directions", args.directions}, {"output", args.output}};
   extra["smoothing"] = args.smooth;
+  extra["singularities_reliable"] = field.singularities_reliable;
   extra["singularities"] = nlohmann::json::array();
   for (const Singularity& s : field.singularities) {
     const auto& p = mesh.point(mesh.vertex_handle(s.vertex));
@@ -105,16 +117,17 @@ int RunField(const FieldArgs& args) {
     OutputFiles files;
     files.AddText(args.output, FieldObj(mesh, field, 0.6 * MeanEdge(mesh)));
     if (!args.picture.empty()) {
-      // Faces by the sign of K at their corners: blue K < 0, red K > 0.
+      // Faces by the sign of K at their fitted corners: blue K < 0, yellow K = 0 or no fit,
+      // red K > 0.
       std::vector<double> sign;
       for (auto f : mesh.faces()) {
         double k = 0.0;
         for (auto fv = mesh.cfv_iter(f); fv.is_valid(); ++fv)
-          k += field.curvature[fv->idx()].gaussian();
-        sign.push_back(k < 0.0 ? 0.0 : 1.0);
+          if (field.curvature[fv->idx()].fitted) k += field.curvature[fv->idx()].gaussian();
+        sign.push_back(k < 0.0 ? 0.0 : k > 0.0 ? 1.0 : 0.5);
       }
       SvgOptions svg;
-      svg.title = "Curvature field: K < 0 blue, K > 0 red; " +
+      svg.title = "Curvature field: K < 0 blue, K = 0 or unfitted yellow, K > 0 red; " +
                   std::to_string(field.singularities.size()) + " singularities";
       svg.face_colours = ColoursOf(sign, ColourScale{"sign of K", 0.0, 1.0, false});
       files.AddText(args.picture, RenderMeshSvg(mesh, svg));

@@ -29,10 +29,42 @@ Eigen::Vector3d VertexNormal(const PolyMesh& mesh, PolyMesh::VertexHandle v) {
       const auto& q = mesh.point(*fv);
       p.emplace_back(q[0], q[1], q[2]);
     }
-    for (size_t k = 0; k < p.size(); ++k) sum += 0.5 * p[k].cross(p[(k + 1) % p.size()]);
+    for (size_t k = 1; k + 1 < p.size(); ++k) sum += 0.5 * (p[k] - p[0]).cross(p[k + 1] - p[0]);
   }
   return sum;
 }
+
+// The mesh moved to its centroid and divided by its mean edge length (differences formed
+// before any product, so far, huge or tiny coordinates lose nothing); *unit gets that length.
+PolyMesh UnitScaled(const PolyMesh& mesh, double* unit) {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (auto v : mesh.vertices()) {
+    const auto& p = mesh.point(v);
+    centre += Eigen::Vector3d(p[0], p[1], p[2]) / static_cast<double>(mesh.n_vertices());
+  }
+  double length = 0.0;
+  for (auto e : mesh.edges()) {
+    const auto h = mesh.halfedge_handle(e, 0);
+    const auto& a = mesh.point(mesh.from_vertex_handle(h));
+    const auto& b = mesh.point(mesh.to_vertex_handle(h));
+    length += Eigen::Vector3d(b[0] - a[0], b[1] - a[1], b[2] - a[2]).stableNorm() /
+              static_cast<double>(mesh.n_edges());
+  }
+  if (!(length > 0.0) || !std::isfinite(length) || !centre.allFinite())
+    throw InputError("the mesh's edge lengths are zero or not finite");
+  *unit = length;
+  PolyMesh scaled = mesh;
+  for (auto v : scaled.vertices()) {
+    const auto& p = mesh.point(v);
+    const Eigen::Vector3d q = (Eigen::Vector3d(p[0], p[1], p[2]) - centre) / length;
+    scaled.set_point(v, PolyMesh::Point(q.x(), q.y(), q.z()));
+  }
+  return scaled;
+}
+
+// Principal curvatures below this, in units of the mean edge length (a radius of a million
+// edges), are taken as 0: numerical noise of the fit, not curvature.
+constexpr double kFlatCurvature = 1e-6;
 
 }  // namespace
 
@@ -57,11 +89,11 @@ bool CurvatureFitOptions::IsValid(std::string* why) const {
   return true;
 }
 
-std::vector<VertexCurvature> FitVertexCurvatures(const PolyMesh& mesh,
-                                                 const CurvatureFitOptions& options) {
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError(why);
-  if (mesh.n_faces() == 0) throw InputError("the mesh has no faces");
+namespace {
+
+// The jet fits of a mesh at unit scale (curvatures per mean edge length).
+std::vector<VertexCurvature> FitAtUnitScale(const PolyMesh& mesh,
+                                            const CurvatureFitOptions& options) {
   std::vector<VertexCurvature> out(mesh.n_vertices());
   std::vector<int> seen(mesh.n_vertices(), -1);  // the vertex whose neighbourhood saw it last
   std::vector<int> ring, next, neighbourhood;
@@ -103,9 +135,32 @@ std::vector<VertexCurvature> FitVertexCurvatures(const PolyMesh& mesh,
     c.d2 = ToEigen(form.minimal_principal_direction()).normalized();
     c.k1 = form.principal_curvatures(0);
     c.k2 = form.principal_curvatures(1);
+    if (std::abs(c.k1) < kFlatCurvature) c.k1 = 0.0;
+    if (std::abs(c.k2) < kFlatCurvature) c.k2 = 0.0;
     c.fitted = std::isfinite(c.k1) && std::isfinite(c.k2) && c.normal.allFinite() &&
                c.d1.allFinite() && c.d2.allFinite();
   }
+  return out;
+}
+
+void ToInputUnits(double unit, std::vector<VertexCurvature>* curvature) {
+  for (VertexCurvature& c : *curvature) {
+    c.k1 /= unit;
+    c.k2 /= unit;
+  }
+}
+
+}  // namespace
+
+std::vector<VertexCurvature> FitVertexCurvatures(const PolyMesh& mesh,
+                                                 const CurvatureFitOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError(why);
+  if (mesh.n_faces() == 0) throw InputError("the mesh has no faces");
+  double unit = 1.0;
+  const PolyMesh scaled = UnitScaled(mesh, &unit);
+  std::vector<VertexCurvature> out = FitAtUnitScale(scaled, options);
+  ToInputUnits(unit, &out);
   return out;
 }
 
@@ -128,11 +183,10 @@ double SignedAngle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
 
 }  // namespace
 
-std::vector<double> LineFieldIndices(const PolyMesh& mesh,
-                                     const std::vector<Eigen::Vector3d>& lines) {
-  if (lines.size() != mesh.n_vertices())
-    throw InputError("a line field needs one line per vertex (" +
-                     std::to_string(mesh.n_vertices()) + "), got " + std::to_string(lines.size()));
+namespace {
+
+std::vector<double> IndicesAtUnitScale(const PolyMesh& mesh,
+                                       const std::vector<Eigen::Vector3d>& lines) {
   // Per face: unit normal and the matched, averaged line in its plane (zero if none).
   std::vector<Eigen::Vector3d> normal(mesh.n_faces()), line(mesh.n_faces());
   for (auto f : mesh.faces()) {
@@ -188,14 +242,10 @@ std::vector<double> LineFieldIndices(const PolyMesh& mesh,
   return index;
 }
 
-std::vector<Eigen::Vector3d> SmoothPrincipalField(const PolyMesh& mesh,
-                                                  const std::vector<VertexCurvature>& curvature,
-                                                  double alignment_weight) {
+std::vector<Eigen::Vector3d> SmoothAtUnitScale(const PolyMesh& mesh,
+                                               const std::vector<VertexCurvature>& curvature,
+                                               double alignment_weight) {
   const int n = static_cast<int>(mesh.n_vertices());
-  if (static_cast<int>(curvature.size()) != n)
-    throw InputError("the curvature field needs one entry per vertex");
-  if (!(alignment_weight > 0.0) || !std::isfinite(alignment_weight))
-    throw InputError("the field's alignment weight must be a finite number > 0");
   // Tangent frames: the fitted normal (or the faces') and any orthogonal e1, e2 = n × e1.
   std::vector<Eigen::Vector3d> normal(n), e1(n), e2(n);
   for (auto v : mesh.vertices()) {
@@ -261,6 +311,30 @@ std::vector<Eigen::Vector3d> SmoothPrincipalField(const PolyMesh& mesh,
   return out;
 }
 
+}  // namespace
+
+std::vector<double> LineFieldIndices(const PolyMesh& mesh,
+                                     const std::vector<Eigen::Vector3d>& lines) {
+  if (lines.size() != mesh.n_vertices())
+    throw InputError("a line field needs one line per vertex (" +
+                     std::to_string(mesh.n_vertices()) + "), got " + std::to_string(lines.size()));
+  if (mesh.n_faces() == 0) return std::vector<double>(mesh.n_vertices(), 0.0);
+  double unit = 1.0;
+  return IndicesAtUnitScale(UnitScaled(mesh, &unit), lines);
+}
+
+std::vector<Eigen::Vector3d> SmoothPrincipalField(const PolyMesh& mesh,
+                                                  const std::vector<VertexCurvature>& curvature,
+                                                  double alignment_weight) {
+  if (curvature.size() != mesh.n_vertices())
+    throw InputError("the curvature field needs one entry per vertex");
+  if (!(alignment_weight > 0.0) || !std::isfinite(alignment_weight))
+    throw InputError("the field's alignment weight must be a finite number > 0");
+  if (mesh.n_faces() == 0) throw InputError("the mesh has no faces");
+  double unit = 1.0;
+  return SmoothAtUnitScale(UnitScaled(mesh, &unit), curvature, alignment_weight);
+}
+
 DirectionField EstimateDirectionField(const PolyMesh& mesh, DirectionKind kind,
                                       const CurvatureFitOptions& options, double smoothing) {
   for (auto f : mesh.faces())
@@ -268,13 +342,26 @@ DirectionField EstimateDirectionField(const PolyMesh& mesh, DirectionKind kind,
       throw InputError("face " + std::to_string(f.idx()) + " has " +
                        std::to_string(mesh.valence(f)) +
                        " vertices: the curvature field needs a triangle mesh");
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError(why);
+  if (mesh.n_faces() == 0) throw InputError("the mesh has no faces");
+  if (smoothing < 0.0 || !std::isfinite(smoothing))
+    throw InputError("the smoothing weight must be a finite number >= 0");
+  double unit = 1.0;
+  const PolyMesh scaled = UnitScaled(mesh, &unit);
   DirectionField field;
   field.kind = kind;
-  field.curvature = FitVertexCurvatures(mesh, options);
+  field.curvature = FitAtUnitScale(scaled, options);
   const size_t n = mesh.n_vertices();
+  int fitted = 0;
+  for (const VertexCurvature& c : field.curvature) fitted += c.fitted;
+  if (fitted == 0)
+    throw InputError("no vertex could be fitted: none has " + std::to_string(options.min_points) +
+                     " vertices within " + std::to_string(options.max_rings) +
+                     " rings (the mesh has " + std::to_string(n) + "); lower --neighbours");
   if (smoothing > 0.0) {
     const std::vector<Eigen::Vector3d> smooth =
-        SmoothPrincipalField(mesh, field.curvature, smoothing);
+        SmoothAtUnitScale(scaled, field.curvature, smoothing);
     for (size_t v = 0; v < n; ++v) {
       VertexCurvature& c = field.curvature[v];
       if (!c.fitted || !(smooth[v].norm() > 0.0)) continue;
@@ -285,19 +372,20 @@ DirectionField EstimateDirectionField(const PolyMesh& mesh, DirectionKind kind,
   field.first.assign(n, Eigen::Vector3d::Zero());
   field.second.assign(n, Eigen::Vector3d::Zero());
   std::vector<double> area(n, 0.0);
-  for (auto f : mesh.faces()) {
+  for (auto f : scaled.faces()) {
     std::vector<Eigen::Vector3d> p;
-    for (auto fv = mesh.cfv_iter(f); fv.is_valid(); ++fv) p.push_back(At(mesh, *fv));
+    for (auto fv = scaled.cfv_iter(f); fv.is_valid(); ++fv) p.push_back(At(scaled, *fv));
     const double third = (p[1] - p[0]).cross(p[2] - p[0]).norm() / 6.0;
-    for (auto fv = mesh.cfv_iter(f); fv.is_valid(); ++fv) area[fv->idx()] += third;
+    for (auto fv = scaled.cfv_iter(f); fv.is_valid(); ++fv) area[fv->idx()] += third;
   }
-  double total = 0.0, negative = 0.0;
+  double total = 0.0, negative = 0.0, undefined = 0.0;
   for (size_t v = 0; v < n; ++v) {
     const VertexCurvature& c = field.curvature[v];
     if (!c.fitted) continue;
     ++field.fitted;
     total += area[v];
     if (c.gaussian() < 0.0) negative += area[v];
+    if (c.k1 - c.k2 < kFlatCurvature) undefined += area[v];
     if (kind == DirectionKind::kPrincipal) {
       field.first[v] = c.d1;
       field.second[v] = c.d2;
@@ -306,19 +394,24 @@ DirectionField EstimateDirectionField(const PolyMesh& mesh, DirectionKind kind,
     }
   }
   field.negative_area_fraction = total > 0.0 ? negative / total : 0.0;
+  field.undefined_area_fraction = total > 0.0 ? undefined / total : 0.0;
   if (kind == DirectionKind::kAsymptotic && !(negative > 0.0))
     throw InputError(
-        "K >= 0 at every vertex: asymptotic directions exist only where the "
+        "K >= 0 at every fitted vertex: asymptotic directions exist only where the "
         "Gaussian curvature is negative (use the principal directions)");
   // The principal line field carries the singularities of both nets (it bisects the
   // asymptotic pair).
   std::vector<Eigen::Vector3d> principal(n, Eigen::Vector3d::Zero());
   for (size_t v = 0; v < n; ++v)
     if (field.curvature[v].fitted) principal[v] = field.curvature[v].d1;
-  const std::vector<double> index = LineFieldIndices(mesh, principal);
-  for (size_t v = 0; v < n; ++v)
+  // Where the principal directions mean nothing on most of the surface (flat, umbilic), their
+  // indices mean nothing either.
+  field.singularities_reliable = field.undefined_area_fraction <= 0.5;
+  const std::vector<double> index = IndicesAtUnitScale(scaled, principal);
+  for (size_t v = 0; v < n && field.singularities_reliable; ++v)
     if (std::abs(index[v]) >= 0.25)
       field.singularities.push_back({static_cast<int>(v), std::round(2.0 * index[v]) / 2.0});
+  ToInputUnits(unit, &field.curvature);
   return field;
 }
 

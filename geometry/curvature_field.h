@@ -31,7 +31,7 @@ struct CurvatureFitOptions {
   int fit_degree = 3;    // degree of the fitted jet (004: 3)
   int monge_degree = 2;  // degree of the Monge form returned (≤ fit_degree)
   int min_points = 20;   // rings are added until the neighbourhood has this many vertices
-  int max_rings = 6;
+  int max_rings = 64;
   bool IsValid(std::string* why) const;
 };
 
@@ -83,9 +83,16 @@ struct DirectionField {
   std::vector<Singularity> singularities;  // inner vertices with |index| ≥ ¼
   int fitted = 0;                          // vertices with a fitted jet
   double negative_area_fraction = 0.0;     // area (vertex shares) where K < 0
+  // Area where the principal directions are undefined (flat or umbilic: κ1 − κ2 below 1e-6 per
+  // mean edge length); above half of it no singularities are reported.
+  double undefined_area_fraction = 0.0;
+  bool singularities_reliable = true;
 };
-// Throws InputError for a face that is not a triangle (naming it), or, for the asymptotic
-// pair, when K ≥ 0 at every vertex (asymptotic directions need K < 0).
+// Computed at unit scale (centroid, mean edge length), so far, huge or tiny meshes lose nothing;
+// principal curvatures below 1e-6 per mean edge length count as 0 (a plane or a cylinder has no
+// asymptotic pair). Throws InputError for a face that is not a triangle (naming it), when no
+// vertex has enough neighbours for a fit, or, for the asymptotic pair, when K ≥ 0 at every
+// fitted vertex.
 // smoothing > 0: the principal lines are first smoothed by SmoothPrincipalField with that
 // alignment weight (the asymptotic pair follows: it is symmetric about d1 at the fitted angle).
 DirectionField EstimateDirectionField(const PolyMesh& mesh, DirectionKind kind,

@@ -285,6 +285,42 @@ TEST(CurvatureFieldTest, SmoothingBringsNoisyPrincipalLinesBackToTheAnalyticOnes
   EXPECT_EQ(elsewhere, 0);
 }
 
+// Computed at unit scale: the monkey saddle scaled by 1e150 or 1e-150, or moved 1e8 away,
+// gives the same single singularity and curvatures scaled accordingly. A tilted plane has no
+// asymptotic directions (its fitted curvatures are noise, taken as 0), and its principal
+// directions are undefined: no singularities are reported.
+TEST(CurvatureFieldTest, ScaleAndPositionDoNotMatterAndPlanesHaveNoField) {
+  std::vector<Eigen::Vector2d> uv;
+  const PolyMesh saddle = Triangulate(
+      [](double x, double y) { return Eigen::Vector3d(x, y, x * x * x - 3 * x * y * y); }, -1, 1,
+      -1, 1, 20, &uv);
+  const DirectionField reference = EstimateDirectionField(saddle, DirectionKind::kAsymptotic);
+  ASSERT_EQ(reference.singularities.size(), 1u);
+  for (const auto& [scale, shift] :
+       {std::pair{1e150, 0.0}, std::pair{1e-150, 0.0}, std::pair{1.0, 1e8}}) {
+    PolyMesh moved = saddle;
+    for (auto v : moved.vertices())
+      moved.set_point(v, moved.point(v) * scale + PolyMesh::Point(shift, shift, 0));
+    const DirectionField f = EstimateDirectionField(moved, DirectionKind::kAsymptotic);
+    ASSERT_EQ(f.singularities.size(), 1u) << scale << " " << shift;
+    EXPECT_EQ(f.singularities[0].vertex, reference.singularities[0].vertex);
+    const VertexCurvature &a = f.curvature[100], &b = reference.curvature[100];
+    EXPECT_NEAR(a.k1 * scale, b.k1, 1e-6 * std::abs(b.k1)) << scale << " " << shift;
+  }
+  uv.clear();
+  const PolyMesh plane =
+      Triangulate([](double x, double y) { return Eigen::Vector3d(x, y, 0.3 * x + 0.2 * y); }, -1,
+                  1, -1, 1, 20, &uv);
+  EXPECT_THROW(EstimateDirectionField(plane, DirectionKind::kAsymptotic), InputError);
+  const DirectionField principal = EstimateDirectionField(plane, DirectionKind::kPrincipal);
+  EXPECT_GT(principal.undefined_area_fraction, 0.99);
+  EXPECT_FALSE(principal.singularities_reliable);
+  EXPECT_TRUE(principal.singularities.empty());
+  CurvatureFitOptions many;
+  many.min_points = 1000;
+  EXPECT_THROW(EstimateDirectionField(saddle, DirectionKind::kPrincipal, many), InputError);
+}
+
 TEST(CurvatureFieldTest, InvalidOptionsAreRefused) {
   std::vector<Eigen::Vector2d> uv;
   const PolyMesh mesh =
