@@ -5,12 +5,12 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
-#include <sstream>
 #include <string>
 
 #include "apps/commands.h"
 #include "geometry/curvature_field.h"
 #include "geometry/face_colours.h"
+#include "geometry/scale_free.h"
 #include "geometry/svg_render.h"
 #include "problems/circular_mesh.h"
 #include "problems/report_json.h"
@@ -24,32 +24,19 @@ struct FieldArgs {
   double smooth = 0.0;  // alignment weight of the smoothing (0: the fitted lines as they are)
 };
 
-double MeanEdge(const PolyMesh& mesh) {
-  double sum = 0.0;
-  for (auto e : mesh.edges()) sum += mesh.calc_edge_length(e);
-  return sum / std::max<size_t>(mesh.n_edges(), 1);
-}
-
 // Both lines at every vertex as OBJ segments of `length` centred on the vertex.
 std::string FieldObj(const PolyMesh& mesh, const DirectionField& field, double length) {
-  std::ostringstream out;
-  out.precision(17);
-  out << "# gproj field: " << (field.kind == DirectionKind::kPrincipal ? "principal" : "asymptotic")
-      << " directions, two segments per vertex\n";
-  int written = 0;
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> segments;
   for (auto v : mesh.vertices()) {
     const auto& q = mesh.point(v);
     const Eigen::Vector3d p(q[0], q[1], q[2]);
-    for (const Eigen::Vector3d& d : {field.first[v.idx()], field.second[v.idx()]}) {
-      if (!(d.norm() > 0.0)) continue;
-      const Eigen::Vector3d a = p - 0.5 * length * d, b = p + 0.5 * length * d;
-      out << "v " << a.x() << ' ' << a.y() << ' ' << a.z() << "\nv " << b.x() << ' ' << b.y() << ' '
-          << b.z() << '\n';
-      ++written;
-    }
+    for (const Eigen::Vector3d& d : {field.first[v.idx()], field.second[v.idx()]})
+      if (d.norm() > 0.0) segments.emplace_back(p - 0.5 * length * d, p + 0.5 * length * d);
   }
-  for (int k = 0; k < written; ++k) out << "l " << 2 * k + 1 << ' ' << 2 * k + 2 << '\n';
-  return out.str();
+  return SegmentsObj(std::string("gproj field: ") +
+                         (field.kind == DirectionKind::kPrincipal ? "principal" : "asymptotic") +
+                         " directions, two segments per vertex",
+                     segments);
 }
 
 int RunField(const FieldArgs& args) {
@@ -115,7 +102,7 @@ int RunField(const FieldArgs& args) {
   }
   try {
     OutputFiles files;
-    files.AddText(args.output, FieldObj(mesh, field, 0.6 * MeanEdge(mesh)));
+    files.AddText(args.output, FieldObj(mesh, field, 0.6 * MeanEdgeLength(mesh)));
     if (!args.picture.empty()) {
       // Faces by the sign of K at their fitted corners: blue K < 0, yellow K = 0 or no fit,
       // red K > 0.

@@ -12,6 +12,8 @@
 #include <cmath>
 #include <string>
 
+#include "geometry/scale_free.h"
+
 namespace gproj {
 namespace {
 
@@ -34,31 +36,11 @@ Eigen::Vector3d VertexNormal(const PolyMesh& mesh, PolyMesh::VertexHandle v) {
   return sum;
 }
 
-// The mesh moved to its centroid and divided by its mean edge length (differences formed
-// before any product, so far, huge or tiny coordinates lose nothing); *unit gets that length.
+// The mesh at unit scale (scale_free.h); *unit gets its mean edge length.
 PolyMesh UnitScaled(const PolyMesh& mesh, double* unit) {
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  for (auto v : mesh.vertices()) {
-    const auto& p = mesh.point(v);
-    centre += Eigen::Vector3d(p[0], p[1], p[2]) / static_cast<double>(mesh.n_vertices());
-  }
-  double length = 0.0;
-  for (auto e : mesh.edges()) {
-    const auto h = mesh.halfedge_handle(e, 0);
-    const auto& a = mesh.point(mesh.from_vertex_handle(h));
-    const auto& b = mesh.point(mesh.to_vertex_handle(h));
-    length += Eigen::Vector3d(b[0] - a[0], b[1] - a[1], b[2] - a[2]).stableNorm() /
-              static_cast<double>(mesh.n_edges());
-  }
-  if (!(length > 0.0) || !std::isfinite(length) || !centre.allFinite())
-    throw InputError("the mesh's edge lengths are zero or not finite");
-  *unit = length;
-  PolyMesh scaled = mesh;
-  for (auto v : scaled.vertices()) {
-    const auto& p = mesh.point(v);
-    const Eigen::Vector3d q = (Eigen::Vector3d(p[0], p[1], p[2]) - centre) / length;
-    scaled.set_point(v, PolyMesh::Point(q.x(), q.y(), q.z()));
-  }
+  UnitFrame frame;
+  PolyMesh scaled = UnitScaleCopy(mesh, &frame);
+  *unit = frame.length;
   return scaled;
 }
 

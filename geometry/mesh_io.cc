@@ -362,6 +362,18 @@ void WriteMeshAtomically(const PolyMesh& mesh, const std::string& path) {
   files.Commit();
 }
 
+std::string SegmentsObj(const std::string& comment,
+                        const std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>>& segments) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "# " << comment << '\n';
+  for (const auto& [a, b] : segments)
+    out << "v " << a.x() << ' ' << a.y() << ' ' << a.z() << "\nv " << b.x() << ' ' << b.y() << ' '
+        << b.z() << '\n';
+  for (size_t k = 0; k < segments.size(); ++k) out << "l " << 2 * k + 1 << ' ' << 2 * k + 2 << '\n';
+  return out.str();
+}
+
 void WriteTextFileAtomically(const std::string& path, const std::string& contents) {
   OutputFiles files;
   files.AddText(path, contents);

@@ -58,6 +58,11 @@ void WriteMeshAtomically(const PolyMesh& mesh, const std::string& path);
 // .ply, any case).
 void CheckMeshExtension(const std::string& path);
 
+// Line segments (a, b) as OBJ text: a comment line, two vertices per segment (exact doubles),
+// then one "l" element per segment. For fields and axes that are not faces.
+std::string SegmentsObj(const std::string& comment,
+                        const std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>>& segments);
+
 // Writes `contents` to `path` atomically (temporary file + rename); throws InputError.
 void WriteTextFileAtomically(const std::string& path, const std::string& contents);
 

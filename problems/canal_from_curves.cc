@@ -42,12 +42,17 @@ Eigen::Vector3d NearestOnCircleTo(const Circle& circle, const PolylineClosestPoi
   }
   double lo = best - 2.0 * M_PI / kSteps, hi = best + 2.0 * M_PI / kSteps;
   const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  // Golden sections: one new distance per step, the other point carried over.
+  double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+  double fa = distance(a), fb = distance(b);
   for (int i = 0; i < 60; ++i) {
-    const double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
-    if (distance(a) < distance(b))
-      hi = b;
-    else
-      lo = a;
+    if (fa < fb) {
+      hi = b, b = a, fb = fa;
+      a = hi - g * (hi - lo), fa = distance(a);
+    } else {
+      lo = a, a = b, fa = fb;
+      b = lo + g * (hi - lo), fb = distance(b);
+    }
   }
   return at(0.5 * (lo + hi));
 }

@@ -10,6 +10,8 @@
 #include <deque>
 #include <sstream>
 
+#include "geometry/scale_free.h"
+
 namespace gproj {
 namespace {
 
@@ -111,12 +113,6 @@ Eigen::Vector3d MeanFaceNormal(const PolyMesh& mesh, PolyMesh::VertexHandle v) {
     sum += n.normalized();
   }
   return sum.normalized();
-}
-
-double MeanEdgeLength(const PolyMesh& mesh) {
-  double sum = 0.0;
-  for (auto e : mesh.edges()) sum += mesh.calc_edge_length(e);
-  return sum / std::max<size_t>(mesh.n_edges(), 1);
 }
 
 // max over nodes of max λ − min λ, and its mean, for axes M_v n (in units of h).
@@ -297,14 +293,6 @@ BeamLayout BeamsAtUnitScale(const PolyMesh& mesh, double h, double width,
   return out;
 }
 
-// p · scale + shift for every vertex.
-void MapBack(double scale, const Eigen::Vector3d& shift, PolyMesh* mesh) {
-  for (auto v : mesh->vertices()) {
-    const Eigen::Vector3d p = Point(*mesh, v) * scale + shift;
-    mesh->set_point(v, PolyMesh::Point(p.x(), p.y(), p.z()));
-  }
-}
-
 }  // namespace
 
 BeamLayout TorsionFreeBeams(const PolyMesh& mesh, const BeamOptions& options) {
@@ -317,19 +305,10 @@ BeamLayout TorsionFreeBeams(const PolyMesh& mesh, const BeamOptions& options) {
                        std::to_string(mesh.valence(f)) +
                        " vertices: mirror images of the node axes close only around faces with "
                        "an even number of vertices (a circular quad mesh is needed)");
-  // Computed at unit scale about the centroid, so that far or huge or tiny coordinates lose
-  // nothing (edge differences are formed before any product).
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  for (auto v : mesh.vertices()) centre += Point(mesh, v) / static_cast<double>(mesh.n_vertices());
-  double unit = 0.0;
-  for (auto e : mesh.edges()) {
-    const auto h = mesh.halfedge_handle(e, 0);
-    unit += (Point(mesh, mesh.to_vertex_handle(h)) - Point(mesh, mesh.from_vertex_handle(h)))
-                .stableNorm() /
-            static_cast<double>(mesh.n_edges());
-  }
-  if (!(unit > 0.0) || !std::isfinite(unit) || !centre.allFinite())
-    throw InputError("the mesh's edge lengths are zero or not finite");
+  // Computed at unit scale (scale_free.h), so that far, huge or tiny coordinates lose nothing.
+  UnitFrame frame;
+  const PolyMesh scaled = UnitScaleCopy(mesh, &frame);
+  const double unit = frame.length;
   const double h = options.height / unit;
   if (!(h >= 1e-9 && h <= 1e6)) {
     char text[200];
@@ -339,28 +318,22 @@ BeamLayout TorsionFreeBeams(const PolyMesh& mesh, const BeamOptions& options) {
                   options.height, h, unit);
     throw InputError(text);
   }
-  PolyMesh scaled = mesh;
-  MapBack(1.0 / unit, -centre / unit, &scaled);
   BeamLayout out =
       BeamsAtUnitScale(scaled, h, options.width > 0.0 ? options.width / unit : 0.04, options);
-  MapBack(unit, centre, &out.offset);
-  MapBack(unit, centre, &out.beams);
+  FromUnitScale(frame, &out.offset);
+  FromUnitScale(frame, &out.beams);
   for (double& lift : out.edge_lift) lift *= unit;
   return out;
 }
 
 std::string AxesObj(const PolyMesh& mesh, const std::vector<Eigen::Vector3d>& axis, double length) {
-  std::ostringstream out;
-  out.precision(17);
-  out << "# gproj node axes: vertex, vertex + " << length << " * axis\n";
-  for (auto v : mesh.vertices()) {
-    const Eigen::Vector3d p = Point(mesh, v), q = p + length * axis[v.idx()];
-    out << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
-    out << "v " << q.x() << ' ' << q.y() << ' ' << q.z() << '\n';
-  }
-  for (size_t k = 0; k < mesh.n_vertices(); ++k)
-    out << "l " << 2 * k + 1 << ' ' << 2 * k + 2 << '\n';
-  return out.str();
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> segments;
+  segments.reserve(mesh.n_vertices());
+  for (auto v : mesh.vertices())
+    segments.emplace_back(Point(mesh, v), Point(mesh, v) + length * axis[v.idx()]);
+  std::ostringstream comment;
+  comment << "gproj node axes: vertex, vertex + " << length << " * axis";
+  return SegmentsObj(comment.str(), segments);
 }
 
 }  // namespace gproj
