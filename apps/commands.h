@@ -22,5 +22,7 @@ void RegisterSuperCanalCommands(CLI::App* app, int* exit_code);
 void RegisterWeingartenCommand(CLI::App* app, int* exit_code);
 // Registers `gproj field` (curvature direction fields of triangle meshes).
 void RegisterFieldCommand(CLI::App* app, int* exit_code);
+// Registers `gproj remesh` (field-aligned quad remeshing of triangle meshes).
+void RegisterRemeshCommand(CLI::App* app, int* exit_code);
 
 }  // namespace gproj

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   gproj::RegisterSuperCanalCommands(&app, &exit_code);
   gproj::RegisterWeingartenCommand(&app, &exit_code);
   gproj::RegisterFieldCommand(&app, &exit_code);
+  gproj::RegisterRemeshCommand(&app, &exit_code);
   gproj::RefuseEmptyValues(&app);
   try {
     app.parse(argc, argv);

@@ -67,6 +67,10 @@ std::string RenderMeshSvg(const PolyMesh& mesh, const SvgOptions& options) {
   if (!options.legend.empty())
     svg += "<text x=\"20\" y=\"42\" font-family=\"sans-serif\" font-size=\"13\">" + options.legend +
            "</text>\n";
+  auto to_picture = [&](const Eigen::Vector3d& p) {
+    return Eigen::Vector2d(margin + (p.dot(u) - box.min().x()) * scale,
+                           top + margin + (-p.dot(v) - box.min().y()) * scale);
+  };
   for (const Face& face : faces) {
     svg += "<polygon points=\"";
     for (const auto& q : face.points) {
@@ -86,6 +90,21 @@ std::string RenderMeshSvg(const PolyMesh& mesh, const SvgOptions& options) {
                   "\" fill=\"rgb(%d,%d,%d)\" stroke=\"rgb(%d,%d,%d)\" stroke-width=\"0.3\"/>\n",
                   rgb[0], rgb[1], rgb[2], g / 2, g / 2, g / 2);
     svg += buffer;
+  }
+  for (const auto& [a, b] : options.segments) {
+    if (!a.allFinite() || !b.allFinite()) continue;
+    const Eigen::Vector2d p = to_picture(a), q = to_picture(b);
+    std::snprintf(buffer, sizeof(buffer),
+                  "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"", p.x(), p.y(),
+                  q.x(), q.y());
+    svg += buffer + options.segment_colour + "\" stroke-width=\"0.8\"/>\n";
+  }
+  for (const Eigen::Vector3d& d : options.dots) {
+    if (!d.allFinite()) continue;
+    const Eigen::Vector2d p = to_picture(d);
+    std::snprintf(buffer, sizeof(buffer), "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" fill=\"", p.x(),
+                  p.y());
+    svg += buffer + options.dot_colour + "\"/>\n";
   }
   svg += "</svg>\n";
   return svg;

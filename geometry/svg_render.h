@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "geometry/mesh_io.h"
@@ -21,6 +22,11 @@ struct SvgOptions {
   std::vector<std::array<std::uint8_t, 3>> face_colours;
   // A line under the title, e.g. the colour scale.
   std::string legend;
+  // Line segments drawn over the faces (a direction field, say), and dots (singularities).
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> segments;
+  std::string segment_colour = "rgb(200,40,40)";
+  std::vector<Eigen::Vector3d> dots;
+  std::string dot_colour = "rgb(220,0,0)";
 };
 
 // The SVG document. Throws InputError if the mesh has no faces or non-finite points.

@@ -1,0 +1,51 @@
+#pragma once
+// Irregular triangle meshes of parametric surfaces, for tests of curvature fields and remeshing.
+
+#include <Eigen/Core>
+#include <functional>
+#include <random>
+#include <vector>
+
+#include "geometry/mesh_io.h"
+
+namespace gproj {
+
+using Surface = std::function<Eigen::Vector3d(double, double)>;
+
+// An irregular triangle mesh of f over [u0, u1] × [v0, v1]: an n × n grid whose inner
+// parameters are jittered by up to `jitter` of a cell, each cell split along a random diagonal.
+// *uv receives every vertex's parameters.
+inline PolyMesh Triangulate(const Surface& f, double u0, double u1, double v0, double v1, int n,
+                            std::vector<Eigen::Vector2d>* uv, unsigned seed = 7,
+                            double jitter_fraction = 0.3) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> jitter(-jitter_fraction, jitter_fraction);
+  PolyMesh mesh;
+  std::vector<PolyMesh::VertexHandle> v;
+  const double du = (u1 - u0) / n, dv = (v1 - v0) / n;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) {
+      const bool inner = i > 0 && i < n && j > 0 && j < n;
+      const double u = u0 + (i + (inner ? jitter(random) : 0.0)) * du;
+      const double w = v0 + (j + (inner ? jitter(random) : 0.0)) * dv;
+      uv->emplace_back(u, w);
+      const Eigen::Vector3d p = f(u, w);
+      v.push_back(mesh.add_vertex(PolyMesh::Point(p.x(), p.y(), p.z())));
+    }
+  std::bernoulli_distribution diagonal(0.5);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const auto a = v[i * (n + 1) + j], b = v[(i + 1) * (n + 1) + j],
+                 c = v[(i + 1) * (n + 1) + j + 1], d = v[i * (n + 1) + j + 1];
+      if (diagonal(random)) {
+        mesh.add_face({a, b, c});
+        mesh.add_face({a, c, d});
+      } else {
+        mesh.add_face({a, b, d});
+        mesh.add_face({b, c, d});
+      }
+    }
+  return mesh;
+}
+
+}  // namespace gproj
