@@ -114,9 +114,22 @@ int RunField(const FieldArgs& args) {
         sign.push_back(k < 0.0 ? 0.0 : k > 0.0 ? 1.0 : 0.5);
       }
       SvgOptions svg;
-      svg.title = "Curvature field: K < 0 blue, K = 0 or unfitted yellow, K > 0 red; " +
-                  std::to_string(field.singularities.size()) + " singularities";
+      svg.title =
+          "Curvature field (black lines): K < 0 blue, K = 0 or unfitted yellow, K > 0 "
+          "red; " +
+          std::to_string(field.singularities.size()) + " singularities (red dots)";
       svg.face_colours = ColoursOf(sign, ColourScale{"sign of K", 0.0, 1.0, false});
+      // The field itself over it, at up to 2,000 vertices.
+      const size_t stride = 1 + mesh.n_vertices() / 2000;
+      const double length = 0.6 * MeanEdgeLength(mesh) * std::sqrt(static_cast<double>(stride));
+      for (size_t v = 0; v < mesh.n_vertices(); v += stride) {
+        const Eigen::Vector3d p(mesh.point(mesh.vertex_handle(v)).data());
+        for (const Eigen::Vector3d& d : {field.first[v], field.second[v]})
+          if (d.norm() > 0.0) svg.segments.emplace_back(p - 0.5 * length * d, p + 0.5 * length * d);
+      }
+      svg.segment_colour = "rgb(30,30,30)";
+      for (const Singularity& s : field.singularities)
+        svg.dots.emplace_back(mesh.point(mesh.vertex_handle(s.vertex)).data());
       files.AddText(args.picture, RenderMeshSvg(mesh, svg));
     }
     if (!args.report.empty())

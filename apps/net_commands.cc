@@ -230,6 +230,9 @@ int RunHNet(NetArgs& args) {
       "displacement %.3e of the bbox diagonal\n",
       last.max_tangent_angle_deg, last.min_w, last.max_w, last.star.max_star_planarity,
       last.star.max_displacement);
+  if (reference != nullptr)
+    std::printf("distance to the reference surface: max %.3e of its bbox diagonal\n",
+                summary.max_reference_distance);
   if (!summary.equitwist_violations.empty())
     std::printf("warning: %zu inner edges violate the equitwist condition (listed in the report)\n",
                 summary.equitwist_violations.size());

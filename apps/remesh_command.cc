@@ -67,11 +67,8 @@ int RunRemesh(RemeshArgs args) {
   std::printf("\n");
   std::printf("integer-grid map: %zu cut edges, %d folded triangles, in %.3f s\n",
               p.cut_edges.size(), p.folded_faces, r.seconds_map);
-  std::printf(
-      "quads: %zu faces, %zu vertices from %d grid points in %.3f s; %d cells along the "
-      "boundary dropped\n",
-      x.quads.n_faces(), x.quads.n_vertices(), x.grid_points, r.seconds_extraction,
-      x.dropped_cycles);
+  std::printf("quads: %zu faces, %zu vertices from %d grid points in %.3f s\n", x.quads.n_faces(),
+              x.quads.n_vertices(), x.grid_points, r.seconds_extraction);
   std::printf("inner valences:");
   for (size_t k = 0; k < r.inner_valence_count.size(); ++k)
     if (r.inner_valence_count[k] > 0) std::printf(" %zu: %d", k, r.inner_valence_count[k]);

@@ -2,9 +2,13 @@
 // each cell split in two (2 n² triangles: n = 100 gives 20k, n = 317 about 200k).
 //   BM_DirectionField/n   jet fit at every vertex, asymptotic pair, singularity indices
 //   BM_SmoothField/n      the smoothing solve (Knöppel et al. 2013) on the fitted field
+//   BM_IntegerGridMap/n   the field-aligned seamless map of the remeshing (frames, cuts, two
+//                         CHOLMOD solves), quads of 3 mean edges
+//   BM_QuadExtraction/n   the quads traced along the map's integer iso-lines
 #include <benchmark/benchmark.h>
 
 #include "geometry/curvature_field.h"
+#include "problems/quad_remeshing.h"
 
 namespace gproj {
 namespace {
@@ -43,6 +47,31 @@ void BM_SmoothField(benchmark::State& state) {
   state.counters["triangles"] = static_cast<double>(mesh.n_faces());
 }
 BENCHMARK(BM_SmoothField)->Arg(100)->Arg(317)->Iterations(1)->Unit(benchmark::kSecond);
+
+void BM_IntegerGridMap(benchmark::State& state) {
+  const PolyMesh mesh = MonkeySaddle(static_cast<int>(state.range(0)));
+  const QuadRemeshOptions options;
+  const DirectionField field =
+      EstimateDirectionField(mesh, options.directions, options.fit, options.smoothing);
+  int folded = 0;
+  for (auto _ : state) folded = ParametrizeAlongField(mesh, field, options).folded_faces;
+  state.counters["triangles"] = static_cast<double>(mesh.n_faces());
+  state.counters["folded"] = folded;
+}
+BENCHMARK(BM_IntegerGridMap)->Arg(100)->Arg(317)->Iterations(1)->Unit(benchmark::kSecond);
+
+void BM_QuadExtraction(benchmark::State& state) {
+  const PolyMesh mesh = MonkeySaddle(static_cast<int>(state.range(0)));
+  const QuadRemeshOptions options;
+  const DirectionField field =
+      EstimateDirectionField(mesh, options.directions, options.fit, options.smoothing);
+  const FieldParametrization map = ParametrizeAlongField(mesh, field, options);
+  size_t quads = 0;
+  for (auto _ : state) quads = ExtractQuads(mesh, map.map).quads.n_faces();
+  state.counters["triangles"] = static_cast<double>(mesh.n_faces());
+  state.counters["quads"] = static_cast<double>(quads);
+}
+BENCHMARK(BM_QuadExtraction)->Arg(100)->Arg(317)->Iterations(1)->Unit(benchmark::kSecond);
 
 }  // namespace
 }  // namespace gproj

@@ -25,6 +25,14 @@ echo "== Curvature field of a shipped triangle mesh (004 §3.1): asymptotic dire
 ./build/gproj field examples/data/monkey_saddle_tri.obj -o out/demo/monkey_saddle_field.obj \
   --picture out/demo/monkey_saddle_field.svg --report out/demo/monkey_saddle_field_report.json
 echo
+echo "== From triangles to an H-net (004 Fig. 4): quads along the asymptotic directions, then the H-net =="
+./build/gproj remesh examples/data/monkey_saddle_tri.obj --edge-length 0.15 \
+  -o out/demo/monkey_saddle_quads.obj --field out/demo/monkey_saddle_frames.obj \
+  --picture out/demo/monkey_saddle_quads.svg --report out/demo/monkey_saddle_quads_report.json
+./build/gproj hnet out/demo/monkey_saddle_quads.obj --reference examples/data/monkey_saddle_tri.obj \
+  -o out/demo/monkey_saddle_hnet.json --surface-mesh out/demo/monkey_saddle_hnet_surface.obj \
+  --picture out/demo/monkey_saddle_hnet.svg --report out/demo/monkey_saddle_hnet_report.json
+echo
 echo "== Marionette mesh: planar quads over a fixed plan view, lifted from two guide curves =="
 ROW=$(awk 'BEGIN { for (j = 0; j <= 20; ++j) printf "%s%.4f", (j ? "," : ""), 0.4 * sin(j / 4.0) }')
 COLUMN=$(awk 'BEGIN { for (i = 0; i <= 20; ++i) printf "%s%.4f", (i ? "," : ""), 0.3 * (1 - cos(i / 5.0)) }')
@@ -93,8 +101,12 @@ echo "  enneper_hnet.json             H-net: vertices, quads, four corner weight
 echo "  enneper_hnet_surface.obj      the smooth patchwork sampled as a triangle mesh"
 echo "  enneper_hnet.svg              a shaded picture of it (open in a web browser)"
 echo "  enneper_hnet_report.json      A-net and H-net history, tangent-plane angles, weights"
-echo "  monkey_saddle_field.obj       asymptotic directions of a triangle mesh (OBJ segments); its report"
+echo "  monkey_saddle_field.obj, .svg asymptotic directions of a triangle mesh (OBJ segments); its report"
 echo "                                lists the singularities (one, index -1/2, at the flat point)"
+echo "  monkey_saddle_quads.obj, .svg  the triangle mesh remeshed into quads along its asymptotic"
+echo "                                directions (one valence-6 vertex at the flat point); the frames"
+echo "                                followed in monkey_saddle_frames.obj"
+echo "  monkey_saddle_hnet.json, monkey_saddle_hnet_surface.obj, .svg   the H-net on those quads"
 echo "  marionette.obj                Marionette mesh (planar quads, plan view kept)"
 echo "  marionette_valence6.obj, marionette_tower.obj, marionette_strip.obj   and their reports"
 echo "  canal.obj, canal.svg          canal surface meshed by circular quads; canal_strip.obj its strip"

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <vector>
 
+#include "geometry/svg_plot.h"
+
 namespace gproj {
 
 std::string RenderMeshSvg(const PolyMesh& mesh, const SvgOptions& options) {
@@ -62,11 +64,11 @@ std::string RenderMeshSvg(const PolyMesh& mesh, const SvgOptions& options) {
                 options.width, height);
   svg += buffer;
   if (!options.title.empty())
-    svg += "<text x=\"20\" y=\"22\" font-family=\"sans-serif\" font-size=\"15\">" + options.title +
-           "</text>\n";
+    svg += "<text x=\"20\" y=\"22\" font-family=\"sans-serif\" font-size=\"15\">" +
+           EscapeXml(options.title) + "</text>\n";
   if (!options.legend.empty())
-    svg += "<text x=\"20\" y=\"42\" font-family=\"sans-serif\" font-size=\"13\">" + options.legend +
-           "</text>\n";
+    svg += "<text x=\"20\" y=\"42\" font-family=\"sans-serif\" font-size=\"13\">" +
+           EscapeXml(options.legend) + "</text>\n";
   auto to_picture = [&](const Eigen::Vector3d& p) {
     return Eigen::Vector2d(margin + (p.dot(u) - box.min().x()) * scale,
                            top + margin + (-p.dot(v) - box.min().y()) * scale);

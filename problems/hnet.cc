@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "constraints/frame_point_planarity.h"
+#include "geometry/closest_point.h"
 #include "geometry/scale_free.h"
 
 namespace gproj {
@@ -460,6 +461,23 @@ VertexUpdateResult SolveVertexUpdate(const SolverOptions& options, bool use_cere
           s.termination == TerminationType::kConvergence, s.num_steps(), s.message};
 }
 
+// The largest distance of a vertex of `mesh` to the surface `reference`, over the reference's
+// bounding-box diagonal.
+double MaxDistanceToSurface(const PolyMesh& mesh, const PolyMesh& reference) {
+  const ClosestPointQuery query(reference);
+  Eigen::AlignedBox3d box;
+  for (auto v : reference.vertices()) box.extend(Eigen::Vector3d(reference.point(v).data()));
+  double worst = 0.0;
+  for (auto v : mesh.vertices()) {
+    const Eigen::Vector3d q(mesh.point(v).data());
+    Eigen::Vector3d p, n;
+    query.Project(q, &p, &n);
+    worst = std::max(worst, (q - p).norm());
+  }
+  const double diagonal = box.diagonal().norm();
+  return diagonal > 0.0 ? worst / diagonal : worst;
+}
+
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -469,7 +487,7 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
 bool HNet::RunANetStep(const PolyMesh& reference, const IterationCallback& on_iteration,
                        HNetSummary* summary) {
   RunReport& report = summary->report;
-  report.initial = ToNamedValues(MeasureStarPlanarity(mesh_, reference));
+  report.initial = ToNamedValues(MeasureStarPlanarity(mesh_, input_));
   report.solver = "gp";
   if (MeasureStarPlanarity(mesh_, mesh_).max_star_planarity <= options_.anet.tolerance) return true;
   ANet anet(mesh_, &reference, options_.anet);
@@ -503,7 +521,7 @@ HNetRound HNet::UpdateWeights(int round, const PolyMesh& reference) {
   r.min_w = *std::min_element(w_.begin(), w_.end());
   r.max_w = *std::max_element(w_.begin(), w_.end());
   r.max_tangent_angle_deg = MaxTangentPlaneAngle(mesh_, weights_);
-  r.star = MeasureStarPlanarity(mesh_, reference);
+  r.star = MeasureStarPlanarity(mesh_, input_);  // displacement: vertex by vertex
   return r;
 }
 
@@ -574,6 +592,10 @@ HNetSummary HNet::Run(const IterationCallback& on_iteration, const RoundCallback
     for (const char* key :
          {"max_tangent_angle_deg", "weight_change", "w_min", "w_max", "max_inconsistency"})
       report.final.push_back({key, ValueOf(ToNamedValues(last), key)});
+    if (reference_ != nullptr) {
+      summary.max_reference_distance = MaxDistanceToSurface(mesh_, *reference_);
+      report.final.push_back({"max_reference_distance", summary.max_reference_distance});
+    }
   }
   report.seconds = SecondsSince(start);
   return summary;

@@ -120,6 +120,9 @@ struct HNetSummary {
   bool anet_step_run = false;
   std::vector<HNetRound> rounds;
   std::vector<std::pair<int, int>> equitwist_violations;
+  // With a reference surface: the largest distance of a vertex to it over its bounding-box
+  // diagonal (also report.final's max_reference_distance).
+  double max_reference_distance = 0.0;
   bool simply_connected = true;
 };
 

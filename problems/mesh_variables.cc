@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cassert>
 #include <utility>
 #include <vector>
 
@@ -19,6 +20,7 @@ MeshNormalization MeshNormalization::Of(const PolyMesh& mesh) {
 }
 
 double MaxDisplacement(const PolyMesh& mesh, const PolyMesh& reference) {
+  assert(mesh.n_vertices() == reference.n_vertices() && "vertex-by-vertex displacement");
   Eigen::AlignedBox3d box;
   for (auto v : reference.vertices()) box.extend(ToEigen(reference.point(v)));
   const double diagonal = box.diagonal().stableNorm();
