@@ -237,7 +237,11 @@ int RunHNet(NetArgs& args) {
     std::printf("warning: %zu inner edges violate the equitwist condition (listed in the report)\n",
                 summary.equitwist_violations.size());
   if (!summary.simply_connected)
-    std::printf("warning: the mesh is not simply connected; the result is an optimisation only\n");
+    std::printf(
+        "note: the mesh is not simply connected, so no exact extension need exist: round 0 "
+        "propagated the weights over a spanning tree, round 1 optimised the vertices and weights "
+        "together (W near 1, W >= %g); the report lists the worst edges\n",
+        args.options.min_shape_parameter);
   HintBoundaryControl("hnet", args.options.anet.vertices, report.converged);
   return ConcludeRun("hnet", report, "weight_change", args.options.weight_tolerance,
                      {args.output, args.surface_mesh, args.picture, args.report});
@@ -284,7 +288,8 @@ void RegisterNetCommands(CLI::App* app, int* exit_code) {
       ->capture_default_str();
   h->add_flag(
       "--allow-not-simply-connected", hnet->allow_not_simply_connected,
-      "Optimise meshes that are not simply connected (no exact extension exists in general)");
+      "Optimise meshes that are not simply connected (no exact extension exists in general): "
+      "the vertices and the shape parameters are solved for together");
   h->callback([hnet, exit_code]() { *exit_code = RunHNet(*hnet); });
 }
 

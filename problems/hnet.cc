@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +13,7 @@
 #include "constraints/frame_point_planarity.h"
 #include "geometry/closest_point.h"
 #include "geometry/scale_free.h"
+#include "solver/inequality.h"
 
 namespace gproj {
 namespace {
@@ -240,11 +242,12 @@ Eigen::Vector3d NormalOnEdge(const PolyMesh& mesh, PolyMesh::FaceHandle f,
 }
 }  // namespace
 
-double MaxTangentPlaneAngle(const PolyMesh& input,
-                            const std::vector<std::array<double, 4>>& weights, int samples) {
+std::vector<double> TangentPlaneAngles(const PolyMesh& input,
+                                       const std::vector<std::array<double, 4>>& weights,
+                                       int samples) {
   // At unit scale: the patch normals' cross products neither overflow nor underflow.
   const PolyMesh mesh = UnitScaleCopy(input);
-  double worst = 0.0;
+  std::vector<double> angles(mesh.n_edges(), 0.0);
   for (auto e : mesh.edges()) {
     if (mesh.is_boundary(e)) continue;
     const auto h = mesh.halfedge_handle(e, 0);
@@ -256,10 +259,16 @@ double MaxTangentPlaneAngle(const PolyMesh& input,
       const Eigen::Vector3d n1 = NormalOnEdge(mesh, f, weights[f.idx()], a, s);
       const Eigen::Vector3d n2 = NormalOnEdge(mesh, g, weights[g.idx()], b, 1.0 - s);
       const double sine = n1.cross(n2).norm();
-      worst = std::max(worst, std::asin(std::min(1.0, sine)) * 180.0 / M_PI);
+      angles[e.idx()] = std::max(angles[e.idx()], std::asin(std::min(1.0, sine)) * 180.0 / M_PI);
     }
   }
-  return worst;
+  return angles;
+}
+
+double MaxTangentPlaneAngle(const PolyMesh& mesh, const std::vector<std::array<double, 4>>& weights,
+                            int samples) {
+  const std::vector<double> angles = TangentPlaneAngles(mesh, weights, samples);
+  return angles.empty() ? 0.0 : *std::max_element(angles.begin(), angles.end());
 }
 
 std::vector<std::pair<int, int>> EquitwistViolations(const PolyMesh& mesh,
@@ -371,16 +380,37 @@ struct VertexUpdate {
   Problem problem;
   MeshNormalization norm;
   int vertex_block = -1, edge_block = -1;
-  FramePointPlanarity* frame = nullptr;
-  std::vector<EdgeStencil> stencils;  // per inner edge
-  VertexControl control;              // held and gliding vertices, as in the A-net step
-  PolyMesh start;                     // the mesh the update was built from (held positions)
+  FramePointPlanarity* frame = nullptr;  // weights frozen (exact extension)
+  int shape_block = -1;                  // weights as unknowns: W per face
+  std::vector<EdgeStencil> stencils;     // per inner edge
+  VertexControl control;                 // held and gliding vertices, as in the A-net step
+  PolyMesh start;                        // the mesh the update was built from (held positions)
 };
 
+// Starts each frame normal from the frame points of the current vertices and weights w.
+void StartFrameNormals(const std::vector<double>& w, VertexUpdate* u) {
+  Eigen::VectorXd& x = u->problem.x();
+  const VariableLayout& layout = u->problem.layout();
+  for (size_t k = 0; k < u->stencils.size(); ++k) {
+    const EdgeStencil& s = u->stencils[k];
+    const double wl = w[s.left_face], wr = w[s.right_face];
+    auto b = [&](int i) {
+      return Eigen::Vector3d(x.segment<3>(layout.Index(u->vertex_block, s.b[i], 0)));
+    };
+    const Eigen::Vector3d f1 = (b(1) + wl * b(2)) / (1 + wl), f4 = (b(5) + wr * b(4)) / (1 + wr);
+    Eigen::Vector3d n = (b(3) - b(0)).cross(f1 - f4);
+    if (n.norm() > 0) n.normalize();
+    x.segment<3>(layout.Index(u->edge_block, static_cast<int>(k), 0)) = n;
+  }
+}
+
+// The vertex update; with `free_weights` (their start values) the shape parameters are
+// unknowns too: frame rows with W, W near 1 (soft, 004 eq. 11) and W ≥ min (inequality).
 std::unique_ptr<VertexUpdate> BuildVertexUpdate(const PolyMesh& mesh,
                                                 const std::vector<int>& colour,
                                                 const HNetOptions& options,
-                                                const PolyMesh& reference) {
+                                                const PolyMesh& reference,
+                                                const std::vector<double>* free_weights = nullptr) {
   auto u = std::make_unique<VertexUpdate>();
   Problem& problem = u->problem;
   u->norm = MeshNormalization::Of(mesh);
@@ -391,41 +421,62 @@ std::unique_ptr<VertexUpdate> BuildVertexUpdate(const PolyMesh& mesh,
     if (!mesh.is_boundary(e)) inner_edges.push_back(e);
   u->edge_block = problem.layout().AddBlock("frame_normals", static_cast<int>(inner_edges.size()),
                                             3, /*eliminable=*/true);
+  if (free_weights)
+    u->shape_block =
+        problem.layout().AddBlock("shape_parameters", static_cast<int>(mesh.n_faces()), 1);
   problem.ResizeToLayout();
   LoadVertices(mesh, u->norm, u->vertex_block, &problem);
   LoadANetNormals(mesh, u->vertex_block, anet, &problem);
   AddANetFamilies(mesh, options.anet, u->vertex_block, anet, &reference, u->norm, &problem);
   u->control = ApplyVertexControl(mesh, u->norm, u->vertex_block, options.anet.vertices, &problem);
   u->start = mesh;
-  u->frame = problem.AddFamily<FramePointPlanarity>(options.frame_weight);
-  for (size_t k = 0; k < inner_edges.size(); ++k) {
-    const EdgeStencil s = EdgeStencilOf(mesh, colour, inner_edges[k]);
-    u->stencils.push_back(s);
-    std::vector<int> items = {problem.layout().Item(u->edge_block, static_cast<int>(k))};
-    for (int i = 0; i < 6; ++i) items.push_back(problem.layout().Item(u->vertex_block, s.b[i]));
-    u->frame->AddEdge(items[0], items[1], items[2], items[3], items[4], items[5], items[6], 1.0,
-                      1.0);
+  for (auto e : inner_edges) u->stencils.push_back(EdgeStencilOf(mesh, colour, e));
+  const VariableLayout& layout = problem.layout();
+  if (!free_weights) {
+    u->frame = problem.AddFamily<FramePointPlanarity>(options.frame_weight);
+    for (size_t k = 0; k < inner_edges.size(); ++k) {
+      const EdgeStencil& s = u->stencils[k];
+      std::vector<int> items = {layout.Item(u->edge_block, static_cast<int>(k))};
+      for (int i = 0; i < 6; ++i) items.push_back(layout.Item(u->vertex_block, s.b[i]));
+      u->frame->AddEdge(items[0], items[1], items[2], items[3], items[4], items[5], items[6], 1.0,
+                        1.0);
+    }
+    return u;
   }
+  const int faces = static_cast<int>(mesh.n_faces());
+  for (int f = 0; f < faces; ++f)
+    problem.x()[layout.Index(u->shape_block, f, 0)] = (*free_weights)[f];
+  StartFrameNormals(*free_weights, u.get());
+  auto* frame = problem.AddTerm<4, 3, 3, 3, 3, 3, 3, 3, 1, 1>(
+      "frame_planarity", FramePointPlanarityWithWeightsResidual{}, FamilyRole::kConstraint,
+      options.frame_weight);
+  frame->AddElements(IndexRange(static_cast<int>(inner_edges.size())), [&](int k) {
+    const EdgeStencil& s = u->stencils[k];
+    std::array<int, 9> items;
+    items[0] = layout.Item(u->edge_block, k);
+    for (int i = 0; i < 6; ++i) items[1 + i] = layout.Item(u->vertex_block, s.b[i]);
+    items[7] = layout.Item(u->shape_block, s.left_face);
+    items[8] = layout.Item(u->shape_block, s.right_face);
+    return items;
+  });
+  auto* near_one = problem.AddTerm<2, 1>("shape_near_one", ShapeParameterNearOneResidual{},
+                                         FamilyRole::kSoft, options.shape_regularity);
+  near_one->AddElements(IndexRange(faces),
+                        [&](int f) { return std::array<int, 1>{layout.Item(u->shape_block, f)}; });
+  const double min_w = options.min_shape_parameter;
+  AddInequalities<1, 1>(
+      &problem, "shape_positive", [min_w](const auto* w, auto* r) { r[0] = w[0] - min_w; },
+      IndexRange(faces), [&](int f) { return std::array<int, 1>{layout.Item(u->shape_block, f)}; });
   return u;
 }
 
 // Freezes the shape parameters w in the frame rows and starts each frame normal from the
 // current frame points.
 void FreezeWeights(const std::vector<double>& w, VertexUpdate* u) {
-  Eigen::VectorXd& x = u->problem.x();
-  const VariableLayout& layout = u->problem.layout();
-  for (size_t k = 0; k < u->stencils.size(); ++k) {
-    const EdgeStencil& s = u->stencils[k];
-    const double wl = w[s.left_face], wr = w[s.right_face];
-    u->frame->SetShapeParameters(static_cast<int>(k), wl, wr);
-    auto b = [&](int i) {
-      return Eigen::Vector3d(x.segment<3>(layout.Index(u->vertex_block, s.b[i], 0)));
-    };
-    const Eigen::Vector3d f1 = (b(1) + wl * b(2)) / (1 + wl), f4 = (b(5) + wr * b(4)) / (1 + wr);
-    Eigen::Vector3d n = (b(3) - b(0)).cross(f1 - f4);
-    if (n.norm() > 0) n.normalize();
-    x.segment<3>(layout.Index(u->edge_block, static_cast<int>(k), 0)) = n;
-  }
+  for (size_t k = 0; k < u->stencils.size(); ++k)
+    u->frame->SetShapeParameters(static_cast<int>(k), w[u->stencils[k].left_face],
+                                 w[u->stencils[k].right_face]);
+  StartFrameNormals(w, u);
 }
 
 // The first face whose shape parameter cannot place a frame point (not finite, or −1, where
@@ -478,6 +529,11 @@ double MaxDistanceToSurface(const PolyMesh& mesh, const PolyMesh& reference) {
   return diagonal > 0.0 ? worst / diagonal : worst;
 }
 
+// The report lists the inner edges whose patches meet at an angle of at least this, worst
+// first, up to kReportedEdges.
+constexpr double kReportedEdgeAngleDeg = 1e-6;
+constexpr size_t kReportedEdges = 100;
+
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -508,14 +564,22 @@ bool HNet::RunANetStep(const PolyMesh& reference, const IterationCallback& on_it
 }
 
 HNetRound HNet::UpdateWeights(int round, const PolyMesh& reference) {
+  (void)reference;
   const ShapeParameters shape = PropagateShapeParameters(mesh_, colour_, 0);
-  HNetRound r;
-  r.round = round;
-  r.max_inconsistency = shape.max_inconsistency;
+  double change = 0.0;
   if (!w_.empty())
     for (size_t f = 0; f < w_.size(); ++f)
-      r.weight_change = std::max(r.weight_change, std::abs(shape.w[f] / w_[f] - 1.0));
+      change = std::max(change, std::abs(shape.w[f] / w_[f] - 1.0));
   w_ = shape.w;
+  HNetRound r = MeasureRound(round);
+  r.max_inconsistency = shape.max_inconsistency;
+  r.weight_change = change;
+  return r;
+}
+
+HNetRound HNet::MeasureRound(int round) {
+  HNetRound r;
+  r.round = round;
   weights_.clear();
   for (auto f : mesh_.faces()) weights_.push_back(CornerWeights(mesh_, colour_, f, w_[f.idx()]));
   r.min_w = *std::min_element(w_.begin(), w_.end());
@@ -523,6 +587,53 @@ HNetRound HNet::UpdateWeights(int round, const PolyMesh& reference) {
   r.max_tangent_angle_deg = MaxTangentPlaneAngle(mesh_, weights_);
   r.star = MeasureStarPlanarity(mesh_, input_);  // displacement: vertex by vertex
   return r;
+}
+
+// 004 §3 where no exact extension need exist (not simply connected): round 0 measures the
+// weights propagated over a spanning tree (inconsistent around the holes); round 1 solves for
+// the vertices and the weights together.
+void HNet::RunJoint(const PolyMesh& reference, const RoundCallback& on_round,
+                    HNetSummary* summary) {
+  RunReport& report = summary->report;
+  summary->equitwist_violations = EquitwistViolations(mesh_, colour_);
+  auto start_time = std::chrono::steady_clock::now();
+  HNetRound propagated = UpdateWeights(0, reference);
+  propagated.seconds = SecondsSince(start_time);
+  summary->rounds.push_back(propagated);
+  if (on_round) on_round(propagated);
+  start_time = std::chrono::steady_clock::now();
+  // Start from the propagated weights where they are usable, 1 elsewhere.
+  std::vector<double> start = w_;
+  for (double& w : start) w = std::isfinite(w) && w > 0.0 ? std::clamp(w, 0.1, 10.0) : 1.0;
+  const std::unique_ptr<VertexUpdate> update =
+      BuildVertexUpdate(mesh_, colour_, options_, reference, &start);
+  report.variables = update->problem.layout().num_variables();
+  SolverOptions solver_options = options_.anet.solver;
+  solver_options.max_iterations = options_.joint_iterations;
+  solver_options.residual_tolerance = options_.residual_tolerance;
+  const VertexUpdateResult s = SolveVertexUpdate(solver_options, options_.use_ceres, update.get());
+  if (s.failed) {
+    report.failed = true;
+    report.termination = "joint vertex and weight update failed: " + s.message;
+    return;
+  }
+  StoreVertices(update->problem, update->vertex_block, update->norm, &mesh_);
+  update->control.RestoreHeld(update->start, &mesh_);
+  const VariableLayout& layout = update->problem.layout();
+  for (size_t f = 0; f < w_.size(); ++f)
+    w_[f] = update->problem.x()[layout.Index(update->shape_block, static_cast<int>(f), 0)];
+  HNetRound joint = MeasureRound(1);
+  joint.solver_iterations = s.steps;
+  joint.vertex_update_converged = s.converged;
+  joint.seconds = SecondsSince(start_time);
+  report.iterations += s.steps;
+  summary->rounds.push_back(joint);
+  if (on_round) on_round(joint);
+  report.converged = s.converged && joint.min_w > 0.0;
+  report.termination = s.converged ? "vertices and weights optimised together (no exact "
+                                     "extension exists for this topology; frame rows met)"
+                                   : "vertices and weights optimised together; the frame rows "
+                                     "were not met within the iterations";
 }
 
 void HNet::RunRounds(const PolyMesh& reference, const RoundCallback& on_round,
@@ -584,7 +695,12 @@ HNetSummary HNet::Run(const IterationCallback& on_iteration, const RoundCallback
   summary.simply_connected = topology_note_.empty();
   const PolyMesh& reference = reference_ != nullptr ? *reference_ : input_;
   // 1. The A-net step, unless the stars are already planar to tolerance; 2. the rounds.
-  if (RunANetStep(reference, on_iteration, &summary)) RunRounds(reference, on_round, &summary);
+  if (RunANetStep(reference, on_iteration, &summary)) {
+    if (summary.simply_connected)
+      RunRounds(reference, on_round, &summary);
+    else
+      RunJoint(reference, on_round, &summary);
+  }
   RunReport& report = summary.report;
   if (!summary.rounds.empty()) {
     const HNetRound& last = summary.rounds.back();
@@ -592,6 +708,18 @@ HNetSummary HNet::Run(const IterationCallback& on_iteration, const RoundCallback
     for (const char* key :
          {"max_tangent_angle_deg", "weight_change", "w_min", "w_max", "max_inconsistency"})
       report.final.push_back({key, ValueOf(ToNamedValues(last), key)});
+    const std::vector<double> angles = TangentPlaneAngles(mesh_, weights_);
+    std::vector<int> order;
+    for (size_t e = 0; e < angles.size(); ++e)
+      if (angles[e] >= kReportedEdgeAngleDeg) order.push_back(static_cast<int>(e));
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return angles[a] > angles[b]; });
+    summary.worst_edges = nlohmann::json::array();
+    for (size_t k = 0; k < order.size() && k < kReportedEdges; ++k) {
+      const auto h = mesh_.halfedge_handle(mesh_.edge_handle(order[k]), 0);
+      summary.worst_edges.push_back(
+          {{"vertices", {mesh_.from_vertex_handle(h).idx(), mesh_.to_vertex_handle(h).idx()}},
+           {"tangent_angle_deg", angles[order[k]]}});
+    }
     if (reference_ != nullptr) {
       summary.max_reference_distance = MaxDistanceToSurface(mesh_, *reference_);
       report.final.push_back({"max_reference_distance", summary.max_reference_distance});
@@ -641,6 +769,7 @@ nlohmann::json HNet::ReportJson(const HNetSummary& summary) {
   for (const auto& [a, b] : summary.equitwist_violations) violations.push_back({a, b});
   return gproj::ReportJson("hnet", summary.report,
                            {{"rounds", rounds},
+                            {"worst_edges", summary.worst_edges},
                             {"simply_connected", summary.simply_connected},
                             {"equitwist_violations", violations}});
 }

@@ -62,8 +62,12 @@ std::array<double, 4> CornerWeights(const PolyMesh& mesh, const std::vector<int>
 void EvaluatePatch(const PolyMesh& mesh, PolyMesh::FaceHandle f, const std::array<double, 4>& w,
                    double u, double v, Eigen::Vector3d* point, Eigen::Vector3d* normal);
 
-// Max angle (degrees) between the tangent planes of neighbouring patches, sampled at
-// `samples` + 1 points along every inner edge.
+// Per edge the max angle (degrees) between the tangent planes of its two patches, sampled at
+// `samples` + 1 points along it (0 on the boundary).
+std::vector<double> TangentPlaneAngles(const PolyMesh& mesh,
+                                       const std::vector<std::array<double, 4>>& weights,
+                                       int samples = 8);
+// Their max over the inner edges.
 double MaxTangentPlaneAngle(const PolyMesh& mesh, const std::vector<std::array<double, 4>>& weights,
                             int samples = 8);
 
@@ -91,8 +95,13 @@ struct HNetOptions {
   double round_soft_scale = 1e-8;
   // Residual tolerance of the vertex update (scaled mesh, mean edge 1).
   double residual_tolerance = 1e-10;
-  // Allow meshes that are not simply connected (the extension is then an optimisation only).
+  // Allow meshes that are not simply connected (the extension is then an optimisation only:
+  // the vertices and the shape parameters W are solved for together, with W near 1 and W ≥
+  // min_shape_parameter).
   bool allow_not_simply_connected = false;
+  int joint_iterations = 100;         // iterations of that joint solve
+  double shape_regularity = 1e-2;     // weight of W − 1 and 1/W − 1 (soft, 004 eq. 11)
+  double min_shape_parameter = 1e-2;  // W ≥ this (positive weights)
   // The cross-check: the A-net step and every vertex update by Ceres' Levenberg–Marquardt on
   // the same rows (the A-net step's soft terms at anet.ceres_soft_scale, the updates' at
   // round_soft_scale) instead of guided projection.
@@ -123,6 +132,9 @@ struct HNetSummary {
   // With a reference surface: the largest distance of a vertex to it over its bounding-box
   // diagonal (also report.final's max_reference_distance).
   double max_reference_distance = 0.0;
+  // The inner edges whose patches meet at 1e-6° or more, worst first (up to 100): objects
+  // {"vertices": [a, b], "tangent_angle_deg": angle}.
+  nlohmann::json worst_edges = nlohmann::json::array();
   bool simply_connected = true;
 };
 
@@ -162,8 +174,13 @@ class HNet {
                    HNetSummary* summary);
   // The alternation of weight and vertex updates (004 §3.2).
   void RunRounds(const PolyMesh& reference, const RoundCallback& on_round, HNetSummary* summary);
+  // Meshes that are not simply connected: the weights propagated (round 0, for comparison), then
+  // the vertices and weights optimised together (round 1).
+  void RunJoint(const PolyMesh& reference, const RoundCallback& on_round, HNetSummary* summary);
   // Shape parameters and corner weights from the current vertices, with the round's measures.
   HNetRound UpdateWeights(int round, const PolyMesh& reference);
+  // Corner weights from w_ and the round's measures.
+  HNetRound MeasureRound(int round);
 
   HNetOptions options_;
   PolyMesh input_, mesh_;

@@ -1,8 +1,10 @@
 // `gproj remesh` as a user runs it, on the shipped triangle mesh.
 #include <gtest/gtest.h>
 
+#include <Eigen/Core>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "apps/command_test_util.h"
 #include "geometry/mesh_io.h"
@@ -36,6 +38,55 @@ TEST_F(RemeshCommandTest, MonkeySaddleAlongItsAsymptoticDirections) {
   EXPECT_NE(Slurp(dir_ / "quads.svg").find("<circle"), std::string::npos);
   EXPECT_NE(Slurp(dir_ / "field.obj").find("\nl "), std::string::npos);
   EXPECT_NE(r.out.find("inner valences: 4:"), std::string::npos) << r.out;
+}
+
+// The two-command pipeline of 004 Fig. 4 (remesh, then hnet with the triangles as reference), on
+// the shipped mesh and on the same quads with two holes cut out (no exact extension: the
+// vertices and weights are optimised together).
+TEST_F(RemeshCommandTest, TrianglesToHNetWithAndWithoutHoles) {
+  const CommandRun remesh = Gproj("remesh " + Data("monkey_saddle_tri.obj") + " -o " +
+                                  Path("quads.obj") + " --edge-length 0.12");
+  ASSERT_EQ(remesh.exit_code, 0) << remesh.err;
+  const CommandRun hnet =
+      Gproj("hnet " + Path("quads.obj") + " --reference " + Data("monkey_saddle_tri.obj") + " -o " +
+            Path("h.json") + " --report " + Path("h_report.json"));
+  ASSERT_EQ(hnet.exit_code, 0) << hnet.err << hnet.out;
+  const nlohmann::json report = Json("h_report.json");
+  EXPECT_LT(report["final"]["max_tangent_angle_deg"].get<double>(), 0.01);
+  EXPECT_GT(report["final"]["w_min"].get<double>(), 0.0);
+  EXPECT_LT(report["final"]["max_reference_distance"].get<double>(), 0.005);
+  EXPECT_LT(report["final"]["max_displacement"].get<double>(), 0.02);
+  // Two holes.
+  const PolyMesh quads = ReadMesh(Path("quads.obj"));
+  PolyMesh holed;
+  std::vector<int> index(quads.n_vertices(), -1);
+  for (auto f : quads.faces()) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (auto v : quads.fv_range(f)) c += Eigen::Vector3d(quads.point(v).data()) / 4.0;
+    if (std::hypot(c.x() - 0.45, c.y() - 0.2) < 0.2 || std::hypot(c.x() + 0.3, c.y() + 0.45) < 0.2)
+      continue;
+    std::vector<PolyMesh::VertexHandle> corners;
+    for (auto v : quads.fv_range(f)) {
+      if (index[v.idx()] < 0) index[v.idx()] = holed.add_vertex(quads.point(v)).idx();
+      corners.push_back(holed.vertex_handle(index[v.idx()]));
+    }
+    holed.add_face(corners);
+  }
+  WriteMeshAtomically(holed, Path("holed.obj"));
+  const std::string holed_hnet = "hnet " + Path("holed.obj") + " --reference " +
+                                 Data("monkey_saddle_tri.obj") + " -o " + Path("hh.json") +
+                                 " --report " + Path("hh_report.json");
+  ExpectOneLineError(Gproj(holed_hnet), "not simply connected");
+  const CommandRun joint = Gproj(holed_hnet + " --allow-not-simply-connected");
+  ASSERT_EQ(joint.exit_code, 0) << joint.err << joint.out;
+  const nlohmann::json r = Json("hh_report.json");
+  ASSERT_EQ(r["rounds"].size(), 2u);
+  EXPECT_GT(r["rounds"][0]["max_tangent_angle_deg"].get<double>(), 0.05);  // propagated
+  EXPECT_LT(r["final"]["max_tangent_angle_deg"].get<double>(), 1e-4);
+  EXPECT_GT(r["final"]["w_min"].get<double>(), 0.0);
+  EXPECT_EQ(r["simply_connected"], false);
+  EXPECT_TRUE(r["worst_edges"].is_array());
+  EXPECT_NE(joint.out.find("optimised the vertices and weights together"), std::string::npos);
 }
 
 // Quads, a missing file and a bad option value are refused in one line, nothing written.

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <random>
 
 #include "problems/hnet.h"
 #include "triangulated_surface_util.h"
@@ -274,6 +275,76 @@ TEST(QuadRemeshingTest, TrianglesToHNet) {
     EXPECT_TRUE(summary.equitwist_violations.empty());
     // Displacement from the input quads, vertex by vertex (not from the triangles' vertices).
     EXPECT_LT(last.star.max_displacement, 0.02);
+  }
+}
+
+// `mesh` without the faces whose centroid `inside` holds, and without the vertices left unused.
+PolyMesh WithoutFaces(const PolyMesh& mesh,
+                      const std::function<bool(const Eigen::Vector3d&)>& inside) {
+  PolyMesh out;
+  std::vector<int> index(mesh.n_vertices(), -1);
+  for (auto f : mesh.faces()) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (auto v : mesh.fv_range(f)) c += Eigen::Vector3d(mesh.point(v).data()) / mesh.valence(f);
+    if (inside(c)) continue;
+    std::vector<PolyMesh::VertexHandle> corners;
+    for (auto v : mesh.fv_range(f)) {
+      if (index[v.idx()] < 0)
+        index[v.idx()] = static_cast<int>(out.add_vertex(mesh.point(v)).idx());
+      corners.push_back(out.vertex_handle(index[v.idx()]));
+    }
+    out.add_face(corners);
+  }
+  return out;
+}
+
+// 004 §3 without a guarantee: quads with two holes and a valence-6 vertex, made an A-net with the
+// holes already there, have no exact H-net extension (the weights propagated around a hole do
+// not close up). With the weights as unknowns the patchwork becomes tangent-plane continuous
+// with positive weights, close to the surface.
+TEST(QuadRemeshingTest, HNetOfAnANetWithTwoHoles) {
+  QuadRemeshOptions options;
+  options.edge_length = 0.1;
+  const Remeshed run =
+      RemeshHeightField("monkey saddle with holes", MonkeySaddle(), 40, 13, options);
+  const PolyMesh holed = WithoutFaces(run.result.extraction.quads, [](const Eigen::Vector3d& c) {
+    return std::hypot(c.x() - 0.45, c.y() - 0.2) < 0.18 ||
+           std::hypot(c.x() + 0.3, c.y() + 0.45) < 0.18;
+  });
+  ASSERT_FALSE(SimplyConnectedProblem(holed).empty());
+  int six = 0;
+  for (auto v : holed.vertices()) six += !holed.is_boundary(v) && holed.valence(v) == 6;
+  ASSERT_EQ(six, 1);
+  // As remeshed, and with every vertex moved by up to 20% of an edge (the A-net step runs with
+  // the holes already there either way).
+  for (const double jitter : {0.0, 0.02}) {
+    PolyMesh input = holed;
+    std::mt19937 random(1);
+    std::uniform_real_distribution<double> offset(-jitter, jitter);
+    for (auto v : input.vertices())
+      input.set_point(
+          v, input.point(v) + PolyMesh::Point(offset(random), offset(random), offset(random)));
+    HNetOptions hnet_options;
+    hnet_options.allow_not_simply_connected = true;
+    HNet hnet(input, &run.triangles, hnet_options);
+    const HNetSummary summary = hnet.Run(nullptr, nullptr);
+    ASSERT_EQ(summary.rounds.size(), 2u) << summary.report.termination;
+    const HNetRound& propagated = summary.rounds[0];
+    const HNetRound& joint = summary.rounds[1];
+    std::printf(
+        "  two holes, jitter %g: propagated W in [%.3g, %.3g], max tangent-plane angle %.3g deg; "
+        "joint W in [%.3f, %.3f], %.2e deg, %.2e of the diagonal from the triangles, %d "
+        "iterations\n",
+        jitter, propagated.min_w, propagated.max_w, propagated.max_tangent_angle_deg, joint.min_w,
+        joint.max_w, joint.max_tangent_angle_deg, summary.max_reference_distance,
+        joint.solver_iterations);
+    EXPECT_GT(propagated.max_tangent_angle_deg, 0.1);  // no exact extension
+    EXPECT_TRUE(summary.report.converged) << summary.report.termination;
+    EXPECT_GT(joint.min_w, 0.0);
+    EXPECT_LT(joint.max_tangent_angle_deg, 1e-3 * propagated.max_tangent_angle_deg);
+    EXPECT_LT(joint.max_tangent_angle_deg, 0.01);
+    EXPECT_LT(joint.star.max_star_planarity, 1e-6);
+    EXPECT_LE(summary.max_reference_distance, 0.008);
   }
 }
 
