@@ -31,8 +31,11 @@ void CheckOutputPath(const std::string& option, const std::string& path) {
 void CheckDistinctPaths(const std::vector<std::pair<std::string, std::string>>& inputs,
                         const std::vector<std::pair<std::string, std::string>>& outputs) {
   const auto same = [](const std::string& a, const std::string& b) {
+    // Absolute first: weakly_canonical leaves a relative path whose first element does not exist
+    // relative ("o.obj" and "./o.obj" would differ).
     std::error_code ec;
-    return fs::weakly_canonical(a, ec) == fs::weakly_canonical(b, ec);
+    return fs::weakly_canonical(fs::absolute(a, ec), ec) ==
+           fs::weakly_canonical(fs::absolute(b, ec), ec);
   };
   for (size_t i = 0; i < outputs.size(); ++i) {
     const auto& [option, path] = outputs[i];
@@ -51,6 +54,14 @@ void CheckOutputPaths(const std::vector<std::pair<std::string, std::string>>& in
   std::vector<std::pair<std::string, std::string>> paths;
   for (const OutputPath& o : outputs) {
     (o.mesh ? CheckMeshOutputPath : CheckOutputPath)(o.option, o.path);
+    if (!o.path.empty() && !o.extension.empty()) {
+      std::string ext = fs::path(o.path).extension().string();
+      std::transform(ext.begin(), ext.end(), ext.begin(),
+                     [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+      if (ext != o.extension)
+        throw InputError(o.option + " " + o.path + ": the file is written as " + o.extension +
+                         "; give it that extension");
+    }
     paths.emplace_back(o.option, o.path);
   }
   CheckDistinctPaths(inputs, paths);

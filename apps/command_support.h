@@ -55,6 +55,7 @@ void CheckDistinctPaths(const std::vector<std::pair<std::string, std::string>>& 
 struct OutputPath {
   std::string option, path;
   bool mesh = false;
+  std::string extension = {};  // when not empty, the path must end in it (any case), e.g. ".svg"
 };
 // Every output checked (CheckOutputPath, CheckMeshOutputPath for meshes), then all of them and
 // the inputs checked to be distinct files (CheckDistinctPaths).

@@ -46,9 +46,9 @@ int RunField(const FieldArgs& args) {
   const DirectionKind kind =
       args.directions == "principal" ? DirectionKind::kPrincipal : DirectionKind::kAsymptotic;
   try {
-    CheckOutputPaths(
-        {{"input", args.input}},
-        {{"--output", args.output}, {"--report", args.report}, {"--picture", args.picture}});
+    CheckOutputPaths({{"input", args.input}}, {{"--output", args.output, false, ".obj"},
+                                               {"--report", args.report, false, ".json"},
+                                               {"--picture", args.picture, false, ".svg"}});
     mesh = ReadMesh(args.input);
     std::printf(
         "gproj field: %s: %zu vertices, %zu faces; %s directions by a degree-%d jet fit "

@@ -41,10 +41,15 @@ int RunRemesh(RemeshArgs args) {
       args.directions == "principal" ? DirectionKind::kPrincipal : DirectionKind::kAsymptotic;
   try {
     CheckOutputPaths({{"input", args.input}}, {{"--output", args.output, true},
-                                               {"--report", args.report},
-                                               {"--picture", args.picture},
-                                               {"--field", args.field}});
+                                               {"--report", args.report, false, ".json"},
+                                               {"--picture", args.picture, false, ".svg"},
+                                               {"--field", args.field, false, ".obj"}});
     mesh = ReadMesh(args.input);
+  } catch (const InputError& e) {
+    std::cerr << "gproj remesh: " << e.what() << "\n";
+    return kExitInputError;
+  }
+  try {
     const double edge =
         args.options.edge_length > 0.0 ? args.options.edge_length : 3.0 * MeanEdgeLength(mesh);
     std::printf(
@@ -53,7 +58,7 @@ int RunRemesh(RemeshArgs args) {
     std::fflush(stdout);
     r = RemeshAlongField(mesh, args.options);
   } catch (const InputError& e) {
-    std::cerr << "gproj remesh: " << e.what() << "\n";
+    std::cerr << "gproj remesh: " << args.input << ": " << e.what() << "\n";
     return kExitInputError;
   }
   const FieldParametrization& p = r.parametrization;
@@ -87,11 +92,20 @@ int RunRemesh(RemeshArgs args) {
       {"mean_alignment_deg", r.mean_alignment_deg},
       {"max_alignment_deg", r.max_alignment_deg},
       {"area_covered", r.area_covered},
+      {"nonconvex_quads", static_cast<double>(r.nonconvex_quads)},
+      {"min_corner_angle_deg", r.min_corner_angle_deg},
       {"folded_triangles", static_cast<double>(p.folded_faces)},
       {"negative_area_fraction", r.field.negative_area_fraction}};
-  // Exit 0 when every inner vertex has even valence (the nets' two families alternate).
-  RunReport report = ConstructionReport("integer-grid map", {}, measures, r.odd_inner_vertices == 0,
+  // Exit 0 when the quads are a valid net: every inner valence even and above 2, every quad
+  // convex, no folded map, and the asymptotic directions defined on the whole surface.
+  const std::vector<std::string> problems = r.Problems();
+  RunReport report = ConstructionReport("integer-grid map", {}, measures, problems.empty(),
                                         r.seconds_field + r.seconds_map + r.seconds_extraction);
+  if (!problems.empty()) {
+    report.termination = "the quads are not a valid net:";
+    for (size_t k = 0; k < problems.size(); ++k)
+      report.termination += (k ? ", " : " ") + problems[k];
+  }
   if (report.failed) return ConcludeRun("remesh", report, "", 0.0, {});
   nlohmann::json extra = {{"input", args.input},
                           {"directions", args.directions},
@@ -161,8 +175,10 @@ void RegisterRemeshCommand(CLI::App* app, int* exit_code) {
       "Quad remeshing of a triangulated disk along its asymptotic (K < 0) or principal "
       "directions (004 §3.1): jet-fitted, smoothed direction field, seamless integer-grid map "
       "cut from its singularities to the boundary (mixed-integer quadrangulation), quads "
-      "extracted along the integer iso-lines. Exit 0 when every inner vertex has even valence; "
-      "other codes as for planarize.");
+      "extracted along the integer iso-lines. Exit 0 when the quads are a valid net (inner "
+      "valences even and above 2, quads convex, map unfolded, and for asymptotic directions K < 0 "
+      "on 99% of the area), 3 when not (result written, the reasons named); other codes as for "
+      "planarize.");
   cmd->add_option("mesh", args->input, "Triangle mesh of a disk (.obj, .off, .ply)")->required();
   cmd->add_option("-o,--output", args->output, "The quad mesh (.obj, .off, .ply)")->required();
   cmd->add_option("--directions", args->directions, "asymptotic (where K < 0) or principal")

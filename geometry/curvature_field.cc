@@ -338,9 +338,11 @@ DirectionField EstimateDirectionField(const PolyMesh& mesh, DirectionKind kind,
   int fitted = 0;
   for (const VertexCurvature& c : field.curvature) fitted += c.fitted;
   if (fitted == 0)
-    throw InputError("no vertex could be fitted: none has " + std::to_string(options.min_points) +
-                     " vertices within " + std::to_string(options.max_rings) +
-                     " rings (the mesh has " + std::to_string(n) + "); lower --neighbours");
+    throw InputError(
+        "no vertex could be fitted: none has " + std::to_string(options.min_points) +
+        " vertices within " + std::to_string(options.max_rings) + " rings (the mesh has " +
+        std::to_string(n) + ")" +
+        (static_cast<int>(n) >= 10 ? "; lower --neighbours" : ": too few vertices for a jet fit"));
   if (smoothing > 0.0) {
     const std::vector<Eigen::Vector3d> smooth =
         SmoothAtUnitScale(scaled, field.curvature, smoothing);

@@ -163,6 +163,7 @@ QuadExtraction ExtractQuads(const PolyMesh& mesh, const IntegerGridMap& map) {
   struct Occurrence {
     int point, face;
     Eigen::Vector2d uv;
+    bool on_border;  // on an edge or vertex of the face (found in its neighbours too)
   };
   std::vector<Occurrence> occurrences;
   for (size_t f = 0; f < faces.size(); ++f) {
@@ -180,7 +181,7 @@ QuadExtraction ExtractQuads(const PolyMesh& mesh, const IntegerGridMap& map) {
           position.push_back(face.At(x));
           normal.push_back(face.normal);
         }
-        occurrences.push_back({it->second, static_cast<int>(f), x});
+        occurrences.push_back({it->second, static_cast<int>(f), x, std::get<0>(key) != 2});
       }
   }
   out.grid_points = static_cast<int>(position.size());
@@ -189,7 +190,11 @@ QuadExtraction ExtractQuads(const PolyMesh& mesh, const IntegerGridMap& map) {
   const Eigen::Vector2d axes[4] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
   for (const Occurrence& o : occurrences)
     for (const Eigen::Vector2d& axis : axes) {
-      if (faces[o.face].Barycentric(o.uv + 1e-6 * axis).minCoeff() < -1e-12) continue;
+      // A point inside the face starts all four lines there (one that leaves at once, near an
+      // edge, crosses it); a point on an edge or vertex starts each line from the face it
+      // enters.
+      if (o.on_border && faces[o.face].Barycentric(o.uv + 1e-6 * axis).minCoeff() < -1e-12)
+        continue;
       int f = o.face, entered = -1;
       Eigen::Vector2d p = o.uv, d = axis;
       bool ended = false;

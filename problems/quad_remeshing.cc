@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <queue>
 #include <string>
 
@@ -14,6 +15,10 @@ namespace gproj {
 namespace {
 
 constexpr double kQuarter = M_PI / 2.0;
+// The quads' edge length, in mean triangle edges.
+constexpr double kMinEdgeLength = 0.25, kMaxEdgeLength = 1e6;
+// Map values this close to an integer (in quad edges) are taken as that integer.
+constexpr double kSnapToInteger = 1e-8;
 
 Eigen::Matrix2d QuarterTurns(int k) {
   static const int c[4] = {1, 0, -1, 0}, s[4] = {0, 1, 0, -1};
@@ -203,7 +208,10 @@ std::vector<std::vector<int>> CutPaths(const PolyMesh& m,
     if (reached < 0)
       throw InputError("the frame singularity at vertex " + std::to_string(s.vertex) +
                        " cannot be joined to the boundary without crossing another "
-                       "singularity's cut (singularities too dense: smooth the field more)");
+                       "singularity's cut: the field has " +
+                       std::to_string(singularities.size()) +
+                       " singularities, too many for a cut from each to the boundary (a noisy "
+                       "mesh? smooth the field more with a smaller --smooth, or the mesh)");
     std::vector<int> path;
     for (int v = reached; v >= 0; v = previous[v]) path.push_back(v);
     std::reverse(path.begin(), path.end());
@@ -217,11 +225,31 @@ PolyMesh::HalfedgeHandle HalfedgeBetween(const PolyMesh& m, int a, int b) {
   return m.find_halfedge(m.vertex_handle(a), m.vertex_handle(b));
 }
 
-void CheckDisk(const PolyMesh& m) {
+CscMatrix ToCsc(const Eigen::SparseMatrix<double>& a) {
+  CscMatrix out;
+  out.num_rows = static_cast<int>(a.rows());
+  out.num_cols = static_cast<int>(a.cols());
+  out.col_begin.assign(a.outerIndexPtr(), a.outerIndexPtr() + a.cols() + 1);
+  out.row_index.assign(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros());
+  out.values.assign(a.valuePtr(), a.valuePtr() + a.nonZeros());
+  return out;
+}
+
+}  // namespace
+
+void CheckTriangulatedDisk(const PolyMesh& m) {
   for (auto f : m.faces())
     if (m.valence(f) != 3)
       throw InputError("face " + std::to_string(f.idx()) + " has " + std::to_string(m.valence(f)) +
                        " vertices: the remeshing needs a triangle mesh");
+  for (auto v : m.vertices()) {
+    int boundary = 0;
+    for (auto h : m.voh_range(v)) boundary += m.is_boundary(h);
+    if (boundary > 1)
+      throw InputError("vertex " + std::to_string(v.idx()) +
+                       " joins separate fans of faces (a non-manifold vertex): the remeshing "
+                       "needs a disk");
+  }
   std::vector<char> seen(m.n_halfedges(), 0);
   int loops = 0;
   for (auto h : m.halfedges()) {
@@ -252,18 +280,6 @@ void CheckDisk(const PolyMesh& m) {
         "): the quad remeshing cuts a disk from its singularities to its boundary");
 }
 
-CscMatrix ToCsc(const Eigen::SparseMatrix<double>& a) {
-  CscMatrix out;
-  out.num_rows = static_cast<int>(a.rows());
-  out.num_cols = static_cast<int>(a.cols());
-  out.col_begin.assign(a.outerIndexPtr(), a.outerIndexPtr() + a.cols() + 1);
-  out.row_index.assign(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros());
-  out.values.assign(a.valuePtr(), a.valuePtr() + a.nonZeros());
-  return out;
-}
-
-}  // namespace
-
 bool QuadRemeshOptions::IsValid(std::string* why) const {
   if (!(edge_length >= 0.0) || !std::isfinite(edge_length)) {
     *why = "the edge length must be a finite number >= 0 (0: 3 mean triangle edges)";
@@ -291,16 +307,36 @@ FieldParametrization ParametrizeAlongField(const PolyMesh& triangles, const Dire
   if (triangles.n_faces() == 0) throw InputError("the mesh has no faces");
   if (field.curvature.size() != triangles.n_vertices())
     throw InputError("the direction field does not belong to the mesh");
-  CheckDisk(triangles);
+  CheckTriangulatedDisk(triangles);
   UnitFrame unit;
   const PolyMesh m = UnitScaleCopy(triangles, &unit);
   const double h = options.edge_length > 0.0 ? options.edge_length / unit.length : 3.0;
-  if (!(h >= 1e-3 && h <= 1e6))
-    throw InputError("the edge length must be within 1e-3 … 1e6 mean triangle edges");
+  // Quads much smaller than the triangles only interpolate them (and a tiny h asks for
+  // millions of quads): at least a quarter of a mean triangle edge.
+  if (!(h >= kMinEdgeLength && h <= kMaxEdgeLength)) {
+    char text[200];
+    std::snprintf(text, sizeof(text),
+                  "the edge length (--edge-length) %g is %g mean triangle edges; it must be within "
+                  "%g … %g of "
+                  "them (%g … %g)",
+                  h * unit.length, h, kMinEdgeLength, kMaxEdgeLength, kMinEdgeLength * unit.length,
+                  kMaxEdgeLength * unit.length);
+    throw InputError(text);
+  }
   Surface s = Frames(m, field, options);
   FieldParametrization out;
   out.edge_length = h * unit.length;
   out.singularities = FrameSingularities(s);
+  for (const FrameSingularity& sg : out.singularities)
+    if (sg.index >= 1.0) {
+      char text[300];
+      std::snprintf(text, sizeof(text),
+                    "the frame field has a singularity of index %+g at vertex %d (an umbilic of "
+                    "a surface of revolution?), which no quad vertex can follow (valence 4 - 4 × "
+                    "index): perturb the surface or smooth the field more",
+                    sg.index, sg.vertex);
+      throw InputError(text);
+    }
   const std::vector<std::vector<int>> paths = CutPaths(m, out.singularities);
   std::vector<char> cut(m.n_edges(), 0);
   std::vector<int> path_of_vertex(m.n_vertices(), -1);
@@ -458,6 +494,10 @@ FieldParametrization ParametrizeAlongField(const PolyMesh& triangles, const Dire
         corner_terms(f, k, c, &terms);
         double value = 0.0;
         for (const auto& [var, coeff] : terms) value += coeff * x[var];
+        // Within rounding of an integer, exactly on it (an iso-line through a vertex, as on
+        // grids aligned with the field): the transitions map integers to integers, so every
+        // chart of the vertex agrees, and the extraction sees the exact case, not a near miss.
+        if (std::abs(value - std::round(value)) < kSnapToInteger) value = std::round(value);
         out.map.corner_uv[f][k][c] = value;
       }
     if (MappedArea(out.map, f) <= 0.0) ++out.folded_faces;
@@ -476,6 +516,26 @@ FieldParametrization ParametrizeAlongField(const PolyMesh& triangles, const Dire
   return out;
 }
 
+std::vector<std::string> QuadRemeshResult::Problems() const {
+  std::vector<std::string> out;
+  auto add = [&out](int count, const char* what) {
+    if (count > 0) out.push_back(std::to_string(count) + " " + what);
+  };
+  add(odd_inner_vertices, "inner vertices of odd valence");
+  add(inner_valence_count.size() > 2 ? inner_valence_count[2] : 0,
+      "inner vertices of valence 2 (two quads folded onto each other)");
+  add(nonconvex_quads, "non-convex quads");
+  add(parametrization.folded_faces, "triangles folded by the map");
+  if (field.kind == DirectionKind::kAsymptotic && field.negative_area_fraction < 0.99) {
+    char text[160];
+    std::snprintf(text, sizeof(text),
+                  "K >= 0 on %.1f%% of the area (no asymptotic directions there)",
+                  100.0 * (1.0 - field.negative_area_fraction));
+    out.push_back(text);
+  }
+  return out;
+}
+
 QuadRemeshResult RemeshAlongField(const PolyMesh& triangles, const QuadRemeshOptions& options) {
   std::string why;
   if (!options.IsValid(&why)) throw InputError(why);
@@ -487,7 +547,7 @@ QuadRemeshResult RemeshAlongField(const PolyMesh& triangles, const QuadRemeshOpt
     clock = now;
     return seconds;
   };
-  CheckDisk(triangles);
+  CheckTriangulatedDisk(triangles);
   out.field = EstimateDirectionField(triangles, options.directions, options.fit, options.smoothing);
   out.seconds_field = lap();
   out.parametrization = ParametrizeAlongField(triangles, out.field, options);
@@ -522,6 +582,20 @@ QuadRemeshResult RemeshAlongField(const PolyMesh& triangles, const QuadRemeshOpt
       out.inner_valence_count.resize(valence + 1, 0);
     ++out.inner_valence_count[valence];
     if (valence % 2) ++out.odd_inner_vertices;
+  }
+  out.min_corner_angle_deg = 180.0;
+  for (auto f : q.faces()) {
+    std::vector<Eigen::Vector3d> p;
+    for (auto v : q.fv_range(f)) p.emplace_back(q.point(v)[0], q.point(v)[1], q.point(v)[2]);
+    const Eigen::Vector3d n = (p[2] - p[0]).cross(p[3] - p[1]);
+    bool convex = true;
+    for (int k = 0; k < 4; ++k) {
+      const Eigen::Vector3d a = p[(k + 3) % 4] - p[k], b = p[(k + 1) % 4] - p[k];
+      out.min_corner_angle_deg = std::min(out.min_corner_angle_deg,
+                                          std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / M_PI);
+      if (!(b.cross(a).dot(n) > 0.0)) convex = false;
+    }
+    if (!convex) ++out.nonconvex_quads;
   }
   double sum = 0.0;
   for (const QuadExtraction::Edge& e : out.extraction.edges) {

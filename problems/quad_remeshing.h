@@ -32,6 +32,7 @@ namespace gproj {
 struct QuadRemeshOptions {
   DirectionKind directions = DirectionKind::kAsymptotic;
   // Edge length of the quads in the input's units; 0: 3 × the mean edge length of the triangles.
+  // At least a quarter of that mean edge length.
   double edge_length = 0.0;
   // Alignment weight of the principal-line smoothing (SmoothPrincipalField); larger follows the
   // fitted lines more closely, smaller gives a smoother field with fewer singularities.
@@ -64,6 +65,10 @@ struct FieldParametrization {
   double edge_length = 0.0;    // the quads' edge length, input units
 };
 
+// Throws InputError unless `mesh` is a triangulated disk: triangles only, connected, manifold
+// vertices, one boundary loop, Euler characteristic 1 (the message names the rule broken).
+void CheckTriangulatedDisk(const PolyMesh& mesh);
+
 // The field-aligned integer-grid map of `triangles` for `field` (EstimateDirectionField on the
 // same mesh). Throws InputError for a mesh that is not a triangulated disk (naming its Euler
 // characteristic and boundary loops), invalid options, a singularity that cannot be joined to
@@ -81,7 +86,13 @@ struct QuadRemeshResult {
   double mean_alignment_deg = 0.0;       // edges against the nearer frame line of their face
   double max_alignment_deg = 0.0;
   double area_covered = 0.0;  // quad area / triangle area
+  int nonconvex_quads = 0;
+  double min_corner_angle_deg = 0.0;
   double seconds_field = 0.0, seconds_map = 0.0, seconds_extraction = 0.0;
+  // Why the quads are not a valid net, one entry per kind (empty: valid): inner vertices of odd
+  // valence or of valence 2, non-convex quads, triangles folded by the map, and, for asymptotic
+  // directions, K >= 0 on more than 1% of the area.
+  std::vector<std::string> Problems() const;
 };
 
 // EstimateDirectionField → ParametrizeAlongField → ExtractQuads, with the measures. Throws

@@ -51,10 +51,12 @@ class CommandTest : public ::testing::Test {
   nlohmann::json Json(const std::string& name) const {
     return nlohmann::json::parse(Slurp(dir_ / name));
   }
-  // Runs `gproj ARGS`, capturing stdout and stderr.
-  CommandRun Gproj(const std::string& args) {
-    const std::string cmd =
-        std::string(GPROJ_BINARY) + " " + args + " >" + Path("stdout") + " 2>" + Path("stderr");
+  // Runs `gproj ARGS`, capturing stdout and stderr; with in_dir, from the test's directory (for
+  // relative paths).
+  CommandRun Gproj(const std::string& args, bool in_dir = false) {
+    const std::string cmd = (in_dir ? "cd '" + dir_.string() + "' && " : std::string()) +
+                            std::string(GPROJ_BINARY) + " " + args + " >" + Path("stdout") + " 2>" +
+                            Path("stderr");
     const int status = std::system(cmd.c_str());
     CommandRun r;
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

@@ -134,6 +134,11 @@ TEST_F(OptionValidationTest, OutputsMustBeDistinctFilesAndNotInputs) {
     EXPECT_NE(r.err.find(c.rule), std::string::npos) << c.args << "\n" << r.err;
     EXPECT_NE(r.err.find(c.option), std::string::npos) << c.args << "\n" << r.err;
   }
+  // The same file spelt two ways, relative to the working directory.
+  const CommandRun spelt = Gproj("planarize in.obj -o p.obj --report ./p.obj", /*in_dir=*/true);
+  EXPECT_EQ(spelt.exit_code, 1) << spelt.err;
+  EXPECT_NE(spelt.err.find("--output and --report are the same file"), std::string::npos)
+      << spelt.err;
   EXPECT_EQ(Slurp(input), before);
   for (const char* name : {"p.obj", "a.obj", "w.json", "c.obj"}) EXPECT_FALSE(Exists(name)) << name;
 }

@@ -8,6 +8,7 @@
 
 #include "apps/command_test_util.h"
 #include "geometry/mesh_io.h"
+#include "triangulated_surface_util.h"
 
 namespace gproj {
 namespace {
@@ -89,6 +90,25 @@ TEST_F(RemeshCommandTest, TrianglesToHNetWithAndWithoutHoles) {
   EXPECT_NE(joint.out.find("optimised the vertices and weights together"), std::string::npos);
 }
 
+// Quads that are not a valid net are written with exit 3 and the reasons: here asymptotic
+// directions on a surface with K > 0 on half of it.
+TEST_F(RemeshCommandTest, InvalidNetExitsThreeWithTheReasons) {
+  std::vector<Eigen::Vector2d> uv;
+  WriteMeshAtomically(Triangulate(
+                          [](double x, double y) {
+                            return Eigen::Vector3d(x, y, std::sin(3 * x) * std::sin(3 * y) / 3);
+                          },
+                          -1, 1, -1, 1, 30, &uv, 4),
+                      Path("egg_crate.obj"));
+  const CommandRun r = Gproj("remesh " + Path("egg_crate.obj") + " -o " + Path("q.obj") +
+                             " --report " + Path("r.json"));
+  EXPECT_EQ(r.exit_code, 3) << r.err << r.out;
+  EXPECT_NE((r.out + r.err).find("not a valid net"), std::string::npos) << r.out << r.err;
+  EXPECT_NE((r.out + r.err).find("K >= 0 on"), std::string::npos) << r.out << r.err;
+  EXPECT_TRUE(Exists("q.obj"));
+  EXPECT_EQ(Json("r.json")["converged"], false);
+}
+
 // Quads, a missing file and a bad option value are refused in one line, nothing written.
 TEST_F(RemeshCommandTest, RefusesWhatItCannotRemesh) {
   ExpectOneLineError(Gproj("remesh " + Data("enneper_41x41.obj") + " -o " + Path("q.obj")),
@@ -102,6 +122,12 @@ TEST_F(RemeshCommandTest, RefusesWhatItCannotRemesh) {
   ExpectOneLineError(Gproj("remesh " + Data("monkey_saddle_tri.obj") + " -o " + Path("q.obj") +
                            " --edge-length 100"),
                      "no quad");
+  ExpectOneLineError(Gproj("remesh " + Data("monkey_saddle_tri.obj") + " -o " + Path("q.obj") +
+                           " --edge-length 0.0002"),
+                     "--edge-length");
+  ExpectOneLineError(Gproj("remesh " + Data("monkey_saddle_tri.obj") + " -o " + Path("q.obj") +
+                           " --picture " + Path("p.png")),
+                     "--picture");
   EXPECT_FALSE(Exists("q.obj"));
 }
 

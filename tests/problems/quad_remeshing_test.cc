@@ -348,6 +348,65 @@ TEST(QuadRemeshingTest, HNetOfAnANetWithTwoHoles) {
   }
 }
 
+// A regular grid whose lines are the asymptotic directions: the map's iso-lines run through
+// mesh vertices and along mesh edges; every grid point is a quad vertex, in one piece.
+TEST(QuadRemeshingTest, GridAlignedWithTheField) {
+  for (const int n : {20, 30}) {
+    std::vector<Eigen::Vector2d> uv;
+    const PolyMesh mesh =
+        Triangulate([](double x, double y) { return Eigen::Vector3d(x, y, x * y); }, -1, 1, -1, 1,
+                    n, &uv, 1, 0.0);
+    const QuadRemeshResult r = RemeshAlongField(mesh, QuadRemeshOptions{});
+    const PolyMesh& q = r.extraction.quads;
+    EXPECT_EQ(static_cast<int>(q.n_vertices()), r.extraction.grid_points) << n;
+    EXPECT_TRUE(r.Problems().empty());
+    for (size_t k = 0; k < r.inner_valence_count.size(); ++k)
+      if (k != 4) EXPECT_EQ(r.inner_valence_count[k], 0);
+    // One piece: every face reached from face 0.
+    std::vector<char> seen(q.n_faces(), 0);
+    std::vector<int> stack = {0};
+    seen[0] = 1;
+    size_t reached = 1;
+    while (!stack.empty()) {
+      const auto f = q.face_handle(stack.back());
+      stack.pop_back();
+      for (auto g : q.ff_range(f))
+        if (!seen[g.idx()]) seen[g.idx()] = 1, ++reached, stack.push_back(g.idx());
+    }
+    EXPECT_EQ(reached, q.n_faces()) << n;
+    EXPECT_GT(r.area_covered, n == 20 ? 0.4 : 0.5) << n;
+  }
+}
+
+// Where the quads are not a valid net the result names why (the command exits 3): asymptotic
+// quads on a surface with K > 0 on part of it, principal quads around an umbilic.
+TEST(QuadRemeshingTest, InvalidNetsAreNamed) {
+  std::vector<Eigen::Vector2d> uv;
+  const PolyMesh egg_crate = Triangulate(
+      [](double x, double y) {
+        return Eigen::Vector3d(x, y, std::sin(3 * x) * std::sin(3 * y) / 3);
+      },
+      -1, 1, -1, 1, 40, &uv, 4);
+  const std::vector<std::string> problems =
+      RemeshAlongField(egg_crate, QuadRemeshOptions{}).Problems();
+  ASSERT_FALSE(problems.empty());
+  bool named = false;
+  for (const std::string& p : problems) named |= p.find("K >= 0 on") != std::string::npos;
+  EXPECT_TRUE(named);
+  const PolyMesh paraboloid =
+      Triangulate([](double x, double y) { return Eigen::Vector3d(x, y, 0.5 * (x * x + y * y)); },
+                  -1, 1, -1, 1, 20, &uv, 1, 0.0);
+  // The umbilic of a paraboloid of revolution splits into two singularities of index +½:
+  // quad vertices of valence 2.
+  QuadRemeshOptions principal;
+  principal.directions = DirectionKind::kPrincipal;
+  const QuadRemeshResult r = RemeshAlongField(paraboloid, principal);
+  ASSERT_EQ(r.parametrization.singularities.size(), 2u);
+  EXPECT_EQ(r.parametrization.singularities[0].index, 0.5);
+  ASSERT_FALSE(r.Problems().empty());
+  EXPECT_NE(r.Problems()[0].find("valence 2"), std::string::npos) << r.Problems()[0];
+}
+
 TEST(QuadRemeshingTest, RefusesWhatItCannotRemesh) {
   std::vector<Eigen::Vector2d> uv;
   QuadRemeshOptions options;
@@ -406,6 +465,27 @@ TEST(QuadRemeshingTest, RefusesWhatItCannotRemesh) {
   }
   options.edge_length = -1.0;
   EXPECT_THROW(RemeshAlongField(saddle, options), InputError);
+  // Quads far smaller than the triangles (millions of them) are refused before any work.
+  options.edge_length = 1e-4;
+  try {
+    RemeshAlongField(saddle, options);
+    ADD_FAILURE() << "quads of 1e-4";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--edge-length"), std::string::npos) << e.what();
+  }
+  // Two fans sharing one vertex (a bowtie) are no disk.
+  PolyMesh bowtie;
+  const auto o = bowtie.add_vertex({0, 0, 0});
+  const auto p1 = bowtie.add_vertex({1, 0, 0.1}), p2 = bowtie.add_vertex({1, 1, 0.2});
+  const auto p3 = bowtie.add_vertex({-1, 0, 0.1}), p4 = bowtie.add_vertex({-1, -1, 0.3});
+  bowtie.add_face(o, p1, p2);
+  bowtie.add_face(o, p3, p4);
+  try {
+    CheckTriangulatedDisk(bowtie);
+    ADD_FAILURE() << "a bowtie";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("non-manifold vertex"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
