@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -79,11 +80,20 @@ int RunField(const FieldArgs& args) {
     std::printf("principal directions undefined (flat or umbilic) on %.1f%% of the area%s\n",
                 100.0 * field.undefined_area_fraction,
                 field.singularities_reliable ? "" : ": no singularities reported");
-  int half_negative = 0, half_positive = 0, other = 0;
+  // Counts per index, as fractions of the symmetry: "index -1/2: 1, +1/4: 4".
+  std::map<int, int> count;  // index × symmetry → singularities
   for (const Singularity& s : field.singularities)
-    (s.index == -0.5 ? half_negative : s.index == 0.5 ? half_positive : other)++;
-  std::printf("singularities of the line field: %zu (index -1/2: %d, +1/2: %d, other: %d)\n",
-              field.singularities.size(), half_negative, half_positive, other);
+    ++count[static_cast<int>(std::lround(s.index * field.symmetry))];
+  std::printf("singularities of the %s field: %zu", field.symmetry == 4 ? "cross" : "line",
+              field.singularities.size());
+  for (auto it = count.begin(); it != count.end(); ++it) {
+    int numerator = it->first, denominator = field.symmetry;
+    while (denominator > 1 && numerator % 2 == 0) numerator /= 2, denominator /= 2;
+    std::printf("%sindex %s%d%s: %d", it == count.begin() ? " (" : ", ", numerator > 0 ? "+" : "",
+                numerator, denominator > 1 ? ("/" + std::to_string(denominator)).c_str() : "",
+                it->second);
+  }
+  std::printf("%s\n", count.empty() ? "" : ")");
   const NamedValues measures = {{"fitted_vertices", static_cast<double>(field.fitted)},
                                 {"negative_area_fraction", field.negative_area_fraction},
                                 {"undefined_area_fraction", field.undefined_area_fraction},
@@ -150,7 +160,9 @@ void RegisterFieldCommand(CLI::App* app, int* exit_code) {
       "field",
       "Curvature direction field of a triangle mesh (004 §3.1): principal curvatures and "
       "directions per vertex by a 3rd-order jet fit (CGAL), the asymptotic pair where K < 0, and "
-      "the singularities of the line field with their indices; --smooth smooths the lines first. "
+      "the singularities of the field with their indices (the asymptotic pair about the line d1, "
+      "in "
+      "halves; the principal cross, in quarters); --smooth smooths the field first. "
       "Exit codes as for planarize.");
   cmd->add_option("mesh", args->input, "Triangle mesh (.obj, .off, .ply)")->required();
   cmd->add_option("-o,--output", args->output, "The field as OBJ line segments, two per vertex")

@@ -96,8 +96,7 @@ int RunRemesh(RemeshArgs args) {
       {"min_corner_angle_deg", r.min_corner_angle_deg},
       {"folded_triangles", static_cast<double>(p.folded_faces)},
       {"negative_area_fraction", r.field.negative_area_fraction}};
-  // Exit 0 when the quads are a valid net: every inner valence even and above 2, every quad
-  // convex, no folded map, and the asymptotic directions defined on the whole surface.
+  // Exit 0 when the quads are a valid net (QuadRemeshResult::Problems).
   const std::vector<std::string> problems = r.Problems();
   RunReport report = ConstructionReport("integer-grid map", {}, measures, problems.empty(),
                                         r.seconds_field + r.seconds_map + r.seconds_extraction);
@@ -176,9 +175,9 @@ void RegisterRemeshCommand(CLI::App* app, int* exit_code) {
       "directions (004 §3.1): jet-fitted, smoothed direction field, seamless integer-grid map "
       "cut from its singularities to the boundary (mixed-integer quadrangulation), quads "
       "extracted along the integer iso-lines. Exit 0 when the quads are a valid net (inner "
-      "valences even and above 2, quads convex, map unfolded, and for asymptotic directions K < 0 "
-      "on 99% of the area), 3 when not (result written, the reasons named); other codes as for "
-      "planarize.");
+      "valences above 2, quads convex, map unfolded, and for asymptotic directions even valences "
+      "and K < 0 on 99% of the area), 3 when not (result written, the reasons named); other codes "
+      "as for planarize.");
   cmd->add_option("mesh", args->input, "Triangle mesh of a disk (.obj, .off, .ply)")->required();
   cmd->add_option("-o,--output", args->output, "The quad mesh (.obj, .off, .ply)")->required();
   cmd->add_option("--directions", args->directions, "asymptotic (where K < 0) or principal")

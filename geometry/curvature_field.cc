@@ -167,8 +167,10 @@ double SignedAngle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
 
 namespace {
 
-std::vector<double> IndicesAtUnitScale(const PolyMesh& mesh,
-                                       const std::vector<Eigen::Vector3d>& lines) {
+// symmetry N: the field's directions are equivalent under turns by 2π/N (2: lines, 4: crosses).
+std::vector<double> IndicesAtUnitScale(const PolyMesh& mesh, const std::vector<Eigen::Vector3d>& lines,
+                                       int symmetry = 2) {
+  const double period = 2.0 * M_PI / symmetry;
   // Per face: unit normal and the matched, averaged line in its plane (zero if none).
   std::vector<Eigen::Vector3d> normal(mesh.n_faces()), line(mesh.n_faces());
   for (auto f : mesh.faces()) {
@@ -180,14 +182,19 @@ std::vector<double> IndicesAtUnitScale(const PolyMesh& mesh,
     Eigen::Vector3d n = Eigen::Vector3d::Zero();
     for (size_t k = 1; k + 1 < p.size(); ++k) n += (p[k] - p[0]).cross(p[k + 1] - p[0]);
     normal[f.idx()] = n.normalized();
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    // The corners' directions averaged as N-fold symmetric (angles times N) in the face plane.
+    const Eigen::Vector3d e1 = (p[1] - p[0]).normalized(), e2 = normal[f.idx()].cross(e1);
+    Eigen::Vector2d sum = Eigen::Vector2d::Zero();
     bool complete = true;
     for (const Eigen::Vector3d& x : d) {
       if (!(x.norm() > 0.0)) complete = false;
-      sum += x.dot(d[0]) < 0.0 ? Eigen::Vector3d(-x) : x;
+      const double angle = symmetry * std::atan2(x.dot(e2), x.dot(e1));
+      sum += Eigen::Vector2d(std::cos(angle), std::sin(angle));
     }
-    sum -= sum.dot(normal[f.idx()]) * normal[f.idx()];
-    line[f.idx()] = complete && sum.norm() > 0.0 ? sum.normalized() : Eigen::Vector3d::Zero();
+    const double mean = std::atan2(sum.y(), sum.x()) / symmetry;
+    line[f.idx()] = complete && sum.norm() > 0.0
+                        ? Eigen::Vector3d(std::cos(mean) * e1 + std::sin(mean) * e2)
+                        : Eigen::Vector3d::Zero();
   }
   std::vector<double> index(mesh.n_vertices(), 0.0);
   for (auto v : mesh.vertices()) {
@@ -215,8 +222,7 @@ std::vector<double> IndicesAtUnitScale(const PolyMesh& mesh,
                                   axis.normalized()) *
                 line[g];
       double delta = SignedAngle(line[f], moved, normal[f]);
-      if (delta > M_PI / 2) delta -= M_PI;
-      if (delta <= -M_PI / 2) delta += M_PI;
+      delta -= period * std::round(delta / period);  // in [−π/N, π/N]
       turning += delta;
     }
     if (complete) index[v.idx()] = (turning + defect) / (2.0 * M_PI);
@@ -226,7 +232,8 @@ std::vector<double> IndicesAtUnitScale(const PolyMesh& mesh,
 
 std::vector<Eigen::Vector3d> SmoothAtUnitScale(const PolyMesh& mesh,
                                                const std::vector<VertexCurvature>& curvature,
-                                               double alignment_weight) {
+                                               double alignment_weight, int symmetry = 2) {
+  const double n_fold = symmetry;
   const int n = static_cast<int>(mesh.n_vertices());
   // Tangent frames: the fitted normal (or the faces') and any orthogonal e1, e2 = n × e1.
   std::vector<Eigen::Vector3d> normal(n), e1(n), e2(n);
@@ -256,7 +263,7 @@ std::vector<Eigen::Vector3d> SmoothAtUnitScale(const PolyMesh& mesh,
     // e1_i carried to j's plane by the minimal rotation; its angle there is the transport.
     const Eigen::Quaterniond q = Eigen::Quaterniond::FromTwoVectors(normal[i], normal[j]);
     const Eigen::Vector3d moved = q * e1[i];
-    const double rho = 2.0 * std::atan2(moved.dot(e2[j]), moved.dot(e1[j]));
+    const double rho = n_fold * std::atan2(moved.dot(e2[j]), moved.dot(e1[j]));
     Eigen::Matrix2d r;
     r << std::cos(rho), -std::sin(rho), std::sin(rho), std::cos(rho);
     // |z_j − R z_i|²: (i, i) += I, (j, j) += I, (i, j) −= Rᵀ, (j, i) −= R.
@@ -272,7 +279,7 @@ std::vector<Eigen::Vector3d> SmoothAtUnitScale(const PolyMesh& mesh,
     if (c.fitted) {
       weight += alignment_weight * (c.k1 - c.k2) / mean_anisotropy;
       const double alpha = std::atan2(c.d1.dot(e2[v]), c.d1.dot(e1[v]));
-      target = Eigen::Vector2d(std::cos(2.0 * alpha), std::sin(2.0 * alpha));
+      target = Eigen::Vector2d(std::cos(n_fold * alpha), std::sin(n_fold * alpha));
     }
     add_block(v, v, weight * Eigen::Matrix2d::Identity());
     rhs.segment<2>(2 * v) = weight * target;
@@ -287,7 +294,7 @@ std::vector<Eigen::Vector3d> SmoothAtUnitScale(const PolyMesh& mesh,
   for (int v = 0; v < n; ++v) {
     const Eigen::Vector2d zv = z.segment<2>(2 * v);
     if (!(zv.norm() > 0.0) || !zv.allFinite()) continue;
-    const double alpha = 0.5 * std::atan2(zv.y(), zv.x());
+    const double alpha = std::atan2(zv.y(), zv.x()) / n_fold;
     out[v] = std::cos(alpha) * e1[v] + std::sin(alpha) * e2[v];
   }
   return out;
@@ -307,14 +314,16 @@ std::vector<double> LineFieldIndices(const PolyMesh& mesh,
 
 std::vector<Eigen::Vector3d> SmoothPrincipalField(const PolyMesh& mesh,
                                                   const std::vector<VertexCurvature>& curvature,
-                                                  double alignment_weight) {
+                                                  double alignment_weight, int symmetry) {
+  if (symmetry != 2 && symmetry != 4)
+    throw InputError("a direction field's symmetry must be 2 (lines) or 4 (crosses)");
   if (curvature.size() != mesh.n_vertices())
     throw InputError("the curvature field needs one entry per vertex");
   if (!(alignment_weight > 0.0) || !std::isfinite(alignment_weight))
     throw InputError("the field's alignment weight must be a finite number > 0");
   if (mesh.n_faces() == 0) throw InputError("the mesh has no faces");
   double unit = 1.0;
-  return SmoothAtUnitScale(UnitScaled(mesh, &unit), curvature, alignment_weight);
+  return SmoothAtUnitScale(UnitScaled(mesh, &unit), curvature, alignment_weight, symmetry);
 }
 
 DirectionField EstimateDirectionField(const PolyMesh& mesh, DirectionKind kind,
@@ -343,9 +352,14 @@ DirectionField EstimateDirectionField(const PolyMesh& mesh, DirectionKind kind,
         " vertices within " + std::to_string(options.max_rings) + " rings (the mesh has " +
         std::to_string(n) + ")" +
         (static_cast<int>(n) >= 10 ? "; lower --neighbours" : ": too few vertices for a jet fit"));
+  // Principal directions form a cross (4-fold: d1 and d2 may trade places across the field, so
+  // an umbilic can split into singularities of index ±¼); the asymptotic pair is symmetric
+  // about the line d1 only (2-fold: its two families never trade places).
+  const int symmetry = kind == DirectionKind::kPrincipal ? 4 : 2;
+  field.symmetry = symmetry;
   if (smoothing > 0.0) {
     const std::vector<Eigen::Vector3d> smooth =
-        SmoothAtUnitScale(scaled, field.curvature, smoothing);
+        SmoothAtUnitScale(scaled, field.curvature, smoothing, symmetry);
     for (size_t v = 0; v < n; ++v) {
       VertexCurvature& c = field.curvature[v];
       if (!c.fitted || !(smooth[v].norm() > 0.0)) continue;
@@ -391,10 +405,11 @@ DirectionField EstimateDirectionField(const PolyMesh& mesh, DirectionKind kind,
   // Where the principal directions mean nothing on most of the surface (flat, umbilic), their
   // indices mean nothing either.
   field.singularities_reliable = field.undefined_area_fraction <= 0.5;
-  const std::vector<double> index = IndicesAtUnitScale(scaled, principal);
+  const std::vector<double> index = IndicesAtUnitScale(scaled, principal, symmetry);
   for (size_t v = 0; v < n && field.singularities_reliable; ++v)
-    if (std::abs(index[v]) >= 0.25)
-      field.singularities.push_back({static_cast<int>(v), std::round(2.0 * index[v]) / 2.0});
+    if (std::abs(index[v]) >= 0.5 / symmetry)
+      field.singularities.push_back(
+          {static_cast<int>(v), std::round(symmetry * index[v]) / symmetry});
   ToInputUnits(unit, &field.curvature);
   return field;
 }

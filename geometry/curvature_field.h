@@ -62,17 +62,21 @@ std::vector<double> LineFieldIndices(const PolyMesh& mesh,
 // planes), g_v the fitted principal line d1, a_v its anisotropy |κ1 − κ2| / mean |κ1 − κ2| (so
 // umbilics and flat points, where d1 means nothing, follow their neighbours). One sparse
 // symmetric solve. Returns unit tangents (zero where a vertex has no fit and no neighbour).
+// symmetry 4 smooths the principal cross {±d1, ±d2} instead (z = e^{4iα}), where d1 and d2 may
+// trade places.
 std::vector<Eigen::Vector3d> SmoothPrincipalField(const PolyMesh& mesh,
                                                   const std::vector<VertexCurvature>& curvature,
-                                                  double alignment_weight);
+                                                  double alignment_weight, int symmetry = 2);
 
-// The direction field a quad remeshing follows (004 §3.1): the principal directions, or the
-// asymptotic pair where K < 0, per vertex from the jet fit, with the singularities of its line
-// field. Not smoothed: near flat points and umbilics the directions are those of the fit.
+// The direction field a quad remeshing follows (004 §3.1): the principal directions (a 4-fold
+// symmetric cross field), or the asymptotic pair where K < 0 (a frame symmetric about the
+// principal line d1, 2-fold), per vertex from the jet fit, with the singularities of d1 as a
+// field of that symmetry (indices in quarters for the cross, halves for the pair). Unless
+// smoothed, near flat points and umbilics the directions are those of the fit.
 enum class DirectionKind { kPrincipal, kAsymptotic };
 struct Singularity {
   int vertex = -1;
-  double index = 0.0;  // a multiple of ½
+  double index = 0.0;  // a multiple of 1 / symmetry
 };
 struct DirectionField {
   DirectionKind kind = DirectionKind::kAsymptotic;
@@ -80,7 +84,10 @@ struct DirectionField {
   // Per vertex the field's lines: d1, d2 (principal) or the asymptotic pair; zero vectors where
   // there is none (not fitted, or K ≥ 0 for the asymptotic pair).
   std::vector<Eigen::Vector3d> first, second;
-  std::vector<Singularity> singularities;  // inner vertices with |index| ≥ ¼
+  // 2: the field is a line field (the asymptotic pair about d1); 4: a cross (principal
+  // directions, d1 and d2 interchangeable).
+  int symmetry = 2;
+  std::vector<Singularity> singularities;  // inner vertices with |index| ≥ 1 / (2 symmetry)
   int fitted = 0;                          // vertices with a fitted jet
   double negative_area_fraction = 0.0;     // area (vertex shares) where K < 0
   // Area where the principal directions are undefined (flat or umbilic: κ1 − κ2 below 1e-6 per
@@ -94,7 +101,9 @@ struct DirectionField {
 // vertex has enough neighbours for a fit, or, for the asymptotic pair, when K ≥ 0 at every
 // fitted vertex.
 // smoothing > 0: the principal lines are first smoothed by SmoothPrincipalField with that
-// alignment weight (the asymptotic pair follows: it is symmetric about d1 at the fitted angle).
+// alignment weight and the field's symmetry (the asymptotic pair follows: it is symmetric about
+// d1 at the fitted angle); for the cross, first and second are then its two arms, not
+// necessarily the directions of κ1 and κ2.
 DirectionField EstimateDirectionField(const PolyMesh& mesh, DirectionKind kind,
                                       const CurvatureFitOptions& options = {},
                                       double smoothing = 0.0);

@@ -64,6 +64,10 @@ struct Surface {
   const PolyMesh& mesh;
   std::vector<FaceBasis> basis;
   std::vector<Frame> frame;
+  // Quarter turns per symmetry step: 1 for the principal cross (d1 and d2 may trade places), 2
+  // for the asymptotic pair (its two families never do: they differ in the sign of their
+  // torsion, Beltrami–Enneper).
+  int step = 2;
 };
 
 // Angle that carries a direction of face(opposite(h))'s basis to face(h)'s, unfolding across
@@ -79,23 +83,21 @@ double Transport(const Surface& s, PolyMesh::HalfedgeHandle h) {
   return std::atan2(ef.y(), ef.x()) - std::atan2(eg.y(), eg.x());
 }
 
-// The quarter turns k (0 or 2) that bring the frame of face(opposite(h)) closest to that of
-// face(h), and the remaining turning δ ∈ [−π/2, π/2] of the frame from face(h) to its
-// neighbour.
+// The quarter turns k (a multiple of s.step) that bring the frame of face(opposite(h)) closest
+// to that of face(h), and the remaining turning δ ∈ [−step π/4, step π/4] of the frame from
+// face(h) to its neighbour.
 int Matching(const Surface& s, PolyMesh::HalfedgeHandle h, double* delta) {
   const Frame& f = s.frame[s.mesh.face_handle(h).idx()];
   const Frame& g = s.frame[s.mesh.opposite_face_handle(h).idx()];
   const double carried = g.gamma + Transport(s, h);
-  // Half turns only: the frame comes from a line field (the principal line d1, which the
-  // asymptotic pair keeps apart by its side), so its two directions never trade places.
-  const double k = 2.0 * std::round((f.gamma - carried) / M_PI);
+  const double k = s.step * std::round((f.gamma - carried) / (s.step * kQuarter));
   if (delta) *delta = carried + k * kQuarter - f.gamma;
   return static_cast<int>(((static_cast<long long>(k) % 4) + 4) % 4);
 }
 
 Surface Frames(const PolyMesh& mesh, const DirectionField& field,
                const QuadRemeshOptions& options) {
-  Surface s{mesh, {}, {}};
+  Surface s{mesh, {}, {}, field.symmetry == 4 ? 1 : 2};
   s.basis.resize(mesh.n_faces());
   s.frame.resize(mesh.n_faces());
   const double min_half = 0.5 * options.min_net_angle_deg * M_PI / 180.0;
@@ -114,8 +116,9 @@ Surface Frames(const PolyMesh& mesh, const DirectionField& field,
     b.e2 = b.normal.cross(b.e1);
     for (int k = 0; k < 3; ++k) b.corner[k] = b.To2d(p[k] - p[0]);
     b.area = 0.5 * n.norm();
-    // The principal line d1 of the corners, averaged as lines (doubled angles), and the
-    // asymptotic half angle where K < 0.
+    // The principal line d1 of the corners, averaged with the field's symmetry (angles times
+    // 2 or 4), and the asymptotic half angle where K < 0.
+    const double symmetry = field.symmetry;
     Eigen::Vector2d doubled = Eigen::Vector2d::Zero();
     double theta = 0.0;
     int negative = 0;
@@ -125,10 +128,10 @@ Surface Frames(const PolyMesh& mesh, const DirectionField& field,
       const Eigen::Vector2d d = b.To2d(c.d1);
       if (!(d.norm() > 0.0)) continue;
       const double alpha = std::atan2(d.y(), d.x());
-      doubled += d.norm() * Direction(2.0 * alpha);
+      doubled += d.norm() * Direction(symmetry * alpha);
       if (c.k1 > 0.0 && c.k2 < 0.0) theta += std::atan(std::sqrt(-c.k1 / c.k2)), ++negative;
     }
-    const double alpha = 0.5 * std::atan2(doubled.y(), doubled.x());
+    const double alpha = std::atan2(doubled.y(), doubled.x()) / symmetry;
     Frame& frame = s.frame[f.idx()];
     if (options.directions == DirectionKind::kPrincipal) {
       frame.gamma = alpha + M_PI / 4;  // a = d1, b = d2
@@ -142,7 +145,8 @@ Surface Frames(const PolyMesh& mesh, const DirectionField& field,
   return s;
 }
 
-// Frame singularities at inner vertices: (Σ δ + angle defect) / 2π, in halves.
+// Frame singularities at inner vertices: (Σ δ + angle defect) / 2π, in quarters (cross) or
+// halves (pair).
 std::vector<FrameSingularity> FrameSingularities(const Surface& s) {
   const auto& m = s.mesh;
   std::vector<FrameSingularity> out;
@@ -162,7 +166,8 @@ std::vector<FrameSingularity> FrameSingularities(const Surface& s) {
       Matching(s, m.opposite_halfedge_handle(h), &delta);
       total += delta;
     }
-    const double index = std::round(2.0 * total / (2.0 * M_PI)) / 2.0;
+    const double steps = 4.0 / s.step;  // the index is a multiple of 1 / steps
+    const double index = std::round(steps * total / (2.0 * M_PI)) / steps;
     if (index != 0.0) out.push_back({v.idx(), index});
   }
   return out;
@@ -521,7 +526,10 @@ std::vector<std::string> QuadRemeshResult::Problems() const {
   auto add = [&out](int count, const char* what) {
     if (count > 0) out.push_back(std::to_string(count) + " " + what);
   };
-  add(odd_inner_vertices, "inner vertices of odd valence");
+  // Odd valences (singularities of index ±¼) are fine in a principal cross, not in an
+  // asymptotic net, whose two families alternate around every vertex.
+  if (field.kind == DirectionKind::kAsymptotic)
+    add(odd_inner_vertices, "inner vertices of odd valence");
   add(inner_valence_count.size() > 2 ? inner_valence_count[2] : 0,
       "inner vertices of valence 2 (two quads folded onto each other)");
   add(nonconvex_quads, "non-convex quads");

@@ -4,8 +4,9 @@
 // starting nets of PQ and circular meshes).
 //   1. the direction field of geometry/curvature_field (jet fit, smoothed principal lines),
 //      per face as a frame (a, b): the asymptotic pair, or the principal pair;
-//   2. the frames' matchings across edges and their singularities (Ray et al. 2008; the pair is
-//      a 4-symmetric frame: its quarter turn is (a, b) → (b, −a));
+//   2. the frames' matchings across edges and their singularities (Ray et al. 2008; the frame's
+//      quarter turn is (a, b) → (b, −a); the principal cross matches by quarter turns, the
+//      asymptotic pair, whose families never trade places, by half turns);
 //   3. a seamless integer-grid map after Bommes, Zimmer, Kobbelt, "Mixed-integer
 //      quadrangulation", ACM TOG 28 (3), 2009: the surface (a disk) is cut from every
 //      singularity to the boundary, the frames combed across the remaining edges, and the map
@@ -89,9 +90,9 @@ struct QuadRemeshResult {
   int nonconvex_quads = 0;
   double min_corner_angle_deg = 0.0;
   double seconds_field = 0.0, seconds_map = 0.0, seconds_extraction = 0.0;
-  // Why the quads are not a valid net, one entry per kind (empty: valid): inner vertices of odd
-  // valence or of valence 2, non-convex quads, triangles folded by the map, and, for asymptotic
-  // directions, K >= 0 on more than 1% of the area.
+  // Why the quads are not a valid net, one entry per kind (empty: valid): inner vertices of
+  // valence 2, non-convex quads, triangles folded by the map, and, for asymptotic directions,
+  // inner vertices of odd valence and K >= 0 on more than 1% of the area.
   std::vector<std::string> Problems() const;
 };
 

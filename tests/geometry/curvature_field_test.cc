@@ -192,6 +192,32 @@ TEST(CurvatureFieldTest, MonkeySaddleFlatPointHasIndexMinusHalf) {
   EXPECT_EQ(elsewhere, 0);
 }
 
+// The principal directions as a cross (4-fold): the umbilic of a paraboloid of revolution has
+// index +1 in all, split by the smoothed cross into singularities of index +¼ near it.
+TEST(CurvatureFieldTest, PrincipalCrossSplitsAnUmbilicIntoQuarters) {
+  std::vector<Eigen::Vector2d> uv;
+  const PolyMesh mesh =
+      Triangulate([](double x, double y) { return Eigen::Vector3d(x, y, 0.5 * (x * x + y * y)); },
+                  -1, 1, -1, 1, 40, &uv, 3);
+  const DirectionField field = EstimateDirectionField(mesh, DirectionKind::kPrincipal, {}, 1.0);
+  EXPECT_EQ(field.symmetry, 4);
+  double total = 0.0;
+  for (const Singularity& s : field.singularities) {
+    EXPECT_EQ(s.index, 0.25);
+    EXPECT_LT(uv[s.vertex].norm(), 0.4);
+    total += s.index;
+  }
+  EXPECT_EQ(total, 1.0);
+  // The asymptotic pair of a saddle stays a line field (halves).
+  const PolyMesh saddle = Triangulate(
+      [](double x, double y) { return Eigen::Vector3d(x, y, x * x * x - 3 * x * y * y); }, -1, 1,
+      -1, 1, 40, &uv);
+  const DirectionField pair = EstimateDirectionField(saddle, DirectionKind::kAsymptotic, {}, 1.0);
+  EXPECT_EQ(pair.symmetry, 2);
+  ASSERT_EQ(pair.singularities.size(), 1u);
+  EXPECT_EQ(pair.singularities[0].index, -0.5);
+}
+
 // Smoothing (Knöppel et al. 2013) on a noisy triangulation of z = xy (heights jittered by
 // ±0.004): the principal lines end closer to the analytic ones (the bisectors of the rulings)
 // than the fit alone, on average and at the worst vertex.

@@ -379,7 +379,7 @@ TEST(QuadRemeshingTest, GridAlignedWithTheField) {
 }
 
 // Where the quads are not a valid net the result names why (the command exits 3): asymptotic
-// quads on a surface with K > 0 on part of it, principal quads around an umbilic.
+// quads on a surface with K > 0 on part of it. An umbilic becomes valence-3 vertices.
 TEST(QuadRemeshingTest, InvalidNetsAreNamed) {
   std::vector<Eigen::Vector2d> uv;
   const PolyMesh egg_crate = Triangulate(
@@ -396,15 +396,17 @@ TEST(QuadRemeshingTest, InvalidNetsAreNamed) {
   const PolyMesh paraboloid =
       Triangulate([](double x, double y) { return Eigen::Vector3d(x, y, 0.5 * (x * x + y * y)); },
                   -1, 1, -1, 1, 20, &uv, 1, 0.0);
-  // The umbilic of a paraboloid of revolution splits into two singularities of index +½:
-  // quad vertices of valence 2.
+  // The umbilic of a paraboloid of revolution (index +1) splits, in the principal cross field,
+  // into four singularities of index +¼: four quad vertices of valence 3 (odd valences are fine
+  // for a principal net, which is not 2-coloured).
   QuadRemeshOptions principal;
   principal.directions = DirectionKind::kPrincipal;
   const QuadRemeshResult r = RemeshAlongField(paraboloid, principal);
-  ASSERT_EQ(r.parametrization.singularities.size(), 2u);
-  EXPECT_EQ(r.parametrization.singularities[0].index, 0.5);
-  ASSERT_FALSE(r.Problems().empty());
-  EXPECT_NE(r.Problems()[0].find("valence 2"), std::string::npos) << r.Problems()[0];
+  ASSERT_EQ(r.parametrization.singularities.size(), 4u);
+  for (const FrameSingularity& s : r.parametrization.singularities) EXPECT_EQ(s.index, 0.25);
+  ASSERT_GT(r.inner_valence_count.size(), 3u);
+  EXPECT_EQ(r.inner_valence_count[3], 4);
+  EXPECT_TRUE(r.Problems().empty()) << r.Problems()[0];
 }
 
 TEST(QuadRemeshingTest, RefusesWhatItCannotRemesh) {
