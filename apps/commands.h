@@ -16,7 +16,8 @@ void RegisterGridCommand(CLI::App* app, int* exit_code);
 void RegisterNetCommands(CLI::App* app, int* exit_code);
 // Registers `gproj marionette`.
 void RegisterMarionetteCommand(CLI::App* app, int* exit_code);
-// Registers `gproj combescure`, `gproj invert`, `gproj canal` and `gproj beams`.
+// Registers `gproj combescure`, `gproj invert`, `gproj canal`, `gproj beams` and
+// `gproj mrevolution`.
 void RegisterSuperCanalCommands(CLI::App* app, int* exit_code);
 // Registers `gproj weingarten`.
 void RegisterWeingartenCommand(CLI::App* app, int* exit_code);

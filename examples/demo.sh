@@ -81,6 +81,11 @@ echo "== M-revolution surface: inversion whose centre maps a parallel's quad to 
   --ratio 40 -o out/demo/m_revolution.obj --picture out/demo/m_revolution.svg \
   --report out/demo/m_revolution_report.json
 echo
+echo "== M-revolution surface in one step from a shipped planar curve and two points on a circle (000 §5.1) =="
+./build/gproj mrevolution examples/data/m_revolution_curve.txt --p2=-0.6840402866513374,1.8793852415718169,0 \
+  --p3 1,1.7320508075688772,0 --t 1 -o out/demo/m_revolution_curve.obj \
+  --picture out/demo/m_revolution_curve.svg --report out/demo/m_revolution_curve_report.json
+echo
 echo "== Weingarten surface: align the curvature isolines of a shipped bi-degree (4,4) B-spline (003) =="
 ./build/gproj weingarten examples/data/freeform_10x10.json -o out/demo/weingarten.json \
   --diagram out/demo/weingarten_diagram.svg --curvature out/demo/weingarten_curvature.csv \
@@ -121,3 +126,5 @@ echo "  weingarten_panels.svg         the result paneled 10 x 10, one colour per
 echo "  weingarten_seams.svg          gaps and kinks at the seams, input against result (Fig. 13e)"
 echo "  cmc.json, cmc_surface.obj     the bump made CMC (H = -0.1); cmc_diagram.svg: H, K before/after"
 echo "  m_revolution.obj, .svg        the surface of revolution inverted (000 §5.1; still circular)"
+echo "  m_revolution_curve.obj, .svg  M-revolution surface from a planar curve and two points (circular,"
+echo "                                planar vertical arches)"

@@ -25,9 +25,12 @@
 namespace gproj {
 
 struct MRevolutionOptions {
-  double t = 1.0;         // ratio of the trapezoid's parallel sides P1'P2' = t P4'P3' (> 0)
-  int root = 0;           // which of the (up to) two centres
+  double t = 1.0;          // ratio of the trapezoid's parallel sides P1'P2' = t P4'P3' (> 0)
+  int root = 0;            // which of the (up to) two centres
   int arch_segments = 16;  // quads along each arch (the parallels' half circles)
+  // The arches rise to the side of the drawing plane this points to (when it is not in the
+  // plane; otherwise to the side of (P2 − P1) × (P4 − P1)).
+  Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
   bool IsValid(std::string* why) const;
 };
 
@@ -37,7 +40,7 @@ struct MRevolutionSurface {
   PolyMesh mesh;
   PolyMesh revolution;  // the surface of revolution it is the image of
   MRevolutionChoice choice;
-  double ratio = 1.0;   // of the inversion (|C P1|², so P1 is fixed)
+  double ratio = 1.0;  // of the inversion (|C P1|², so P1 is fixed)
   Eigen::Vector3d axis_point = Eigen::Vector3d::Zero(), axis_direction = Eigen::Vector3d::Zero();
   // Checks, in units of the curve's extent: |f⁻¹(f(P_i)) − P_i| over the curve's points (the
   // j = 0 meridian against the input), the far meridian's ends against P2 and P3, and the

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "apps/command_test_util.h"
+#include "geometry/mesh_io.h"
 
 namespace gproj {
 namespace {
@@ -75,6 +76,30 @@ TEST_F(SuperCanalCommandTest, InvertKeepsCircularityAndSolvesTheMRevolutionCentr
   ExpectOneLineError(Gproj("invert " + Data("revolution_13x17.obj") + " -o " + Path("bad.obj") +
                            " --m-revolution 2,0,1,0,2,1,-2,0,1.3,0,-2,1 --t 0.5"),
                      "not coplanar");
+  EXPECT_FALSE(Exists("bad.obj"));
+}
+
+// 000 §5.1 in one step from the shipped designer curve: a circular mesh through the curve's
+// own points and P2, P3, with planar arches; P2 off the circle is refused, nothing written.
+TEST_F(SuperCanalCommandTest, MRevolutionFromACurveAndTwoPoints) {
+  const std::string points =
+      " --p2=-0.6840402866513374,1.8793852415718169,0 --p3 1,1.7320508075688772,0";
+  const CommandRun r =
+      Gproj("mrevolution " + Data("m_revolution_curve.txt") + points + " --t 1 -o " +
+            Path("m.obj") + " --revolution " + Path("rev.obj") + " --report " + Path("r.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const nlohmann::json report = Json("r.json");
+  EXPECT_LT(report["final"]["max_concyclicity"].get<double>(), 1e-10);
+  EXPECT_LT(report["initial"]["max_concyclicity"].get<double>(), 1e-10);  // of revolution
+  EXPECT_LT(report["final"]["curve_roundtrip"].get<double>(), 1e-12);
+  EXPECT_LT(report["final"]["far_meridian_miss"].get<double>(), 1e-10);
+  EXPECT_LT(report["final"]["arch_planarity"].get<double>(), 1e-10);
+  const PolyMesh mesh = ReadMesh(Path("m.obj"));
+  EXPECT_EQ(mesh.n_faces(), 20u * 16u);
+  EXPECT_TRUE(Exists("rev.obj"));
+  ExpectOneLineError(Gproj("mrevolution " + Data("m_revolution_curve.txt") +
+                           " --p2 -0.5,3,0 --p3 1,1.7320508075688772,0 -o " + Path("bad.obj")),
+                     "not concyclic");
   EXPECT_FALSE(Exists("bad.obj"));
 }
 
