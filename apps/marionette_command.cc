@@ -99,12 +99,15 @@ void RegisterMarionetteCommand(CLI::App* app, int* exit_code) {
       "distances from the centre. The plan is a regular grid in `gproj grid` order with --row / "
       "--column / --fit, or any disk-like quad mesh (singular vertices allowed, 002 §2.4) with "
       "--guides: it is split into regular patches along the separatrices, and the guides must "
-      "cross every strip of patches exactly once. --closed-strip lifts a closed strip instead "
-      "(002 §2.5, eq. 8). Exit codes: 0 tolerance met, 1 bad input (nothing written), 3 "
+      "cross every strip of patches exactly once. A plan of any polygons (Kagome: triangles and "
+      "hexagons, 002 §4.2), or a quad plan that is no grid, is lifted vertically from --hold "
+      "heights with the fairness of 002 eq. 17 fixing the rest. --closed-strip lifts a closed "
+      "strip instead (002 §2.5, eq. 8). Exit codes: 0 tolerance met, 1 bad input (nothing "
+      "written), 3 "
       "tolerance not reached (result written), 4 numerical failure (nothing written).");
   cmd->add_option("plan", args->options.plan,
-                  "Plan view: quad mesh (.obj/.off/.ply); vertex ids below are 0-based in file "
-                  "order");
+                  "Plan view: quad mesh, or polygons with --hold (.obj/.off/.ply); vertex ids "
+                  "below are 0-based in file order");
   cmd->add_option("-o,--output", args->output, "Lifted mesh to write (atomically)")->required();
   cmd->add_option("--row", args->options.row,
                   "Guide values of vertices (0, j), j = 0..cols of a grid plan (comma separated)")
@@ -142,8 +145,9 @@ void RegisterMarionetteCommand(CLI::App* app, int* exit_code) {
                   "A partial target: lines 'VERTEX HEIGHT'; the least-squares fit follows only "
                   "these vertices (they must determine the lift; --solver direct)");
   cmd->add_option("--hold", args->hold,
-                  "Hard constraint of a fit (002 §3.3): VERTEX:HEIGHT, comma-separated; met "
-                  "exactly (KKT system, --solver direct)")
+                  "Hard constraint of a fit (002 §3.3), or the prescribed heights of a plan of "
+                  "polygons (002 §4.2): VERTEX:HEIGHT, comma-separated; met exactly (KKT system, "
+                  "--solver direct)")
       ->delimiter(',');
   cmd->add_option("--volume", args->volume,
                   "Hard constraint of a fit: the volume under the mesh over its plan (z = 0 as "

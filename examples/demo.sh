@@ -51,6 +51,11 @@ COLUMN=$(awk 'BEGIN { for (i = 0; i <= 12; ++i) printf "%s%.4f", (i ? "," : ""),
   --axis 0,0,0,0,0,1 --row "$ROW" --column "$COLUMN" --solver gp \
   -o out/demo/marionette_tower.obj --report out/demo/marionette_tower_report.json
 echo
+echo "== Marionette mesh over a Kagome plan (triangles and hexagons, 002 §4.2): two guides, three points, fairness =="
+./build/gproj marionette examples/data/marionette_kagome.obj -o out/demo/marionette_kagome.obj \
+  --hold 0:0.207055,2:0.129410,6:0.353553,10:0.482963,14:0.482963,18:0.353553,22:0.129410,25:0.565685,44:0.772741,63:0.772741,82:0.565685,101:0.207055,40:0.6,70:0.6,100:0.6 \
+  --report out/demo/marionette_kagome_report.json
+echo
 echo "== Marionette closed strip (closure condition of 002 eq. 8) =="
 ./build/gproj marionette --closed-strip examples/data/marionette_closed_strip.txt \
   -o out/demo/marionette_strip.obj --report out/demo/marionette_strip_report.json
@@ -114,6 +119,8 @@ echo "                                followed in monkey_saddle_frames.obj"
 echo "  monkey_saddle_hnet.json, monkey_saddle_hnet_surface.obj, .svg   the H-net on those quads"
 echo "  marionette.obj                Marionette mesh (planar quads, plan view kept)"
 echo "  marionette_valence6.obj, marionette_tower.obj, marionette_strip.obj   and their reports"
+echo "  marionette_kagome.obj         a Kagome plan lifted with planar hexagons (its report: the design"
+echo "                                space by eq. 16 and by rank)"
 echo "  canal.obj, canal.svg          canal surface meshed by circular quads; canal_strip.obj its strip"
 echo "  canal_two_curves.obj, .svg    canal surface whose spheres touch two curves (its report: the spheres)"
 echo "  beams.obj, beams.svg          torsion-free beams on the canal mesh; beam_axes.obj the node axes,"

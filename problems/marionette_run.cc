@@ -3,11 +3,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 #include "geometry/quad_grid.h"
 #include "geometry/text_input.h"
+#include "problems/circular_mesh.h"
 #include "problems/marionette_grid_problem.h"
 #include "problems/marionette_inputs.h"
+#include "problems/marionette_polygons.h"
 #include "problems/pq_planarization.h"
 
 namespace gproj {
@@ -247,6 +250,81 @@ nlohmann::json MeshRun::Facts() const {
           {"over_determined_patches", lift_.over_determined_patches}};
 }
 
+// A plan view of any polygons (002 §4.2) lifted from prescribed heights (--hold) and the
+// fairness energy of eq. 17.
+class PolygonRun : public MarionetteRun {
+ public:
+  explicit PolygonRun(const MarionetteRunOptions& options) : options_(options) {
+    if (!options.guides.empty() || options.guides_text || !options.row.empty() ||
+        !options.column.empty() || !options.fit.empty() || options.fit_mesh ||
+        !options.fit_heights.empty())
+      throw InputError(options.plan +
+                       ": a plan of polygons is lifted from prescribed heights (--hold "
+                       "VERTEX:HEIGHT) and fairness; guides, rows, columns and fits need quads");
+    if (options.projection != "vertical" || options.solver != "direct")
+      throw InputError(options.plan + ": a plan of polygons is lifted vertically and directly");
+    if (options.constraints.with_volume || options.constraints.with_max_height)
+      throw InputError(options.plan + ": --volume and --max-height need a quad plan");
+    if (options.constraints.heights.empty())
+      throw InputError(options.plan +
+                       ": a plan of polygons needs prescribed heights (--hold VERTEX:HEIGHT,...)");
+    plan_ = options.plan_mesh ? *options.plan_mesh : ReadMesh(options.plan);
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      lift_ = LiftPolygonPlan(plan_, options.constraints.heights);
+    } catch (const InputError& e) {
+      throw InputError(options.plan + ": " + e.what());
+    }
+    space_ = lift_.space;
+    seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  std::string Description() const override {
+    std::map<int, int> sizes;
+    for (auto f : plan_.faces()) ++sizes[static_cast<int>(plan_.valence(f))];
+    std::string faces;
+    for (const auto& [n, count] : sizes) faces += Format(" %d %d-gons,", count, n);
+    return Format("gproj marionette: %s: %d vertices,%s vertical projection\n",
+                  options_.plan.c_str(), space_.vertices, faces.c_str()) +
+           Format(
+               "design space (002 eq. 16): %d vertices - %d planarity rows = %d; by rank %d; "
+               "%zu heights prescribed, fairness (eq. 17) fixes the rest\n",
+               space_.vertices, space_.planarity_rows, space_.estimate, space_.dimension,
+               options_.constraints.heights.size());
+  }
+  RunReport Run(const RunCallback&) override {
+    const NamedValues measures = {{"max_planarity", lift_.max_planarity},
+                                  {"max_height_error", lift_.max_height_error},
+                                  {"fairness", lift_.fairness}};
+    RunReport report =
+        ConstructionReport("direct: planarity rows and fairness (002 §4.2, eq. 17)", {}, measures,
+                           lift_.max_planarity <= options_.lift.tolerance, seconds_);
+    report.solver = "direct";
+    report.variables = space_.vertices;
+    return report;
+  }
+  PolyMesh Result() const override { return lift_.mesh; }
+  nlohmann::json Facts() const override {
+    return {{"input", options_.plan},
+            {"faces", static_cast<int>(plan_.n_faces())},
+            {"design_space",
+             {{"vertices", space_.vertices},
+              {"planarity_rows", space_.planarity_rows},
+              {"estimate", space_.estimate},
+              {"rank", space_.rank},
+              {"dimension", space_.dimension}}},
+            {"prescribed_heights", static_cast<int>(options_.constraints.heights.size())},
+            {"fairness_triples", lift_.fairness_triples}};
+  }
+  std::string ToleranceMeasure() const override { return "max_planarity"; }
+
+ private:
+  MarionetteRunOptions options_;
+  PolyMesh plan_;
+  MarionetteDesignSpace space_;
+  MarionettePolygonLift lift_;
+  double seconds_ = 0.0;
+};
+
 // Planarity of a lifted closed strip.
 NamedValues StripMeasures(const PolyMesh& mesh) {
   const PlanarityMeasures m = MeasurePlanarity(mesh, mesh);
@@ -324,6 +402,28 @@ RunReport StripRun::Run(const RunCallback&) {
 
 }  // namespace
 
+namespace {
+
+// Whether the plan has a face that is not a quad (read without the quads-only rule).
+bool PlanHasPolygons(const MarionetteRunOptions& options) {
+  const PolyMesh plan = options.plan_mesh ? *options.plan_mesh : ReadMesh(options.plan);
+  for (auto f : plan.faces())
+    if (plan.valence(f) != 4) return true;
+  return false;
+}
+
+// Whether the quad plan is a regular grid (vertex (i, j) at i (cols + 1) + j).
+bool IsGridPlan(const MarionetteRunOptions& options) {
+  try {
+    DetectGridShape(PlanMesh(options));
+    return true;
+  } catch (const InputError&) {
+    return false;
+  }
+}
+
+}  // namespace
+
 std::unique_ptr<MarionetteRun> MakeMarionetteRun(const MarionetteRunOptions& options) {
   if (!options.closed_strip.empty()) {
     if (!options.plan.empty() || options.plan_mesh)
@@ -337,6 +437,13 @@ std::unique_ptr<MarionetteRun> MakeMarionetteRun(const MarionetteRunOptions& opt
     throw InputError("give a plan view (or --closed-strip FILE)");
   if (options.solver != "direct" && options.solver != "gp" && options.solver != "ceres")
     throw InputError("--solver must be direct, gp or ceres, not '" + options.solver + "'");
+  // A plan with a face that is not a quad, or only prescribed heights on a quad plan that is
+  // no grid: the polygon lift (002 §4.2).
+  if (PlanHasPolygons(options) ||
+      (!options.constraints.heights.empty() && options.row.empty() && options.column.empty() &&
+       options.fit.empty() && !options.fit_mesh && options.fit_heights.empty() &&
+       options.guides.empty() && !options.guides_text && !IsGridPlan(options)))
+    return std::make_unique<PolygonRun>(options);
   if (!options.guides.empty() || options.guides_text || options.projection != "vertical")
     return std::make_unique<MeshRun>(options);
   return std::make_unique<GridRun>(options);

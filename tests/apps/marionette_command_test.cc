@@ -79,6 +79,31 @@ TEST_F(MarionetteMeshCommandTest, LiftsTheValenceSixPlanFromItsSpokesWithBothSol
   }
 }
 
+// A plan of triangles and hexagons (002 §4.2, the shipped Kagome patch) lifted from two guide
+// polylines and three isolated heights, fairness (eq. 17) fixing the rest: planar hexagons, the
+// design space in the report (eq. 16 and by rank); too few heights are refused.
+TEST_F(MarionetteMeshCommandTest, KagomePlanLiftsFromGuidesAndFairness) {
+  const std::string holds =
+      " --hold 0:0.207055,2:0.129410,6:0.353553,10:0.482963,14:0.482963,18:0.353553,22:0.129410,"
+      "25:0.565685,44:0.772741,63:0.772741,82:0.565685,101:0.207055,40:0.6,70:0.6,100:0.6";
+  const CommandRun r = Gproj("marionette " + Data("marionette_kagome.obj") + holds + " -o " +
+                             Path("k.obj") + " --report " + Path("k.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const nlohmann::json report = Json("k.json");
+  EXPECT_LT(report["final"]["max_planarity"].get<double>(), 1e-10);
+  EXPECT_LT(report["final"]["max_height_error"].get<double>(), 1e-12);
+  EXPECT_EQ(report["design_space"]["estimate"].get<int>(), 45);
+  EXPECT_EQ(report["design_space"]["dimension"].get<int>(), 45);
+  EXPECT_NE(r.out.find("72 3-gons, 25 6-gons"), std::string::npos) << r.out;
+  ExpectOneLineError(Gproj("marionette " + Data("marionette_kagome.obj") + " --hold 0:1,2:1 -o " +
+                           Path("bad.obj")),
+                     "stay free");
+  ExpectOneLineError(
+      Gproj("marionette " + Data("marionette_kagome.obj") + " --row 0,1 -o " + Path("bad.obj")),
+      "prescribed heights");
+  EXPECT_FALSE(Exists("bad.obj"));
+}
+
 TEST_F(MarionetteMeshCommandTest, ChecksOutputPathsBeforeLifting) {
   const std::string plan = kData + "marionette_plan_valence6.obj";
   const std::string guides = kData + "marionette_valence6_guides.txt";

@@ -68,7 +68,10 @@ TEST(MarionetteRunTest, InputsFromMemoryEqualInputsFromFiles) {
   triangle.add_face(triangle.add_vertex({0, 0, 0}), triangle.add_vertex({1, 0, 0}),
                     triangle.add_vertex({0, 1, 0}));
   memory.plan_mesh = triangle;
-  EXPECT_EQ(ErrorOf(memory), "plan: face 0 has 3 vertices; the plan view needs quads");
+  // A plan with polygons other than quads takes prescribed heights, not guides (002 §4.2).
+  EXPECT_EQ(ErrorOf(memory),
+            "plan: a plan of polygons is lifted from prescribed heights (--hold VERTEX:HEIGHT) and "
+            "fairness; guides, rows, columns and fits need quads");
 }
 
 // A closed strip whose outer ring runs against the inner one has self-crossing plan quads: refused
