@@ -60,6 +60,10 @@ echo "== Marionette closed strip (closure condition of 002 eq. 8) =="
 ./build/gproj marionette --closed-strip examples/data/marionette_closed_strip.txt \
   -o out/demo/marionette_strip.obj --report out/demo/marionette_strip_report.json
 echo
+echo "== Marionette closed mesh of three rings (002 Figs. 7-8, eq. 9): each ring closes outward =="
+./build/gproj marionette --closed-strip examples/data/marionette_closed_rings.txt \
+  -o out/demo/marionette_rings.obj --report out/demo/marionette_rings_report.json
+echo
 echo "== Canal surface from a circular strip on a shipped curve, smoothed (000 eq. 5, BFGS) =="
 ./build/gproj canal examples/data/canal_curve.txt --first-point -0.5,0.5,2 --length 2 --smooth \
   -o out/demo/canal.obj --strip out/demo/canal_strip.obj --picture out/demo/canal.svg \
@@ -119,6 +123,7 @@ echo "                                followed in monkey_saddle_frames.obj"
 echo "  monkey_saddle_hnet.json, monkey_saddle_hnet_surface.obj, .svg   the H-net on those quads"
 echo "  marionette.obj                Marionette mesh (planar quads, plan view kept)"
 echo "  marionette_valence6.obj, marionette_tower.obj, marionette_strip.obj   and their reports"
+echo "  marionette_rings.obj          a closed Marionette mesh of three rings (its report: a, |V| per ring)"
 echo "  marionette_kagome.obj         a Kagome plan lifted with planar hexagons (its report: the design"
 echo "                                space by eq. 16 and by rank)"
 echo "  canal.obj, canal.svg          canal surface meshed by circular quads; canal_strip.obj its strip"

@@ -47,32 +47,43 @@ ClosedStripFile ReadClosedStrip(const std::string& path) {
   ClosedStripFile file;
   std::vector<double> heights;
   std::vector<int> line_of;
+  size_t words = 0;
   for (const TextLine& line : ReadTextLines(path)) {
     const std::string where = TextPlace(path, line.number);
-    if (line.words.size() != 5)
-      throw InputError(where + ": expected 5 numbers (inner x y z, outer x y), got " +
+    if (words == 0) words = line.words.size();
+    if (line.words.size() < 5 || line.words.size() % 2 == 0 || line.words.size() != words)
+      throw InputError(where + ": expected " +
+                       (words >= 5 && words % 2 == 1 ? std::to_string(words) + " numbers"
+                                                     : std::string("5, 7, 9, ... numbers")) +
+                       " (inner x y z, then x y of every outer curve), got " +
                        std::to_string(line.words.size()));
-    double v[5];
-    for (int k = 0; k < 5; ++k) v[k] = ParseNumber(line.words[k], where);
-    file.strip.inner.emplace_back(v[0], v[1]);
+    std::vector<double> v;
+    for (const std::string& w : line.words) v.push_back(ParseNumber(w, where));
+    if (file.curves.empty()) file.curves.resize((words - 3) / 2 + 1);
+    file.curves[0].emplace_back(v[0], v[1]);
     heights.push_back(v[2]);
-    file.strip.outer.emplace_back(v[3], v[4]);
+    for (size_t c = 1; c < file.curves.size(); ++c)
+      file.curves[c].emplace_back(v[1 + 2 * c], v[2 + 2 * c]);
     line_of.push_back(line.number);
   }
   const int n = static_cast<int>(heights.size());
   if (n < 3)
     throw InputError(path + ": a closed strip needs at least 3 vertex pairs, got " +
                      std::to_string(n));
-  const int i = DegenerateClosedStripQuad(file.strip);
-  if (i >= 0) {
+  for (size_t ring = 0; ring + 1 < file.curves.size(); ++ring) {
+    const ClosedStrip strip{file.curves[ring], file.curves[ring + 1]};
+    const int i = DegenerateClosedStripQuad(strip);
+    if (i < 0) continue;
     const int k = (i + 1) % n;
     throw InputError(TextPlace(path, line_of[i]) + ": quad " + std::to_string(i) +
+                     (file.curves.size() > 2 ? " of ring " + std::to_string(ring) : "") +
                      " (vertex pairs " + std::to_string(i) + " and " + std::to_string(k) +
                      ", lines " + std::to_string(line_of[i]) + " and " +
                      std::to_string(line_of[k]) + ") has a degenerate plan view: inner " +
                      std::to_string(i) + ", outer " + std::to_string(i) + " and inner " +
                      std::to_string(k) + " are collinear in x, y");
   }
+  file.strip = {file.curves[0], file.curves[1]};
   file.inner_heights = Eigen::Map<const Eigen::VectorXd>(heights.data(), n);
   return file;
 }

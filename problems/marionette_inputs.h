@@ -29,10 +29,12 @@ MarionetteGuideFile ParseMarionetteGuides(const std::string& text, const std::st
 
 // A closed strip file (002 §2.5): one line "XI YI ZI XO YO" per vertex pair (inner vertex with
 // its height, outer vertex), at least three pairs; quad i is (inner i, outer i, outer i+1,
-// inner i+1), closing back to the first pair. A quad with a degenerate plan view is refused
-// naming its lines.
+// inner i+1), closing back to the first pair. Several rings (002 Figs. 7–8): "XI YI ZI X1 Y1
+// X2 Y2 ...", the same number of outer curves on every line, ring r between curves r and r + 1.
+// A quad with a degenerate plan view is refused naming its lines.
 struct ClosedStripFile {
-  ClosedStrip strip;
+  ClosedStrip strip;  // the first ring
+  std::vector<std::vector<Eigen::Vector2d>> curves;  // inner curve, then every outer curve
   Eigen::VectorXd inner_heights;  // N
 };
 ClosedStripFile ReadClosedStrip(const std::string& path);

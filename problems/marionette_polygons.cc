@@ -10,6 +10,7 @@
 #include <cstdio>
 
 #include "geometry/scale_free.h"
+#include "problems/marionette.h"
 
 namespace gproj {
 namespace {
@@ -82,9 +83,44 @@ Eigen::SparseMatrix<double> RowsMatrix(const std::vector<PlanarityRow>& rows, in
   return m;
 }
 
+// x minimising ½ xᵀQx subject to A x = b (A given by its entries, m = b.size() rows): the KKT
+// system regularised by −δ I on the multipliers, so that dependent rows do not make it singular,
+// then refined against the unregularised one. Throws InputError when it cannot be solved.
+Eigen::VectorXd SolveRegularisedKkt(const Eigen::SparseMatrix<double>& q,
+                                    const std::vector<Eigen::Triplet<double>>& a_entries,
+                                    const std::vector<double>& b, int n) {
+  constexpr double kDelta = 1e-12;
+  const int m = static_cast<int>(b.size());
+  std::vector<Eigen::Triplet<double>> k_entries;
+  for (int c = 0; c < q.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(q, c); it; ++it)
+      k_entries.emplace_back(it.row(), it.col(), it.value());
+  for (const auto& e : a_entries) {
+    k_entries.emplace_back(n + e.row(), e.col(), e.value());
+    k_entries.emplace_back(e.col(), n + e.row(), e.value());
+  }
+  std::vector<Eigen::Triplet<double>> exact_entries = k_entries;
+  for (int r = 0; r < m; ++r) k_entries.emplace_back(n + r, n + r, -kDelta);
+  Eigen::SparseMatrix<double> kkt(n + m, n + m), exact(n + m, n + m);
+  kkt.setFromTriplets(k_entries.begin(), k_entries.end());
+  kkt.makeCompressed();
+  exact.setFromTriplets(exact_entries.begin(), exact_entries.end());
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + m);
+  for (int r = 0; r < m; ++r) rhs[n + r] = b[r];
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  lu.compute(kkt);
+  if (lu.info() != Eigen::Success)
+    throw InputError("the lift's KKT system could not be factorised");
+  Eigen::VectorXd solution = lu.solve(rhs);
+  for (int refinement = 0; refinement < 5 && solution.allFinite(); ++refinement)
+    solution += lu.solve(rhs - exact * solution);
+  if (!solution.allFinite()) throw InputError("the lift is not finite");
+  return solution.head(n);
+}
+
 }  // namespace
 
-Eigen::SparseMatrix<double> MarionettePlanarityMatrix(const PolyMesh& plan) {
+Eigen::SparseMatrix<double> PolygonPlanarityMatrix(const PolyMesh& plan) {
   return RowsMatrix(PlanarityRows(plan), static_cast<int>(plan.n_vertices()));
 }
 
@@ -196,39 +232,11 @@ MarionettePolygonLift LiftPolygonPlan(const PolyMesh& plan,
                        "least three not on a line; the planarity leaves " +
                        std::to_string(out.space.dimension) + " free)");
   }
-  // KKT of min |F z|² subject to A z = b, regularised (−δ I on the multipliers) so that
-  // dependent rows (closed loops of faces) do not make it singular.
-  constexpr double kDelta = 1e-12;
-  std::vector<Eigen::Triplet<double>> k_entries;
   Eigen::SparseMatrix<double> f(static_cast<int>(triples.size()), n);
   f.setFromTriplets(f_entries.begin(), f_entries.end());
-  const Eigen::SparseMatrix<double> q = Eigen::SparseMatrix<double>(f.transpose() * f);
-  for (int c = 0; c < q.outerSize(); ++c)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(q, c); it; ++it)
-      k_entries.emplace_back(it.row(), it.col(), it.value());
-  for (const auto& e : a_entries) {
-    k_entries.emplace_back(n + e.row(), e.col(), e.value());
-    k_entries.emplace_back(e.col(), n + e.row(), e.value());
-  }
-  for (int r = 0; r < m; ++r) k_entries.emplace_back(n + r, n + r, -kDelta);
-  Eigen::SparseMatrix<double> kkt(n + m, n + m);
-  kkt.setFromTriplets(k_entries.begin(), k_entries.end());
-  kkt.makeCompressed();
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + m);
-  for (int r = 0; r < m; ++r) rhs[n + r] = b[r];
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-  lu.compute(kkt);
-  if (lu.info() != Eigen::Success)
-    throw InputError("the lift's KKT system could not be factorised");
-  // Iterative refinement against the unregularised system: the residual of K₀ (δ = 0), solved
-  // with the regularised factor, drives the multipliers' bias out.
-  Eigen::SparseMatrix<double> exact = kkt;
-  for (int r = 0; r < m; ++r) exact.coeffRef(n + r, n + r) = 0.0;
-  Eigen::VectorXd solution = lu.solve(rhs);
-  for (int refinement = 0; refinement < 5 && solution.allFinite(); ++refinement)
-    solution += lu.solve(rhs - exact * solution);
-  if (!solution.allFinite()) throw InputError("the lift is not finite");
-  const Eigen::VectorXd z = solution.head(n);
+  const Eigen::VectorXd solution =
+      SolveRegularisedKkt(Eigen::SparseMatrix<double>(f.transpose() * f), a_entries, b, n);
+  const Eigen::VectorXd z = solution;
   // The constraints must hold: otherwise the prescribed heights contradict planarity.
   Eigen::SparseMatrix<double> a(m, n);
   a.setFromTriplets(a_entries.begin(), a_entries.end());
@@ -270,6 +278,89 @@ MarionettePolygonLift LiftPolygonPlan(const PolyMesh& plan,
     normal.normalize();
     for (const Eigen::Vector3d& x : p)
       out.max_planarity = std::max(out.max_planarity, std::abs(normal.dot(x - p[0])) / unit);
+  }
+  return out;
+}
+
+std::vector<std::pair<int, double>> NearestPlanarHeights(
+    const PolyMesh& plan, const std::vector<std::pair<int, double>>& targets) {
+  const int n = static_cast<int>(plan.n_vertices());
+  std::vector<char> given(n, 0);
+  for (const auto& [vertex, z] : targets) {
+    if (vertex < 0 || vertex >= n)
+      throw InputError("height at vertex " + std::to_string(vertex) +
+                       ": the plan has vertices 0.." + std::to_string(n - 1));
+    if (given[vertex]) throw InputError("vertex " + std::to_string(vertex) + " is given twice");
+    if (!std::isfinite(z))
+      throw InputError("the height at vertex " + std::to_string(vertex) + " is not finite");
+    given[vertex] = 1;
+  }
+  // min |E z − t|² (+ a 1e-12 ridge for the vertices no target reaches) subject to P z = 0.
+  std::vector<Eigen::Triplet<double>> q_entries, a_entries;
+  std::vector<double> b;
+  for (int v = 0; v < n; ++v) q_entries.emplace_back(v, v, given[v] ? 1.0 : 1e-12);
+  const std::vector<PlanarityRow> rows = PlanarityRows(plan);
+  for (size_t r = 0; r < rows.size(); ++r) {
+    for (const auto& [vertex, value] : rows[r].terms)
+      a_entries.emplace_back(static_cast<int>(r), vertex, value);
+    b.push_back(0.0);
+  }
+  // In the shifted unknown y = z − t̂ (t̂: the targets, 0 elsewhere) the objective is |E y|²
+  // (plus the ridge) subject to P y = −P t̂.
+  Eigen::VectorXd shift = Eigen::VectorXd::Zero(n);
+  for (const auto& [vertex, z] : targets) shift[vertex] = z;
+  const Eigen::VectorXd moved_rhs = -(PolygonPlanarityMatrix(plan) * shift);
+  for (size_t r = 0; r < rows.size(); ++r) b[r] = moved_rhs[r];
+  Eigen::SparseMatrix<double> q(n, n);
+  q.setFromTriplets(q_entries.begin(), q_entries.end());
+  const Eigen::VectorXd y = SolveRegularisedKkt(q, a_entries, b, n);
+  std::vector<std::pair<int, double>> out;
+  for (const auto& [vertex, z] : targets) out.push_back({vertex, z + y[vertex]});
+  return out;
+}
+
+ClosedRingsLift LiftClosedRings(const std::vector<std::vector<Eigen::Vector2d>>& curves,
+                                const Eigen::VectorXd& inner_heights) {
+  if (curves.size() < 2 || curves[0].size() < 3)
+    throw InputError("closed rings need at least 2 curves of at least 3 points");
+  const int n = static_cast<int>(curves[0].size());
+  for (const auto& c : curves)
+    if (static_cast<int>(c.size()) != n)
+      throw InputError("every curve of closed rings needs " + std::to_string(n) + " points");
+  if (inner_heights.size() != n)
+    throw InputError("closed rings need one height per inner point (" + std::to_string(n) + ")");
+  ClosedRingsLift out;
+  const int rings = static_cast<int>(curves.size()) - 1;
+  for (int r = 0; r < rings; ++r) {
+    const ClosedStrip strip{curves[r], curves[r + 1]};
+    const int quad = DegenerateClosedStripQuad(strip);
+    if (quad >= 0)
+      throw InputError("quad " + std::to_string(quad) + " of ring " + std::to_string(r) +
+                       " has a degenerate plan view");
+    const ClosedStripLift plan_only = LiftClosedStrip(strip, Eigen::VectorXd::Zero(n));
+    out.a.push_back(plan_only.a);
+    out.v_norm.push_back(plan_only.v.norm());
+  }
+  PolyMesh plan;
+  for (const auto& c : curves)
+    for (const Eigen::Vector2d& p : c) plan.add_vertex(PolyMesh::Point(p.x(), p.y(), 0.0));
+  for (int r = 0; r < rings; ++r)
+    for (int i = 0; i < n; ++i) {
+      const int j = (i + 1) % n;
+      plan.add_face(std::vector<PolyMesh::VertexHandle>{
+          plan.vertex_handle(r * n + i), plan.vertex_handle((r + 1) * n + i),
+          plan.vertex_handle((r + 1) * n + j), plan.vertex_handle(r * n + j)});
+    }
+  std::vector<std::pair<int, double>> targets;
+  for (int i = 0; i < n; ++i) targets.push_back({i, inner_heights[i]});
+  const std::vector<std::pair<int, double>> reachable = NearestPlanarHeights(plan, targets);
+  const MarionettePolygonLift lift = LiftPolygonPlan(plan, reachable);
+  out.mesh = lift.mesh;
+  out.max_planarity = lift.max_planarity;
+  out.inner_heights.resize(n);
+  for (int i = 0; i < n; ++i) {
+    out.inner_heights[i] = reachable[i].second;
+    out.inner_change = std::max(out.inner_change, std::abs(reachable[i].second - inner_heights[i]));
   }
   return out;
 }

@@ -11,6 +11,7 @@
 // over the plan's straight polylines (with the plan fixed only the heights vary), fix the rest:
 // the lift minimises F under the planarity rows and the prescribed heights (one KKT solve).
 
+#include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <array>
 #include <string>
@@ -31,9 +32,9 @@ struct MarionetteDesignSpace {
 
 // The planarity rows as a matrix P (Σ (n_F − 3) × N): P z = 0 for planar faces. Throws
 // InputError for a face whose plan points are all collinear (naming it).
-Eigen::SparseMatrix<double> MarionettePlanarityMatrix(const PolyMesh& plan);
+Eigen::SparseMatrix<double> PolygonPlanarityMatrix(const PolyMesh& plan);
 
-// Throws as MarionettePlanarityMatrix.
+// Throws as PolygonPlanarityMatrix.
 MarionetteDesignSpace MeasureMarionetteDesignSpace(const PolyMesh& plan);
 
 // `dimension` vertices whose heights can be prescribed independently, every other height then
@@ -60,5 +61,32 @@ struct MarionettePolygonLift {
 // many directions stay free: prescribe more, at least three not on a line).
 MarionettePolygonLift LiftPolygonPlan(const PolyMesh& plan,
                                       const std::vector<std::pair<int, double>>& heights);
+
+// The heights at the target vertices nearest to `targets` (least squares) that a planar lift can
+// have: the targets projected onto the lifts' space (002 §2.5: a closed strip whose plan has
+// a = 1 takes only inner curves with V·Z = 0; eq. 9 for several rings). Unchanged when they are
+// already reachable. Throws as LiftPolygonPlan for bad indices or values.
+std::vector<std::pair<int, double>> NearestPlanarHeights(
+    const PolyMesh& plan, const std::vector<std::pair<int, double>>& targets);
+
+// Closed Marionette meshes of several rings (002 §2.5, Figs. 7–8, eq. 9): closed plan curves
+// C_0 (inner, heights given) … C_R, N points each, ring r the closed strip between C_r and
+// C_{r+1}. Each ring passes its outer heights to the next as its inner ones; a ring whose a
+// (002 eq. 8) is not 1 closes in one way, a ring with a = 1 only for V·Z = 0. The inner heights
+// are therefore projected onto what all rings can close (NearestPlanarHeights; unchanged when
+// every a ≠ 1), and heights the rings leave free (the start of a ring with a = 1) are fixed by
+// fairness (LiftPolygonPlan).
+struct ClosedRingsLift {
+  // Vertex c N + i: curve c, point i; quad (c, i), (c + 1, i), (c + 1, i + 1), (c, i + 1).
+  PolyMesh mesh;
+  std::vector<double> a, v_norm;  // per ring: a and |V| of 002 eq. 8 (from the plan alone)
+  Eigen::VectorXd inner_heights;  // as lifted
+  double inner_change = 0.0;      // max |lifted − given| on the inner curve
+  double max_planarity = 0.0;     // per mean edge
+};
+// Throws InputError for fewer than 2 curves or 3 points, curves of different lengths, heights
+// not one per inner point, or a degenerate plan quad (naming ring and quad).
+ClosedRingsLift LiftClosedRings(const std::vector<std::vector<Eigen::Vector2d>>& curves,
+                                const Eigen::VectorXd& inner_heights);
 
 }  // namespace gproj

@@ -384,6 +384,64 @@ class StripRun : public MarionetteRun {
   std::string warning_;  // a folded plan view lifted anyway
 };
 
+// A closed mesh of several rings (002 Figs. 7–8, eq. 9), ring by ring outward.
+class RingsRun : public MarionetteRun {
+ public:
+  RingsRun(const MarionetteRunOptions& options, ClosedStripFile file)
+      : options_(options), file_(std::move(file)) {
+    const auto start = Clock::now();
+    try {
+      lift_ = LiftClosedRings(file_.curves, file_.inner_heights);
+    } catch (const InputError& e) {
+      throw InputError(options.closed_strip + ": " + e.what());
+    }
+    seconds_ = SecondsSince(start);
+    warning_ = CheckPlanView(lift_.mesh, options.closed_strip, options.allow_folded_plan);
+  }
+  std::string Description() const override {
+    std::string text = Format("gproj marionette: closed mesh %s: %d rings of %d quads\n",
+                              options_.closed_strip.c_str(), rings(), points());
+    for (int r = 0; r < rings(); ++r)
+      text += Format("ring %d: a = %.12g, |V| = %.3g%s\n", r, lift_.a[r], lift_.v_norm[r],
+                     std::abs(lift_.a[r] - 1.0) <= 1e-9
+                         ? (lift_.v_norm[r] > 1e-9 ? " (a = 1: closes only for V.Z = 0)"
+                                                   : " (a = 1, V = 0: any heights close)")
+                         : " (one closing lift)");
+    return text +
+           Format("inner curve moved by %.3e to what the rings can close (002 eq. 9)\n",
+                  lift_.inner_change) +
+           warning_;
+  }
+  RunReport Run(const RunCallback&) override {
+    const NamedValues measures = {{"max_planarity", lift_.max_planarity},
+                                  {"inner_curve_change", lift_.inner_change}};
+    RunReport report = ConstructionReport("direct: closing rings (002 eq. 8-9)", {}, measures,
+                                          lift_.max_planarity <= options_.lift.tolerance, seconds_);
+    report.solver = "direct";
+    report.variables = (rings() + 1) * points();
+    return report;
+  }
+  PolyMesh Result() const override { return lift_.mesh; }
+  nlohmann::json Facts() const override {
+    return {{"closed_strip", options_.closed_strip},
+            {"rings", rings()},
+            {"quads", rings() * points()},
+            {"a", lift_.a},
+            {"v_norm", lift_.v_norm},
+            {"inner_curve_change", lift_.inner_change}};
+  }
+  std::string ToleranceMeasure() const override { return "max_planarity"; }
+
+ private:
+  int rings() const { return static_cast<int>(file_.curves.size()) - 1; }
+  int points() const { return static_cast<int>(file_.inner_heights.size()); }
+  MarionetteRunOptions options_;
+  ClosedStripFile file_;
+  ClosedRingsLift lift_;
+  double seconds_ = 0.0;
+  std::string warning_;
+};
+
 // The measures of the strip with the given inner heights (initial) and of the lift (final).
 RunReport StripRun::Run(const RunCallback&) {
   const auto start = Clock::now();
@@ -431,6 +489,8 @@ std::unique_ptr<MarionetteRun> MakeMarionetteRun(const MarionetteRunOptions& opt
     if (options.solver != "direct")
       throw InputError("--closed-strip is lifted directly (002 eq. 8): --solver " + options.solver +
                        " does not apply");
+    ClosedStripFile file = ReadClosedStrip(options.closed_strip);
+    if (file.curves.size() > 2) return std::make_unique<RingsRun>(options, std::move(file));
     return std::make_unique<StripRun>(options);
   }
   if (options.plan.empty() && !options.plan_mesh)

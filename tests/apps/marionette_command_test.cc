@@ -11,6 +11,7 @@
 #include <string>
 
 #include "apps/command_test_util.h"
+#include "geometry/mesh_io.h"
 
 namespace gproj {
 namespace {
@@ -102,6 +103,23 @@ TEST_F(MarionetteMeshCommandTest, KagomePlanLiftsFromGuidesAndFairness) {
       Gproj("marionette " + Data("marionette_kagome.obj") + " --row 0,1 -o " + Path("bad.obj")),
       "prescribed heights");
   EXPECT_FALSE(Exists("bad.obj"));
+}
+
+// A closed mesh of three rings (002 Figs. 7-8): each ring's a and |V| in the log and report, the
+// rings lifted outward with planar quads and the inner curve kept (every a != 1).
+TEST_F(MarionetteMeshCommandTest, ClosedMeshOfSeveralRings) {
+  const CommandRun r = Gproj("marionette --closed-strip " + Data("marionette_closed_rings.txt") +
+                             " -o " + Path("rings.obj") + " --report " + Path("rings.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const nlohmann::json report = Json("rings.json");
+  EXPECT_EQ(report["rings"].get<int>(), 3);
+  ASSERT_EQ(report["a"].size(), 3u);
+  for (const auto& a : report["a"]) EXPECT_GT(std::abs(a.get<double>() - 1.0), 1e-3);
+  EXPECT_LT(report["final"]["max_planarity"].get<double>(), 1e-10);
+  EXPECT_LT(report["inner_curve_change"].get<double>(), 1e-9);
+  EXPECT_NE(r.out.find("ring 2: a = "), std::string::npos) << r.out;
+  const PolyMesh mesh = ReadMesh(Path("rings.obj"));
+  EXPECT_EQ(mesh.n_faces(), 72u);
 }
 
 TEST_F(MarionetteMeshCommandTest, ChecksOutputPathsBeforeLifting) {
@@ -245,7 +263,7 @@ TEST_F(MarionetteMeshCommandTest, ClosedStripReportsAAndTheClosingHeight) {
 
 TEST_F(MarionetteMeshCommandTest, ClosedStripRefusesBadLinesAndDegenerateQuads) {
   ExpectRefused("--closed-strip " + Write("s.txt", "# x\n0 0 0 1 0\n1 0 0 2\n"),
-                "s.txt:3: expected 5 numbers (inner x y z, outer x y), got 4");
+                "s.txt:3: expected 5 numbers (inner x y z, then x y of every outer curve), got 4");
   ExpectRefused("--closed-strip " + Write("n.txt", "0 0 0 1 nan\n1 0 0 2 0\n0 1 0 0 2\n"),
                 "n.txt:1: 'nan' is not finite");
   // Pair 1's outer vertex on the line through inner 1 and inner 2.

@@ -3,11 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
 #include <random>
+
+#include "problems/marionette.h"
 
 namespace gproj {
 namespace {
@@ -143,7 +146,7 @@ TEST(MarionettePolygonsTest, DesignSpaceOfPeriodicPatterns) {
     for (const auto& [size, count] : FaceSizes(c.plan)) std::printf(" %d %d-gons,", count, size);
     std::printf(" eq. 16 %d, rank-based dimension %d\n", space.estimate, space.dimension);
     // The sparse QR's rank against a dense, fully pivoted LU.
-    const Eigen::MatrixXd dense(MarionettePlanarityMatrix(c.plan));
+    const Eigen::MatrixXd dense(PolygonPlanarityMatrix(c.plan));
     Eigen::FullPivLU<Eigen::MatrixXd> lu(dense);
     EXPECT_EQ(space.rank, static_cast<int>(lu.rank())) << c.name;
     EXPECT_EQ(space.dimension - space.estimate, c.dependent_rows) << c.name;
@@ -232,6 +235,91 @@ TEST(MarionettePolygonsTest, RefusesUndeterminedOrContradictoryHeights) {
   }
   EXPECT_THROW(LiftPolygonPlan(plan, {{100000, 1.0}}), InputError);
   EXPECT_THROW(LiftPolygonPlan(plan, {{0, 1.0}, {0, 2.0}}), InputError);
+}
+
+// Closed curves around the origin: radius r (1 + e cos(θ + φ)) at N angles, shifted by `shift`.
+std::vector<Eigen::Vector2d> Curve(int n, double r, double e, double phi,
+                                   const Eigen::Vector2d& shift = Eigen::Vector2d::Zero()) {
+  std::vector<Eigen::Vector2d> c;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * M_PI * i / n;
+    c.push_back(shift +
+                r * (1 + e * std::cos(t + phi)) * Eigen::Vector2d(std::cos(t), std::sin(t)));
+  }
+  return c;
+}
+
+Eigen::VectorXd InnerHeights(int n) {
+  Eigen::VectorXd z(n);
+  for (int i = 0; i < n; ++i)
+    z[i] = 1.0 + 0.3 * std::sin(2 * M_PI * i / n) + 0.1 * std::cos(6 * M_PI * i / n);
+  return z;
+}
+
+// 002 Figs. 7–8, eq. 9: three rings of an asymmetric plan (every a ≠ 1) close in one way, which
+// is the lift handed ring by ring (each ring's outer heights the next one's inner heights,
+// 002 eq. 8); the inner curve is kept.
+TEST(MarionettePolygonsTest, ClosedRingsHandTheirHeightsOutward) {
+  const int n = 16;
+  const std::vector<std::vector<Eigen::Vector2d>> curves = {
+      Curve(n, 2.0, 0.10, 0.3), Curve(n, 3.0, 0.15, 0.9, {0.1, 0.0}),
+      Curve(n, 4.2, 0.05, 1.7, {0.0, 0.2}), Curve(n, 5.0, 0.12, 0.2)};
+  const Eigen::VectorXd z = InnerHeights(n);
+  const ClosedRingsLift lift = LiftClosedRings(curves, z);
+  Eigen::VectorXd inner = z;
+  for (size_t r = 0; r + 1 < curves.size(); ++r) {
+    const ClosedStripLift ring = LiftClosedStrip({curves[r], curves[r + 1]}, inner);
+    ASSERT_FALSE(ring.a_is_one) << r;
+    EXPECT_NEAR(lift.a[r], ring.a, 1e-12);
+    for (int i = 0; i < n; ++i)
+      EXPECT_NEAR(lift.mesh.point(lift.mesh.vertex_handle((r + 1) * n + i))[2],
+                  ring.outer_heights[i], 1e-8)
+          << "ring " << r << " point " << i;
+    inner = ring.outer_heights;
+  }
+  EXPECT_LT(lift.inner_change, 1e-10);
+  EXPECT_LT(lift.max_planarity, 1e-10);
+}
+
+// A ring whose plan quads are all trapezoids (its outer curve's edges parallel to the inner
+// curve's, scaled by varying factors: a = 1, 002 Appendix A example 1) closes only for V·Z = 0:
+// the inner curve is projected onto what the rings can close, and the lift is planar.
+// Concentric circles also have a = 1 with V = 0, but leave a cone's slope free: refused, naming
+// the free direction.
+TEST(MarionettePolygonsTest, ClosedRingsWithARingOfTrapezoids) {
+  const int n = 12;
+  const std::vector<Eigen::Vector2d> c0 = Curve(n, 2.0, 0.10, 0.3);
+  const std::vector<Eigen::Vector2d> c1 = Curve(n, 3.0, 0.15, 0.9, {0.1, 0.0});
+  // c2: edges λ_i (c1_{i+1} − c1_i), the last two λ solved so that the curve closes.
+  std::vector<Eigen::Vector2d> edge(n);
+  for (int i = 0; i < n; ++i) edge[i] = c1[(i + 1) % n] - c1[i];
+  std::vector<double> lambda(n);
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  for (int i = 0; i + 2 < n; ++i) {
+    lambda[i] = 1.4 + 0.15 * std::sin(4 * M_PI * i / n + 0.5);
+    sum += lambda[i] * edge[i];
+  }
+  Eigen::Matrix2d m;
+  m << edge[n - 2], edge[n - 1];
+  const Eigen::Vector2d last = m.colPivHouseholderQr().solve(-sum);
+  lambda[n - 2] = last.x();
+  lambda[n - 1] = last.y();
+  std::vector<Eigen::Vector2d> c2 = {c1[0] * 1.45};
+  for (int i = 0; i + 1 < n; ++i) c2.push_back(c2.back() + lambda[i] * edge[i]);
+  const ClosedRingsLift lift = LiftClosedRings({c0, c1, c2}, InnerHeights(n));
+  std::printf("rings: a = %.6f, %.6f; |V| = %.3g, %.3g; inner curve moved by %.3g\n", lift.a[0],
+              lift.a[1], lift.v_norm[0], lift.v_norm[1], lift.inner_change);
+  EXPECT_NEAR(lift.a[1], 1.0, 1e-9);
+  EXPECT_GT(lift.v_norm[1], 1e-3);
+  EXPECT_GT(lift.inner_change, 1e-6);
+  EXPECT_LT(lift.max_planarity, 1e-9);
+  try {
+    LiftClosedRings({Curve(n, 2.0, 0, 0), Curve(n, 3.0, 0, 0), Curve(n, 4.0, 0, 0)},
+                    InnerHeights(n));
+    ADD_FAILURE() << "concentric circles leave a cone free";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("stay free"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
