@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "geometry/circle.h"
+#include "geometry/mobius.h"
 #include "geometry/parametric_grid.h"
 #include "problems/pq_planarization.h"
 
@@ -60,6 +61,28 @@ TEST(CombescureTest, PropagationGivesParallelPlanarCircularMesh) {
                 lengths.row[j], 1e-12);
   // And it is not the reference up to a similarity: edge-length ratios vary.
   EXPECT_GT(MaxVertexDistance(out, mesh), 0.1);
+}
+
+// 000 §5.3: a super-canal surface is f(canal surface) with f a Combescure transformation followed
+// by an inversion; f⁻¹ is the inversion again (an involution) and the Combescure transformation
+// with the reference's own lengths. f⁻¹ ∘ f is the identity to 1e-12 (relative to the size), so
+// meshes can be moved between the two freely (remeshing through f and f⁻¹).
+TEST(CombescureTest, InverseOfACombescureAndMoebiusCompositionIsTheIdentity) {
+  const PolyMesh canal = Revolution(11, 13);
+  const GridShape shape = DetectGridShape(canal);
+  const Eigen::Vector3d centre(3.5, 0.7, -0.4);
+  const double ratio = 5.0;
+  const PolyMesh super_canal =
+      InvertMesh(CombescureByPropagation(canal, shape, Varied(canal, shape)), centre, ratio);
+  EXPECT_LT(MeasureCircularity(super_canal).max_concyclicity, 1e-10);
+  CombescureLengths back = ReferenceLengths(canal, shape);
+  back.origin = Eigen::Vector3d(canal.point(PolyMesh::VertexHandle(0)).data());
+  const PolyMesh again =
+      CombescureByPropagation(InvertMesh(super_canal, centre, ratio), shape, back);
+  double size = 0.0;
+  for (auto v : canal.vertices())
+    size = std::max(size, (canal.point(v) - canal.point(PolyMesh::VertexHandle(0))).norm());
+  EXPECT_LT(MaxVertexDistance(again, canal) / size, 1e-12);
 }
 
 TEST(CombescureTest, GuidedProjectionAgreesWithPropagation) {
