@@ -11,6 +11,7 @@
 
 #include "apps/super_canal_commands.h"
 #include "geometry/text_input.h"
+#include "problems/c_canal.h"
 #include "problems/canal_from_curves.h"
 #include "problems/canal_surface.h"
 #include "problems/circular_mesh.h"
@@ -21,7 +22,7 @@ namespace {
 struct CanalArgs {
   std::string curve, strip, second_curve;
   MeshOutputs outputs;
-  std::vector<double> first_point, lengths, normal;
+  std::vector<double> first_point, lengths, normal, section_scales;
   double length = 0.0, psi = 0.0;
   CanalSurfaceOptions options;
 };
@@ -103,7 +104,56 @@ int RunCanalFromCurves(const CanalArgs& args) {
   return WriteAndConclude("canal", report, canal.mesh, title, args.outputs, extra, "", 0.0);
 }
 
+// 000 §5.2: the C-canal surface of the lengths, its cross-section the first arc scaled by
+// --section-scales; the canal's lengths found by BFGS (eq. 10).
+int RunCCanal(const CanalArgs& args) {
+  CCanalSurface c;
+  RunReport report;
+  try {
+    if (!args.second_curve.empty() || args.options.smooth)
+      throw InputError(
+          "--section-scales builds a C-canal surface from a circular strip: "
+          "--second-curve and --smooth do not apply");
+    const std::unique_ptr<CanalSurface> canal = CanalFromArgs(args);
+    std::printf(
+        "gproj canal: %s: C-canal surface (000 §5.2): %zu curve points, cross-section of %d "
+        "segments; BFGS on the canal's lengths until the C-canal's are the asked ones (eq. 10)\n",
+        args.curve.c_str(), canal->input().curve.size(), args.options.segments);
+    CCanalOptions options;
+    options.segments = args.options.segments;
+    options.section_scales = args.section_scales;
+    options.max_iterations = args.options.smoothing.max_iterations;
+    const auto start = std::chrono::steady_clock::now();
+    c = BuildCCanalSurface(canal->input(), canal->angles(), options);
+    NamedValues measures = MeasureCircularMesh(c.mesh);
+    measures.push_back({"max_length_error", c.max_length_error});
+    report = ConstructionReport(
+        "ceres-bfgs", {{"max_length_error", c.initial_length_error}}, measures, c.converged,
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    report.iterations = c.iterations;
+    report.termination = "ceres-bfgs: " + c.message;
+  } catch (const InputError& e) {
+    std::cerr << "gproj canal: " << e.what() << "\n";
+    return kExitInputError;
+  }
+  std::printf(
+      "|P_k Q'_k| against the asked lengths: %.3e -> %.3e (of the mean length) in %d "
+      "iterations\n",
+      c.initial_length_error, c.max_length_error, c.iterations);
+  PrintMeasures("C-canal mesh", report.final);
+  nlohmann::json extra = {{"curve", args.curve},
+                          {"lengths", c.lengths},
+                          {"canal_lengths", c.canal_lengths},
+                          {"section_scales", args.section_scales}};
+  char title[160];
+  std::snprintf(title, sizeof(title), "C-canal surface (000 §5.2), %zu circular quads",
+                c.mesh.n_faces());
+  return WriteAndConclude("canal", report, c.mesh, title, args.outputs, extra, "max_length_error",
+                          1e-9);
+}
+
 int RunCanal(const CanalArgs& args) {
+  if (!args.section_scales.empty()) return RunCCanal(args);
   if (!args.second_curve.empty()) return RunCanalFromCurves(args);
   std::unique_ptr<CanalSurface> canal;
   RunReport report;
@@ -187,6 +237,11 @@ void RegisterCanalCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--segments", args->options.segments, "Quads across the strip in the canal mesh")
       ->check(Within(1, 100000))
       ->capture_default_str();
+  cmd->add_option("--section-scales", args->section_scales,
+                  "C-canal surface (000 §5.2): one factor > 0 per segment scaling the first "
+                  "arc's edges into a planar cross-section; the lengths are then the C-canal's")
+      ->check(Positive())
+      ->delimiter(',');
   cmd->add_flag("--smooth", args->options.smooth, "Minimise the smoothness energy of 000 eq. 5");
   cmd->add_option("--length-weight", args->options.smoothing.length_weight,
                   "Weight keeping the lengths near the input during --smooth")

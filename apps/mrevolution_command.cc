@@ -28,16 +28,20 @@ int RunMRevolution(const MRevolutionArgs& args) {
   try {
     args.outputs.Check({{"curve", args.curve}}, {{"--revolution", args.revolution, true}});
     const std::vector<Eigen::Vector3d> curve = ReadPoints(args.curve, 2);
-    std::printf(
-        "gproj mrevolution: %s: %zu points from P1 to P4; P2, P3 on their circle; t = %g, "
-        "root %d, %d segments per arch\n",
-        args.curve.c_str(), curve.size(), args.options.t, args.options.root,
-        args.options.arch_segments);
+
     MRevolutionOptions options = args.options;
-    if (!args.up.empty()) options.up = Vector3(args.up, "--up");
+    if (!args.up.empty()) {
+      options.up = Vector3(args.up, "--up");
+      if (options.up.norm() == 0.0) throw InputError("--up must not be zero");
+    }
     const auto start = std::chrono::steady_clock::now();
     surface =
         BuildMRevolutionSurface(curve, Vector3(args.p2, "--p2"), Vector3(args.p3, "--p3"), options);
+    std::printf(
+        "gproj mrevolution: %s: %zu points from P1 to P4, P2 and P3 on their circle; t = %g, "
+        "root %d, %d segments per arch\n",
+        args.curve.c_str(), curve.size(), args.options.t, args.options.root,
+        args.options.arch_segments);
     NamedValues measures = MeasureCircularMesh(surface.mesh);
     measures.push_back({"curve_roundtrip", surface.curve_roundtrip});
     measures.push_back({"far_meridian_miss", surface.far_meridian_miss});
@@ -73,7 +77,7 @@ int RunMRevolution(const MRevolutionArgs& args) {
   std::snprintf(title, sizeof(title), "M-revolution surface (000 §5.1), %zu circular quads",
                 surface.mesh.n_faces());
   return WriteAndConclude("mrevolution", report, surface.mesh, title, args.outputs, extra, "", 0.0,
-                          args.revolution, &surface.revolution);
+                          args.revolution, args.revolution.empty() ? nullptr : &surface.revolution);
 }
 
 }  // namespace
@@ -107,8 +111,10 @@ void RegisterMRevolutionCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--arch-segments", args->options.arch_segments, "Quads along each arch")
       ->check(Within(2, 100000))
       ->capture_default_str();
-  cmd->add_option("--up", args->up,
-                  "x,y,z: the arches rise to this side of the drawing plane (default 0,0,1)")
+  cmd->add_option(
+         "--up", args->up,
+         "x,y,z: the arches rise to this side of the drawing plane, which it must not lie in "
+         "(default: +z, or the side of (P2 - P1) x (P4 - P1) when +z lies in the plane)")
       ->check(Finite())
       ->delimiter(',');
   cmd->add_option("--revolution", args->revolution,

@@ -20,8 +20,9 @@ Eigen::Vector3d Vector3(const std::vector<double>& values, const std::string& op
 
 void MeshOutputs::Check(const std::vector<std::pair<std::string, std::string>>& inputs,
                         const std::vector<OutputPath>& more) const {
-  std::vector<OutputPath> outputs = {
-      {"--output", mesh, true}, {"--report", report}, {"--picture", picture}};
+  std::vector<OutputPath> outputs = {{"--output", mesh, true},
+                                     {"--report", report, false, ".json"},
+                                     {"--picture", picture, false, ".svg"}};
   outputs.insert(outputs.end(), more.begin(), more.end());
   CheckOutputPaths(inputs, outputs);
 }

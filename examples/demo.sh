@@ -69,6 +69,11 @@ echo "== Canal surface from a circular strip on a shipped curve, smoothed (000 e
   -o out/demo/canal.obj --strip out/demo/canal_strip.obj --picture out/demo/canal.svg \
   --report out/demo/canal_report.json
 echo
+echo "== C-canal surface (000 §5.2): the canal's lengths found by BFGS so that the C-canal's are 2 (eq. 10) =="
+./build/gproj canal examples/data/canal_curve.txt --first-point -0.5,0.5,2 --length 2 \
+  --section-scales 1.0000,1.0479,1.0841,1.0997,1.0909,1.0598,1.0141,0.9649,0.9243,0.9022,0.9041,0.9294 \
+  -o out/demo/c_canal.obj --picture out/demo/c_canal.svg --report out/demo/c_canal_report.json
+echo
 echo "== Canal surface fitted to two shipped curves (000 §4.1, eq. 6): spheres touching both, circular mesh =="
 ./build/gproj canal examples/data/canal_curve_fine.txt --second-curve examples/data/canal_second_curve.txt \
   --normal 0,0,1 -o out/demo/canal_two_curves.obj --picture out/demo/canal_two_curves.svg \
@@ -127,6 +132,7 @@ echo "  marionette_rings.obj          a closed Marionette mesh of three rings (i
 echo "  marionette_kagome.obj         a Kagome plan lifted with planar hexagons (its report: the design"
 echo "                                space by eq. 16 and by rank)"
 echo "  canal.obj, canal.svg          canal surface meshed by circular quads; canal_strip.obj its strip"
+echo "  c_canal.obj, .svg             C-canal surface: a planar cross-section, the asked lengths met (000 §5.2)"
 echo "  canal_two_curves.obj, .svg    canal surface whose spheres touch two curves (its report: the spheres)"
 echo "  beams.obj, beams.svg          torsion-free beams on the canal mesh; beam_axes.obj the node axes,"
 echo "                                beam_offset.obj the parallel offset mesh"

@@ -601,39 +601,48 @@ void HNet::RunJoint(const PolyMesh& reference, const RoundCallback& on_round,
   propagated.seconds = SecondsSince(start_time);
   summary->rounds.push_back(propagated);
   if (on_round) on_round(propagated);
-  start_time = std::chrono::steady_clock::now();
-  // Start from the propagated weights where they are usable, 1 elsewhere.
+  const bool met = SolveJointly(1, 1.0, reference, on_round, summary);
+  if (report.failed) return;
+  report.converged = met;
+  report.termination = met ? "vertices and weights optimised together (no exact extension "
+                             "exists for this topology; frame rows met)"
+                           : "vertices and weights optimised together; the frame rows were not "
+                             "met within the iterations";
+}
+
+bool HNet::SolveJointly(int round, double soft_scale, const PolyMesh& reference,
+                        const RoundCallback& on_round, HNetSummary* summary) {
+  RunReport& report = summary->report;
+  const auto start_time = std::chrono::steady_clock::now();
+  // Start from the current weights where they are usable, 1 elsewhere.
   std::vector<double> start = w_;
   for (double& w : start) w = std::isfinite(w) && w > 0.0 ? std::clamp(w, 0.1, 10.0) : 1.0;
   const std::unique_ptr<VertexUpdate> update =
       BuildVertexUpdate(mesh_, colour_, options_, reference, &start);
   report.variables = update->problem.layout().num_variables();
   SolverOptions solver_options = options_.anet.solver;
-  solver_options.max_iterations = options_.joint_iterations;
   solver_options.residual_tolerance = options_.residual_tolerance;
+  solver_options.initial_soft_scale = soft_scale;
   const VertexUpdateResult s = SolveVertexUpdate(solver_options, options_.use_ceres, update.get());
   if (s.failed) {
     report.failed = true;
     report.termination = "joint vertex and weight update failed: " + s.message;
-    return;
+    return false;
   }
   StoreVertices(update->problem, update->vertex_block, update->norm, &mesh_);
   update->control.RestoreHeld(update->start, &mesh_);
   const VariableLayout& layout = update->problem.layout();
   for (size_t f = 0; f < w_.size(); ++f)
     w_[f] = update->problem.x()[layout.Index(update->shape_block, static_cast<int>(f), 0)];
-  HNetRound joint = MeasureRound(1);
+  HNetRound joint = MeasureRound(round);
   joint.solver_iterations = s.steps;
   joint.vertex_update_converged = s.converged;
   joint.seconds = SecondsSince(start_time);
   report.iterations += s.steps;
   summary->rounds.push_back(joint);
   if (on_round) on_round(joint);
-  report.converged = s.converged && joint.min_w > 0.0;
-  report.termination = s.converged ? "vertices and weights optimised together (no exact "
-                                     "extension exists for this topology; frame rows met)"
-                                   : "vertices and weights optimised together; the frame rows "
-                                     "were not met within the iterations";
+  return s.converged && joint.min_w > 0.0 &&
+         joint.star.max_star_planarity <= options_.anet.tolerance;
 }
 
 void HNet::RunRounds(const PolyMesh& reference, const RoundCallback& on_round,
@@ -681,9 +690,22 @@ void HNet::RunRounds(const PolyMesh& reference, const RoundCallback& on_round,
     summary->rounds.push_back(r);
     if (on_round) on_round(r);
     if (last) {
-      report.converged = settled;
+      // Settled weights are not enough: the stars must be planar to the tolerance, which a
+      // vertex update cut short by iterations_per_round can leave them not quite; a joint solve
+      // of vertices and weights from the settled state (soft terms as in the rounds) finishes.
+      report.converged = settled && r.star.max_star_planarity <= options_.anet.tolerance;
       report.termination =
           settled ? "weights and vertices settled" : "maximum number of rounds reached";
+      if (settled && !report.converged) {
+        report.converged =
+            SolveJointly(round + 1, options_.round_soft_scale, reference, on_round, summary);
+        if (report.failed) return;
+        report.termination = report.converged
+                                 ? "weights settled; a joint solve of vertices and weights made "
+                                   "the stars planar"
+                                 : "weights settled, but the stars are not planar to the "
+                                   "tolerance even after a joint solve";
+      }
       return;
     }
   }

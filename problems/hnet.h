@@ -97,9 +97,8 @@ struct HNetOptions {
   double residual_tolerance = 1e-10;
   // Allow meshes that are not simply connected (the extension is then an optimisation only:
   // the vertices and the shape parameters W are solved for together, with W near 1 and W ≥
-  // min_shape_parameter).
+  // min_shape_parameter, in at most anet.solver.max_iterations iterations).
   bool allow_not_simply_connected = false;
-  int joint_iterations = 100;         // iterations of that joint solve
   double shape_regularity = 1e-2;     // weight of W − 1 and 1/W − 1 (soft, 004 eq. 11)
   double min_shape_parameter = 1e-2;  // W ≥ this (positive weights)
   // The cross-check: the A-net step and every vertex update by Ceres' Levenberg–Marquardt on
@@ -177,6 +176,11 @@ class HNet {
   // Meshes that are not simply connected: the weights propagated (round 0, for comparison), then
   // the vertices and weights optimised together (round 1).
   void RunJoint(const PolyMesh& reference, const RoundCallback& on_round, HNetSummary* summary);
+  // One solve of the vertices and the weights together (frame rows with W as unknowns), from the
+  // current state, recorded as round `round`; true when its rows are met, W > 0 and the stars
+  // planar to the tolerance. Sets report.failed on a numerical failure.
+  bool SolveJointly(int round, double soft_scale, const PolyMesh& reference,
+                    const RoundCallback& on_round, HNetSummary* summary);
   // Shape parameters and corner weights from the current vertices, with the round's measures.
   HNetRound UpdateWeights(int round, const PolyMesh& reference);
   // Corner weights from w_ and the round's measures.

@@ -2,8 +2,11 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
+
+#include "geometry/circle.h"
 
 namespace gproj {
 
@@ -55,10 +58,48 @@ MRevolutionSurface BuildMRevolutionSurface(const std::vector<Eigen::Vector3d>& c
   extent = std::max({extent, (p2 - p1).norm(), (p3 - p1).norm()});
   // The drawing plane: P1, P2, P4 (MRevolutionCentres checks P3 and concyclicity).
   const std::array<Eigen::Vector3d, 4> quad = {p1, p2, p3, p4};
+  const std::array<const char*, 4> names = {"P1 (the curve's start)", "P2", "P3",
+                                            "P4 (the curve's end)"};
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j)
+      if ((quad[i] - quad[j]).norm() <= 1e-9 * extent)
+        throw InputError(std::string(names[i]) + " and " + names[j] +
+                         " coincide: the four points must be distinct");
+  if (static_cast<double>(curve.size()) * (options.arch_segments + 1) > 5e7)
+    throw InputError(
+        "the mesh would have " +
+        std::to_string(static_cast<double>(curve.size()) * (options.arch_segments + 1)) +
+        " vertices (curve points × (arch segments + 1)); at most 5e7");
   MRevolutionSurface out;
-  out.choice = ChooseMRevolutionCentre(quad, options.t, options.root, 1.0);
+  try {
+    out.choice = ChooseMRevolutionCentre(quad, options.t, options.root, 1.0);
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    if (what.find("on the quad's circle") != std::string::npos)
+      throw InputError(what +
+                       " (or P2 and P3 are out of order: P1, P2, P3, P4 must follow each "
+                       "other around the circle)");
+    if (what.find("concyclic") != std::string::npos) {
+      // Which point is off: P3 against the circle through P1, P2, P4, and P2 against P1 P3 P4.
+      const Eigen::Vector3d a[3] = {p1, p2, p4}, b[3] = {p1, p3, p4};
+      const double off3 = DistanceToCircle(p3, FitCircle(a, 3)) / extent;
+      const double off2 = DistanceToCircle(p2, FitCircle(b, 3)) / extent;
+      throw InputError(
+          Format("P2 and P3 must lie on one circle with P1 and P4: --p3 is %.3g "
+                 "curve extents from the circle through P1, P2, P4 (--p2: %.3g from "
+                 "the one through P1, P3, P4)",
+                 off3, off2));
+    }
+    throw;
+  }
   Eigen::Vector3d normal = (p2 - p1).cross(p4 - p1).normalized();
-  if (normal.dot(options.up) < -1e-6 * options.up.norm()) normal = -normal;
+  if (options.up.norm() > 0.0) {
+    if (std::abs(normal.dot(options.up.normalized())) < 1e-6)
+      throw InputError("--up lies in the drawing plane: it must point to one side of it");
+    if (normal.dot(options.up) < 0.0) normal = -normal;
+  } else if (normal.z() < -1e-6) {
+    normal = -normal;
+  }
   for (size_t i = 1; i + 1 < curve.size(); ++i) {
     const double off = std::abs(normal.dot(curve[i] - p1)) / extent;
     if (off > 1e-8)
@@ -71,10 +112,11 @@ MRevolutionSurface BuildMRevolutionSurface(const std::vector<Eigen::Vector3d>& c
   out.ratio = (p1 - c).squaredNorm();
   out.choice.image = InvertQuad(quad, c, out.ratio);
   for (size_t i = 0; i < curve.size(); ++i)
-    if ((curve[i] - c).norm() <= 1e-12 * extent)
+    if ((curve[i] - c).norm() <= 1e-6 * extent)
       throw InputError("curve point " + std::to_string(i) +
-                       " is the inversion centre: its image is at infinity (choose another t or "
-                       "root)");
+                       Format(" is %.3g curve extents from the inversion centre: its image runs "
+                              "off to infinity (choose another t or root)",
+                              (curve[i] - c).norm() / extent));
   // The meridian, and the axis of the trapezoid P1'P2'P3'P4': the perpendicular bisector of
   // P1'P2' in the drawing plane.
   std::vector<Eigen::Vector3d> meridian;

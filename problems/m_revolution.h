@@ -28,9 +28,9 @@ struct MRevolutionOptions {
   double t = 1.0;          // ratio of the trapezoid's parallel sides P1'P2' = t P4'P3' (> 0)
   int root = 0;            // which of the (up to) two centres
   int arch_segments = 16;  // quads along each arch (the parallels' half circles)
-  // The arches rise to the side of the drawing plane this points to (when it is not in the
-  // plane; otherwise to the side of (P2 − P1) × (P4 − P1)).
-  Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  // The arches rise to the side of the drawing plane this points to; it must not lie in the
+  // plane. Zero (the default): +z, or the side of (P2 − P1) × (P4 − P1) when +z lies in it.
+  Eigen::Vector3d up = Eigen::Vector3d::Zero();
   bool IsValid(std::string* why) const;
 };
 
@@ -49,9 +49,11 @@ struct MRevolutionSurface {
 };
 
 // Throws InputError (naming the point or the rule) for fewer than 2 curve points, points that
-// are not finite, a curve or P2, P3 out of the plane of P1, P2, P4 (relative 1e-8), P1 P2 P3 P4
-// not concyclic, a curve point on the axis of revolution (its parallel would be a point), a
-// curve through the inversion centre, or invalid options.
+// are not finite, P1..P4 not distinct, an `up` in the drawing plane, more than 5e7 vertices,
+// an inversion centre within 1e-6 curve extents of the curve (its image would run off), a curve or
+// P2, P3 out of the plane of P1, P2, P4 (relative 1e-8), P1 P2 P3 P4 not concyclic, a curve point
+// on the axis of revolution (its parallel would be a point), a curve through the inversion centre,
+// or invalid options.
 MRevolutionSurface BuildMRevolutionSurface(const std::vector<Eigen::Vector3d>& curve,
                                            const Eigen::Vector3d& p2, const Eigen::Vector3d& p3,
                                            const MRevolutionOptions& options);

@@ -2,9 +2,9 @@
 
 #include <Eigen/LU>
 #include <Eigen/OrderingMethods>
+#include <Eigen/SPQRSupport>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
-#include <Eigen/SparseQR>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -64,9 +64,12 @@ std::vector<PlanarityRow> PlanarityRows(const PolyMesh& plan) {
   return rows;
 }
 
+// Sparse QR with column pivoting by SuiteSparseQR (rank-revealing with its default tolerance).
+using RankRevealingQr = Eigen::SPQR<Eigen::SparseMatrix<double>>;
+
 int SparseRank(const Eigen::SparseMatrix<double>& m) {
   if (m.rows() == 0 || m.cols() == 0) return 0;
-  Eigen::SparseQR<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> qr;
+  RankRevealingQr qr;
   qr.compute(m);
   if (qr.info() != Eigen::Success) throw InputError("the rank of the planarity rows failed");
   return static_cast<int>(qr.rank());
@@ -143,7 +146,7 @@ std::vector<int> IndependentHeights(const PolyMesh& plan) {
     for (int v = 0; v < n; ++v) all[v] = v;
     return all;
   }
-  Eigen::SparseQR<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> qr;
+  RankRevealingQr qr;
   qr.compute(RowsMatrix(rows, n));
   if (qr.info() != Eigen::Success) throw InputError("the rank of the planarity rows failed");
   const int rank = static_cast<int>(qr.rank());
@@ -243,16 +246,19 @@ MarionettePolygonLift LiftPolygonPlan(const PolyMesh& plan,
   const Eigen::VectorXd residual = a * z - Eigen::Map<const Eigen::VectorXd>(b.data(), m);
   double scale = 1.0;
   for (double x : b) scale = std::max(scale, std::abs(x));
-  for (int r = 0; r < m; ++r)
-    if (std::abs(residual[r]) > 1e-8 * scale) {
-      if (r < static_cast<int>(rows.size()))
-        throw InputError("the prescribed heights cannot all be met by planar faces (face " +
-                         std::to_string(rows[r].face) + " would bend): they over-determine the " +
-                         "lift; prescribe fewer");
-      throw InputError("the prescribed height at vertex " +
-                       std::to_string(heights[r - rows.size()].first) +
-                       " contradicts the others through the planar faces; prescribe fewer");
-    }
+  // The worst row names the conflict (the least-squares compromise spreads it, largest where
+  // it is).
+  int worst = 0;
+  residual.cwiseAbs().maxCoeff(&worst);
+  if (m > 0 && std::abs(residual[worst]) > 1e-8 * scale) {
+    if (worst < static_cast<int>(rows.size()))
+      throw InputError("the prescribed heights cannot all be met by planar faces (face " +
+                       std::to_string(rows[worst].face) +
+                       " would bend most): they over-determine the lift; prescribe fewer");
+    throw InputError("the prescribed height at vertex " +
+                     std::to_string(heights[worst - rows.size()].first) +
+                     " contradicts the others through the planar faces; prescribe fewer");
+  }
   out.mesh = plan;
   for (auto v : out.mesh.vertices()) {
     auto p = out.mesh.point(v);

@@ -97,9 +97,44 @@ TEST_F(SuperCanalCommandTest, MRevolutionFromACurveAndTwoPoints) {
   const PolyMesh mesh = ReadMesh(Path("m.obj"));
   EXPECT_EQ(mesh.n_faces(), 20u * 16u);
   EXPECT_TRUE(Exists("rev.obj"));
+  // As the demo runs it: no --revolution, a picture.
+  const CommandRun demo = Gproj("mrevolution " + Data("m_revolution_curve.txt") + points +
+                                " --t 1 -o " + Path("d.obj") + " --picture " + Path("d.svg"));
+  EXPECT_EQ(demo.exit_code, 0) << demo.err;
+  EXPECT_TRUE(Exists("d.obj"));
+  EXPECT_TRUE(Exists("d.svg"));
   ExpectOneLineError(Gproj("mrevolution " + Data("m_revolution_curve.txt") +
                            " --p2 -0.5,3,0 --p3 1,1.7320508075688772,0 -o " + Path("bad.obj")),
-                     "not concyclic");
+                     "--p3 is");
+  EXPECT_FALSE(Exists("bad.obj"));
+}
+
+// 000 §5.2: a C-canal surface whose cross-section scales the first arc's edges; BFGS makes its
+// own lengths the asked ones (exit 0), or says how far it got (exit 3, result written).
+TEST_F(SuperCanalCommandTest, CCanalMeetsTheAskedLengths) {
+  const std::string base =
+      "canal " + Data("canal_curve.txt") + " --first-point -0.5,0.5,2 --length 2";
+  const CommandRun r = Gproj(
+      base +
+      " --section-scales "
+      "1.0000,1.0479,1.0841,1.0997,1.0909,1.0598,1.0141,0.9649,0.9243,0.9022,0.9041,0.9294 -o " +
+      Path("c.obj") + " --report " + Path("c.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const nlohmann::json report = Json("c.json");
+  EXPECT_LT(report["final"]["max_length_error"].get<double>(), 1e-9);
+  EXPECT_GT(report["initial"]["max_length_error"].get<double>(), 1e-3);
+  EXPECT_LT(report["final"]["max_concyclicity"].get<double>(), 1e-10);
+  for (const auto& l : report["lengths"]) EXPECT_NEAR(l.get<double>(), 2.0, 1e-8);
+  const CommandRun far = Gproj(
+      base +
+      " --section-scales "
+      "1.0000,1.0959,1.1683,1.1995,1.1819,1.1197,1.0282,0.9298,0.8486,0.8045,0.8082,0.8589 -o " +
+      Path("far.obj"));
+  EXPECT_EQ(far.exit_code, 3) << far.err << far.out;
+  EXPECT_NE(far.err.find("max_length_error"), std::string::npos) << far.err;
+  EXPECT_TRUE(Exists("far.obj"));
+  ExpectOneLineError(Gproj(base + " --section-scales 1,1 -o " + Path("bad.obj")),
+                     "one scale per segment");
   EXPECT_FALSE(Exists("bad.obj"));
 }
 

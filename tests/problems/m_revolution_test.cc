@@ -118,7 +118,7 @@ TEST(MRevolutionTest, RefusesWhatHasNoSolution) {
                             options);
     ADD_FAILURE() << "not concyclic";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("concyclic"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("must lie on one circle"), std::string::npos) << e.what();
   }
   // A curve out of the plane.
   curve[1].z() = 0.2;
@@ -129,6 +129,35 @@ TEST(MRevolutionTest, RefusesWhatHasNoSolution) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("curve point 1"), std::string::npos) << e.what();
   }
+  // Coinciding points, an up direction in the drawing plane, a mesh too large to hold.
+  curve[1].z() = 0.0;
+  const Eigen::Vector3d p2(-0.6, 0.8, 0), p3(0.6, 0.8, 0);
+  try {
+    BuildMRevolutionSurface(curve, p3, p3, options);
+    ADD_FAILURE() << "P2 = P3";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("P2 and P3 coincide"), std::string::npos) << e.what();
+  }
+  MRevolutionOptions sideways = options;
+  sideways.up = Eigen::Vector3d(1, 0, 0);
+  try {
+    BuildMRevolutionSurface(curve, p2, p3, sideways);
+    ADD_FAILURE() << "up in the plane";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--up lies in the drawing plane"), std::string::npos)
+        << e.what();
+  }
+  sideways.up = Eigen::Vector3d(0, 0, -1);
+  const MRevolutionSurface down = BuildMRevolutionSurface(curve, p2, p3, sideways);
+  EXPECT_LT(down.mesh.point(down.mesh.vertex_handle(8)).data()[2], 0.0);  // arches go down
+  MRevolutionOptions huge = options;
+  huge.arch_segments = 100000;
+  std::vector<Eigen::Vector3d> long_curve;
+  for (int i = 0; i <= 1000; ++i) {
+    const double a = M_PI * (1.0 + i / 1000.0);
+    long_curve.emplace_back(std::cos(a), 0.3 * std::sin(a), 0.0);
+  }
+  EXPECT_THROW(BuildMRevolutionSurface(long_curve, p2, p3, huge), InputError);
   options.t = -1;
   EXPECT_THROW(BuildMRevolutionSurface(curve, Eigen::Vector3d(-0.6, 0.8, 0),
                                        Eigen::Vector3d(0.6, 0.8, 0), options),

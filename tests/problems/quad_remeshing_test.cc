@@ -268,6 +268,9 @@ TEST(QuadRemeshingTest, TrianglesToHNet) {
         summary.equitwist_violations.size());
     EXPECT_TRUE(summary.report.converged) << summary.report.termination;
     EXPECT_LE(last.max_tangent_angle_deg, 0.01);
+    // Converged means the stars are planar to the A-net tolerance too (a round cut short left
+    // them at 6e-9 once; a joint solve of vertices and weights finishes).
+    EXPECT_LE(last.star.max_star_planarity, HNetOptions{}.anet.tolerance);
     EXPECT_GT(last.min_w, 0.0);
     // Within 0.5% of the diagonal on the hyperbolic field (004's test); on the steep monkey
     // saddle the boundary corners of valence 2 slide up to 0.5% past the surface's border.
