@@ -14,13 +14,6 @@ namespace {
 // Barycentric coordinates below this count as 0: the point lies on the edge or vertex.
 constexpr double kOnBorder = 1e-9;
 
-Eigen::Matrix2d QuarterTurns(int k) {
-  static const int c[4] = {1, 0, -1, 0}, s[4] = {0, 1, 0, -1};
-  Eigen::Matrix2d r;
-  r << c[k & 3], -s[k & 3], s[k & 3], c[k & 3];
-  return r;
-}
-
 double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return a.x() * b.y() - a.y() * b.x();
 }
@@ -94,6 +87,13 @@ bool AcrossVertex(const PolyMesh& mesh, const std::vector<Face>& faces,
 }
 
 }  // namespace
+
+Eigen::Matrix2d QuarterTurns(int k) {
+  static const int c[4] = {1, 0, -1, 0}, s[4] = {0, 1, 0, -1};
+  Eigen::Matrix2d r;
+  r << c[k & 3], -s[k & 3], s[k & 3], c[k & 3];
+  return r;
+}
 
 double MappedArea(const IntegerGridMap& map, int face) {
   const auto& u = map.corner_uv[face];

@@ -27,6 +27,9 @@ struct IntegerGridMap {
   std::vector<int> halfedge_rotation;
 };
 
+// The rotation by k quarter turns (k taken mod 4), exact.
+Eigen::Matrix2d QuarterTurns(int k);
+
 // Signed area of face f's image (negative: the map folds the face over).
 double MappedArea(const IntegerGridMap& map, int face);
 

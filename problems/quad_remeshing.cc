@@ -20,13 +20,6 @@ constexpr double kMinEdgeLength = 0.25, kMaxEdgeLength = 1e6;
 // Map values this close to an integer (in quad edges) are taken as that integer.
 constexpr double kSnapToInteger = 1e-8;
 
-Eigen::Matrix2d QuarterTurns(int k) {
-  static const int c[4] = {1, 0, -1, 0}, s[4] = {0, 1, 0, -1};
-  Eigen::Matrix2d r;
-  r << c[k & 3], -s[k & 3], s[k & 3], c[k & 3];
-  return r;
-}
-
 Eigen::Vector2d Direction(double angle) { return {std::cos(angle), std::sin(angle)}; }
 
 // A face's own orthonormal basis (e1 along its first edge, e2 = n × e1) and its corners there.

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "canal_test_util.h"
 #include "problems/circular_mesh.h"
 #include "problems/combescure.h"
 #include "problems/report_json.h"
@@ -12,16 +13,7 @@
 namespace gproj {
 namespace {
 
-CircularStripInput Input(int n = 8) {
-  CircularStripInput in;
-  for (int k = 0; k <= n; ++k) {
-    const double s = static_cast<double>(k) / n;
-    in.curve.emplace_back(4.0 * s, 0.8 * std::sin(2.0 * s), 0.3 * s * s);
-    in.lengths.push_back(1.0 + 0.2 * std::cos(3.0 * s));
-  }
-  in.first_point = Eigen::Vector3d(-0.3, 0.4, 1.2);
-  return in;
-}
+CircularStripInput Input(int n = 8) { return BendingStripInput(n); }
 
 // 000 §5.2 (eq. 10): the C-canal keeps the guide curve, its first row is the cross-section (the
 // first arc's edges scaled by s_j), every quad stays circular, and after BFGS on the canal's

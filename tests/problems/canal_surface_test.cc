@@ -4,23 +4,14 @@
 
 #include <cmath>
 
+#include "canal_test_util.h"
 #include "geometry/circle.h"
 #include "problems/pq_planarization.h"
 
 namespace gproj {
 namespace {
 
-// A planar-ish curve that bends in space, the first point, and varying lengths.
-CircularStripInput Input(int n = 8) {
-  CircularStripInput in;
-  for (int k = 0; k <= n; ++k) {
-    const double s = static_cast<double>(k) / n;
-    in.curve.emplace_back(4.0 * s, 0.8 * std::sin(2.0 * s), 0.3 * s * s);
-    in.lengths.push_back(1.0 + 0.2 * std::cos(3.0 * s));
-  }
-  in.first_point = Eigen::Vector3d(-0.3, 0.4, 1.2);
-  return in;
-}
+CircularStripInput Input(int n = 8) { return BendingStripInput(n); }
 
 // Whether two circles lie on a common sphere: residual of |x − o|² = R² over points of b.
 double CoSphericity(const Circle& a, const Circle& b) {
