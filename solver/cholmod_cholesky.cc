@@ -70,6 +70,8 @@ class CholmodCholesky : public SparseCholesky {
       return false;
     }
     n_ = a.num_rows;
+    // A second analysis (another pattern) replaces the right-hand side of the first.
+    if (b_ != nullptr) cholmod_free_dense(&b_, &common_);
     b_ = cholmod_zeros(n_, 1, CHOLMOD_REAL, &common_);
     return true;
   }
