@@ -168,7 +168,8 @@ double SignedAngle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
 namespace {
 
 // symmetry N: the field's directions are equivalent under turns by 2π/N (2: lines, 4: crosses).
-std::vector<double> IndicesAtUnitScale(const PolyMesh& mesh, const std::vector<Eigen::Vector3d>& lines,
+std::vector<double> IndicesAtUnitScale(const PolyMesh& mesh,
+                                       const std::vector<Eigen::Vector3d>& lines,
                                        int symmetry = 2) {
   const double period = 2.0 * M_PI / symmetry;
   // Per face: unit normal and the matched, averaged line in its plane (zero if none).

@@ -33,9 +33,9 @@ MarionetteGuideFile ParseMarionetteGuides(const std::string& text, const std::st
 // X2 Y2 ...", the same number of outer curves on every line, ring r between curves r and r + 1.
 // A quad with a degenerate plan view is refused naming its lines.
 struct ClosedStripFile {
-  ClosedStrip strip;  // the first ring
+  ClosedStrip strip;                                 // the first ring
   std::vector<std::vector<Eigen::Vector2d>> curves;  // inner curve, then every outer curve
-  Eigen::VectorXd inner_heights;  // N
+  Eigen::VectorXd inner_heights;                     // N
 };
 ClosedStripFile ReadClosedStrip(const std::string& path);
 

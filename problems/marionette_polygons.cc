@@ -86,6 +86,34 @@ Eigen::SparseMatrix<double> RowsMatrix(const std::vector<PlanarityRow>& rows, in
   return m;
 }
 
+MarionetteDesignSpace DesignSpaceOf(const std::vector<PlanarityRow>& rows, int n) {
+  MarionetteDesignSpace space;
+  space.vertices = n;
+  space.planarity_rows = static_cast<int>(rows.size());
+  space.estimate = space.vertices - space.planarity_rows;
+  space.rank = SparseRank(RowsMatrix(rows, n));
+  space.dimension = space.vertices - space.rank;
+  return space;
+}
+
+// Per vertex whether `heights` gives it one; throws InputError for an index out of range, a
+// vertex given twice or a height that is not finite.
+std::vector<char> CheckHeights(const PolyMesh& plan,
+                               const std::vector<std::pair<int, double>>& heights) {
+  const int n = static_cast<int>(plan.n_vertices());
+  std::vector<char> given(n, 0);
+  for (const auto& [vertex, z] : heights) {
+    if (vertex < 0 || vertex >= n)
+      throw InputError("prescribed height at vertex " + std::to_string(vertex) +
+                       ": the plan has vertices 0.." + std::to_string(n - 1));
+    if (given[vertex]) throw InputError("vertex " + std::to_string(vertex) + " is given twice");
+    if (!std::isfinite(z))
+      throw InputError("the height at vertex " + std::to_string(vertex) + " is not finite");
+    given[vertex] = 1;
+  }
+  return given;
+}
+
 // x minimising ½ xᵀQx subject to A x = b (A given by its entries, m = b.size() rows): the KKT
 // system regularised by −δ I on the multipliers, so that dependent rows do not make it singular,
 // then refined against the unregularised one. Throws InputError when it cannot be solved.
@@ -128,14 +156,7 @@ Eigen::SparseMatrix<double> PolygonPlanarityMatrix(const PolyMesh& plan) {
 }
 
 MarionetteDesignSpace MeasureMarionetteDesignSpace(const PolyMesh& plan) {
-  MarionetteDesignSpace space;
-  space.vertices = static_cast<int>(plan.n_vertices());
-  const std::vector<PlanarityRow> rows = PlanarityRows(plan);
-  space.planarity_rows = static_cast<int>(rows.size());
-  space.estimate = space.vertices - space.planarity_rows;
-  space.rank = SparseRank(RowsMatrix(rows, space.vertices));
-  space.dimension = space.vertices - space.rank;
-  return space;
+  return DesignSpaceOf(PlanarityRows(plan), static_cast<int>(plan.n_vertices()));
 }
 
 std::vector<int> IndependentHeights(const PolyMesh& plan) {
@@ -185,19 +206,10 @@ MarionettePolygonLift LiftPolygonPlan(const PolyMesh& plan,
                                       const std::vector<std::pair<int, double>>& heights) {
   const int n = static_cast<int>(plan.n_vertices());
   if (plan.n_faces() == 0) throw InputError("the plan has no faces");
-  std::vector<char> held(n, 0);
-  for (const auto& [vertex, z] : heights) {
-    if (vertex < 0 || vertex >= n)
-      throw InputError("prescribed height at vertex " + std::to_string(vertex) +
-                       ": the plan has vertices 0.." + std::to_string(n - 1));
-    if (held[vertex]) throw InputError("vertex " + std::to_string(vertex) + " is given twice");
-    if (!std::isfinite(z))
-      throw InputError("the height at vertex " + std::to_string(vertex) + " is not finite");
-    held[vertex] = 1;
-  }
+  CheckHeights(plan, heights);
   MarionettePolygonLift out;
   const std::vector<PlanarityRow> rows = PlanarityRows(plan);
-  out.space = MeasureMarionetteDesignSpace(plan);
+  out.space = DesignSpaceOf(rows, n);
   const std::vector<std::array<int, 3>> triples = StraightTriples(plan);
   out.fairness_triples = static_cast<int>(triples.size());
   // Heights at the scale of the plan's edges (the regularised KKT below is then well scaled).
@@ -291,16 +303,7 @@ MarionettePolygonLift LiftPolygonPlan(const PolyMesh& plan,
 std::vector<std::pair<int, double>> NearestPlanarHeights(
     const PolyMesh& plan, const std::vector<std::pair<int, double>>& targets) {
   const int n = static_cast<int>(plan.n_vertices());
-  std::vector<char> given(n, 0);
-  for (const auto& [vertex, z] : targets) {
-    if (vertex < 0 || vertex >= n)
-      throw InputError("height at vertex " + std::to_string(vertex) +
-                       ": the plan has vertices 0.." + std::to_string(n - 1));
-    if (given[vertex]) throw InputError("vertex " + std::to_string(vertex) + " is given twice");
-    if (!std::isfinite(z))
-      throw InputError("the height at vertex " + std::to_string(vertex) + " is not finite");
-    given[vertex] = 1;
-  }
+  const std::vector<char> given = CheckHeights(plan, targets);
   // min |E z − t|² (+ a 1e-12 ridge for the vertices no target reaches) subject to P z = 0.
   std::vector<Eigen::Triplet<double>> q_entries, a_entries;
   std::vector<double> b;
@@ -315,7 +318,7 @@ std::vector<std::pair<int, double>> NearestPlanarHeights(
   // (plus the ridge) subject to P y = −P t̂.
   Eigen::VectorXd shift = Eigen::VectorXd::Zero(n);
   for (const auto& [vertex, z] : targets) shift[vertex] = z;
-  const Eigen::VectorXd moved_rhs = -(PolygonPlanarityMatrix(plan) * shift);
+  const Eigen::VectorXd moved_rhs = -(RowsMatrix(rows, n) * shift);
   for (size_t r = 0; r < rows.size(); ++r) b[r] = moved_rhs[r];
   Eigen::SparseMatrix<double> q(n, n);
   q.setFromTriplets(q_entries.begin(), q_entries.end());
