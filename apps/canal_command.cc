@@ -15,6 +15,7 @@
 #include "problems/canal_from_curves.h"
 #include "problems/canal_surface.h"
 #include "problems/circular_mesh.h"
+#include "problems/closed_canal.h"
 
 namespace gproj {
 namespace {
@@ -24,6 +25,7 @@ struct CanalArgs {
   MeshOutputs outputs;
   std::vector<double> first_point, lengths, normal, section_scales;
   double length = 0.0, psi = 0.0;
+  bool closed = false;
   CanalSurfaceOptions options;
 };
 
@@ -152,7 +154,100 @@ int RunCCanal(const CanalArgs& args) {
                           1e-9);
 }
 
+// 000 §4.2: the strip closed by the closing circle (case 1 keeps the first point, case 2 moves
+// Q_0), the frame closed around the loop where the curve allows, the canal mesh as a ring.
+int RunClosedCanal(const CanalArgs& args) {
+  ClosedCanalSurface c;
+  RunReport report;
+  PolyMesh strip_mesh;
+  try {
+    args.outputs.Check({{"curve", args.curve}}, {{"--strip", args.strip, true}});
+    if (!args.second_curve.empty() || !args.section_scales.empty() || args.options.smooth)
+      throw InputError(
+          "--closed builds a closed circular strip: --second-curve, --section-scales and --smooth "
+          "do not apply");
+    if (args.first_point.empty()) throw InputError("--closed needs --first-point x,y,z");
+    const CircularStripInput input = MakeCircularStripInput(
+        ReadPoints(args.curve, 3), Vector3(args.first_point, "--first-point"), args.lengths,
+        args.length);
+    std::printf(
+        "gproj canal: %s: closed strip of %zu quads (000 §4.2); the closing circle sets Q_%zu%s\n",
+        args.curve.c_str(), input.curve.size(), input.curve.size() - 1,
+        " (and Q_0 unless the end circles are co-spherical)");
+    const auto start = std::chrono::steady_clock::now();
+    Eigen::Vector3d normal;
+    if (args.normal.empty()) {
+      CircularStripInput open = input;
+      open.curve.pop_back();
+      open.lengths.pop_back();
+      normal = DefaultCanalNormal(BuildCircularStrip(open));
+    } else {
+      normal = Vector3(args.normal, "--normal");
+      if (normal.norm() == 0.0) throw InputError("--normal must not be zero");
+    }
+    FrameAngles angles = AnglesFromNormal(normal);
+    angles.psi = args.psi;
+    ClosedCanalOptions options;
+    options.segments = args.options.segments;
+    c = BuildClosedCanalSurface(input, angles, options);
+    strip_mesh = ClosedStripMesh(c.closed.strip);
+    report = ConstructionReport(
+        "closing circle", {}, c.measures, c.frame_closes,
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    report.termination = c.frame_closes ? "closed" : "the frame does not close around the curve";
+  } catch (const InputError& e) {
+    std::cerr << "gproj canal: " << e.what() << "\n";
+    return kExitInputError;
+  }
+  const NamedValues& m = c.measures;
+  const int count = static_cast<int>(c.closed.strip.p.size());
+  if (c.closed.closing_case == 1)
+    std::printf(
+        "case 1: the circles of quads 0 and %d are co-spherical (to %.1e); the closing circle "
+        "passes Q_0 as asked and sets |P_%d Q_%d| = %.6g\n",
+        count - 2, c.closed.cosphericity, count - 1, count - 1, ValueOf(m, "last_length"));
+  else
+    std::printf(
+        "case 2: the circles of quads 0 and %d are not co-spherical (%.3g); the closing circle "
+        "(the spheres' intersection) moves Q_0 by %.6g and sets |P_%d Q_%d| = %.6g\n",
+        count - 2, c.closed.cosphericity, c.closed.start_shift, count - 1, count - 1,
+        ValueOf(m, "last_length"));
+  PrintMeasures("closed strip", MeasureCircularMesh(strip_mesh));
+  if (c.frame_closes)
+    std::printf("frame closes around the curve (%.1e deg; turned %.4g deg from the asked one)\n",
+                ValueOf(m, "frame_closure_deg"), ValueOf(m, "frame_rotation_deg"));
+  else
+    std::printf(
+        "the reflections along the curve turn every frame (%.4g deg for this one): no smooth "
+        "closed cyclidic net on this curve (000 §4.2 needs a pseudo-spherical curve); the canal "
+        "mesh is left open at P_0\n",
+        ValueOf(m, "frame_closure_deg"));
+  std::printf("canal mesh: %zu quads, %s (seam gap %.1e of the mean edge)\n", c.mesh.n_faces(),
+              c.welded ? "a closed ring" : "open at P_0", ValueOf(m, "seam_gap"));
+  PrintMeasures("canal mesh", m);
+  const Eigen::Vector3d n = NormalOf(c.angles);
+  nlohmann::json extra = {{"curve", args.curve}};
+  extra["frame"] = {{"lambda", c.angles.lambda}, {"theta", c.angles.theta}, {"psi", c.angles.psi}};
+  extra["frame"]["normal"] = {n.x(), n.y(), n.z()};
+  const Circle& circle = c.closed.closing_circle;
+  extra["closing_circle"] = {{"centre", {circle.centre.x(), circle.centre.y(), circle.centre.z()}},
+                             {"normal", {circle.normal.x(), circle.normal.y(), circle.normal.z()}},
+                             {"radius", circle.radius}};
+  std::vector<double> lengths;
+  for (int k = 0; k < count; ++k)
+    lengths.push_back((c.closed.strip.q[k] - c.closed.strip.p[k]).norm());
+  extra["lengths"] = lengths;
+  extra["mesh"] = {{"rows", count}, {"segments", args.options.segments}, {"closed", c.welded}};
+  char title[160];
+  std::snprintf(title, sizeof(title),
+                "Closed canal surface (000 §4.2, case %d), %zu circular quads",
+                c.closed.closing_case, c.mesh.n_faces());
+  return WriteAndConclude("canal", report, c.mesh, title, args.outputs, extra, "frame_closure_deg",
+                          1e-7, args.strip, args.strip.empty() ? nullptr : &strip_mesh);
+}
+
 int RunCanal(const CanalArgs& args) {
+  if (args.closed) return RunClosedCanal(args);
   if (!args.section_scales.empty()) return RunCCanal(args);
   if (!args.second_curve.empty()) return RunCanalFromCurves(args);
   std::unique_ptr<CanalSurface> canal;
@@ -242,6 +337,10 @@ void RegisterCanalCommand(CLI::App* app, int* exit_code) {
                   "arc's edges into a planar cross-section; the lengths are then the C-canal's")
       ->check(Positive())
       ->delimiter(',');
+  cmd->add_flag("--closed", args->closed,
+                "Close the curve by the edge P_n -> P_0 (000 §4.2): the closing circle sets the "
+                "last length (case 1) or also moves Q_0 (case 2); the frame is closed around the "
+                "curve where it can be");
   cmd->add_flag("--smooth", args->options.smooth, "Minimise the smoothness energy of 000 eq. 5");
   cmd->add_option("--length-weight", args->options.smoothing.length_weight,
                   "Weight keeping the lengths near the input during --smooth")

@@ -79,6 +79,11 @@ echo "== Canal surface fitted to two shipped curves (000 §4.1, eq. 6): spheres 
   --normal 0,0,1 -o out/demo/canal_two_curves.obj --picture out/demo/canal_two_curves.svg \
   --report out/demo/canal_two_curves_report.json
 echo
+echo "== Closed canal surface (000 §4.2): the closing circle of a strip on a closed curve on a sphere =="
+./build/gproj canal examples/data/canal_closed_curve.txt --closed --first-point 3.2,-0.2,0.5 --length 0.5 \
+  --normal 1,0,0 -o out/demo/canal_closed.obj --strip out/demo/canal_closed_strip.obj \
+  --picture out/demo/canal_closed.svg --report out/demo/canal_closed_report.json
+echo
 echo "== Torsion-free beams of constant height on the canal mesh (000 §4.3): planar beams, parallel offset =="
 ./build/gproj beams out/demo/canal.obj --height 0.1 -o out/demo/beams.obj \
   --axes out/demo/beam_axes.obj --offset out/demo/beam_offset.obj --picture out/demo/beams.svg \
@@ -134,6 +139,7 @@ echo "                                space by eq. 16 and by rank)"
 echo "  canal.obj, canal.svg          canal surface meshed by circular quads; canal_strip.obj its strip"
 echo "  c_canal.obj, .svg             C-canal surface: a planar cross-section, the asked lengths met (000 §5.2)"
 echo "  canal_two_curves.obj, .svg    canal surface whose spheres touch two curves (its report: the spheres)"
+echo "  canal_closed.obj, .svg        closed canal surface (000 §4.2); canal_closed_strip.obj its closed strip"
 echo "  beams.obj, beams.svg          torsion-free beams on the canal mesh; beam_axes.obj the node axes,"
 echo "                                beam_offset.obj the parallel offset mesh"
 echo "  combescure.obj, .svg          parallel mesh of the surface of revolution (still circular)"

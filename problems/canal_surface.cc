@@ -405,6 +405,21 @@ Eigen::Vector3d NormalOf(const FrameAngles& angles) {
   return NormalOfAngles<double>(angles.lambda, angles.theta);
 }
 
+Frame FrameOfAngles(const std::vector<Eigen::Vector3d>& curve, const FrameAngles& angles) {
+  const double a[3] = {angles.lambda, angles.theta, angles.psi};
+  Frame f;
+  FrameAtStart<double>(curve[0], curve[1], a, &f.t1, &f.t2, &f.n);
+  return f;
+}
+
+FrameAngles AnglesOfFrame(const std::vector<Eigen::Vector3d>& curve, const Frame& frame) {
+  FrameAngles angles = AnglesFromNormal(frame.n);
+  const Eigen::Vector3d n = NormalOf(angles), chord = curve[1] - curve[0];
+  const Eigen::Vector3d u = (chord - chord.dot(n) * n).normalized();
+  angles.psi = std::atan2(frame.t1.dot(n.cross(u)), frame.t1.dot(u));
+  return angles;
+}
+
 CyclidicStrip MakeCyclidicStrip(const CircularStrip& strip, const FrameAngles& angles) {
   if (const int e = ScaleExponent(strip.p, strip.q); e != 0) {
     CyclidicStrip net = MakeCyclidicStrip(Scaled(strip, -e), angles);
@@ -438,19 +453,16 @@ CyclidicStrip MakeCyclidicStrip(const CircularStrip& strip, const FrameAngles& a
   return net;
 }
 
-PolyMesh MeshCanalSurface(const CyclidicStrip& net, int m) {
+std::vector<std::vector<Eigen::Vector3d>> CanalRows(const CyclidicStrip& net, int m) {
   if (m < 1) throw InputError("the canal mesh needs at least one segment per circle");
   if (const int e = ScaleExponent(net.strip.p, net.strip.q); e != 0) {
     CyclidicStrip unit = net;
     unit.strip = Scaled(net.strip, -e);
     for (Circle& c : unit.circles) c = Scaled(c, -e);
-    PolyMesh mesh = MeshCanalSurface(unit, m);
-    for (auto v : mesh.vertices()) {
-      const PolyMesh::Point x = mesh.point(v);
-      mesh.set_point(
-          v, PolyMesh::Point(std::ldexp(x[0], e), std::ldexp(x[1], e), std::ldexp(x[2], e)));
-    }
-    return mesh;
+    std::vector<std::vector<Eigen::Vector3d>> rows = CanalRows(unit, m);
+    for (auto& row : rows)
+      for (Eigen::Vector3d& x : row) x = Scaled(x, e);
+    return rows;
   }
   const int n = static_cast<int>(net.strip.p.size()) - 1;
   std::vector<std::vector<Eigen::Vector3d>> rows(n + 1, std::vector<Eigen::Vector3d>(m + 1));
@@ -477,17 +489,26 @@ PolyMesh MeshCanalSurface(const CyclidicStrip& net, int m) {
       rows[k + 1][j + 1] = y0 - 2.0 * (y0 - c.centre).dot(dir) * dir;
     }
   }
+  return rows;
+}
+
+PolyMesh RowsMesh(const std::vector<std::vector<Eigen::Vector3d>>& rows, bool ring) {
   PolyMesh mesh;
   std::vector<PolyMesh::VertexHandle> v;
   for (const auto& row : rows)
     for (const auto& x : row) v.push_back(mesh.add_vertex(PolyMesh::Point(x.x(), x.y(), x.z())));
-  for (int k = 0; k < n; ++k)
+  const int count = static_cast<int>(rows.size());
+  const int m = count > 0 ? static_cast<int>(rows[0].size()) - 1 : 0;
+  for (int k = 0; k < (ring ? count : count - 1); ++k)
     for (int j = 0; j < m; ++j) {
-      const int a = k * (m + 1) + j;
-      mesh.add_face(
-          std::vector<PolyMesh::VertexHandle>{v[a], v[a + m + 1], v[a + m + 2], v[a + 1]});
+      const int a = k * (m + 1) + j, b = ((k + 1) % count) * (m + 1) + j;
+      mesh.add_face(std::vector<PolyMesh::VertexHandle>{v[a], v[b], v[b + 1], v[a + 1]});
     }
   return mesh;
+}
+
+PolyMesh MeshCanalSurface(const CyclidicStrip& net, int m) {
+  return RowsMesh(CanalRows(net, m), false);
 }
 
 bool CanalSmoothingOptions::IsValid(std::string* why) const {

@@ -73,6 +73,11 @@ Eigen::Vector3d NormalOf(const FrameAngles& angles);
 struct Frame {
   Eigen::Vector3d t1, t2, n;
 };
+// The frame of `angles` at P_0 of `curve` (as MakeCyclidicStrip sets it up), and the angles of a
+// right-handed orthonormal frame (t2 = n × t1; ψ takes up the turn of t1 about n).
+Frame FrameOfAngles(const std::vector<Eigen::Vector3d>& curve, const FrameAngles& angles);
+FrameAngles AnglesOfFrame(const std::vector<Eigen::Vector3d>& curve, const Frame& frame);
+
 struct CyclidicStrip {
   CircularStrip strip;
   std::vector<Frame> p_frames, q_frames;  // at P_k and Q_k
@@ -84,6 +89,13 @@ CyclidicStrip MakeCyclidicStrip(const CircularStrip& strip, const FrameAngles& a
 // Canal mesh: (n + 1) × (m + 1) vertices, vertex (k, j) = P_{k,j}; grid order as above.
 // Throws InputError if a plane is parallel to a circle's plane (degenerate step).
 PolyMesh MeshCanalSurface(const CyclidicStrip& net, int m);
+
+// The canal mesh's rows: row k holds P_{k,0..m} on C_k (n + 1 rows).
+std::vector<std::vector<Eigen::Vector3d>> CanalRows(const CyclidicStrip& net, int m);
+
+// A grid mesh of rows of equal length: faces (k, j), (k + 1, j), (k + 1, j + 1), (k, j + 1);
+// with `ring` also from the last row to the first.
+PolyMesh RowsMesh(const std::vector<std::vector<Eigen::Vector3d>>& rows, bool ring);
 
 struct CanalSmoothingOptions {
   int max_iterations = 200;

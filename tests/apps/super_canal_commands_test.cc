@@ -2,10 +2,12 @@
 // the shipped data.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 
 #include "apps/command_test_util.h"
+#include "geometry/circle.h"
 #include "geometry/mesh_io.h"
 
 namespace gproj {
@@ -286,6 +288,53 @@ TEST_F(SuperCanalCommandTest, CanalFromTwoCurvesFitsSpheresAndMeshesCircularQuad
       Gproj("canal " + Data("canal_curve.txt") + " --length 2 -o " + Path("out.obj")),
       "--first-point");
   EXPECT_FALSE(Exists("out.obj"));
+}
+
+TEST_F(SuperCanalCommandTest, ClosedCanalClosesTheStripAndTheFrameWhereTheCurveAllows) {
+  // The shipped curve lies on a sphere with an odd count: case 2, and a frame that closes.
+  const std::string curve = Data("canal_closed_curve.txt");
+  const CommandRun r =
+      Gproj("canal " + curve +
+            " --closed --first-point 3.2,-0.2,0.5 --length 0.5 --normal 1,0,0 "
+            "--segments 6 -o " +
+            Path("closed.obj") + " --strip " + Path("ring.obj") + " --report " + Path("r.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("case 2"), std::string::npos) << r.out;
+  const nlohmann::json report = Json("r.json");
+  EXPECT_EQ(report["final"]["closing_case"].get<double>(), 2.0);
+  EXPECT_GT(report["final"]["start_point_shift"].get<double>(), 0.01);
+  EXPECT_LT(report["final"]["frame_closure_deg"].get<double>(), 1e-9);
+  EXPECT_LT(report["final"]["max_concyclicity"].get<double>(), 1e-10);
+  EXPECT_TRUE(report["mesh"]["closed"].get<bool>());
+  EXPECT_EQ(report["lengths"].size(), 11u);
+  const PolyMesh mesh = ReadMesh(Path("closed.obj")), ring = ReadMesh(Path("ring.obj"));
+  EXPECT_EQ(mesh.n_faces(), 66u);
+  EXPECT_EQ(mesh.n_vertices(), 77u);  // a ring: no seam row
+  EXPECT_EQ(ring.n_faces(), 11u);
+  EXPECT_LT(MeasureCircularity(ring).max_concyclicity, 1e-10);
+
+  // A curve whose reflections turn every frame: the strip closes, the surface cannot; exit 3.
+  std::string text;
+  for (int k = 0; k < 10; ++k) {
+    const double t = 2.0 * M_PI * k / 10;
+    text += std::to_string(3.0 * std::cos(t) + 0.3 * std::cos(2.0 * t)) + " " +
+            std::to_string(3.0 * std::sin(t)) + " " + std::to_string(0.6 * std::sin(3.0 * t)) +
+            "\n";
+  }
+  const std::string space = Write("space.txt", text);
+  const CommandRun open =
+      Gproj("canal " + space + " --closed --first-point 2,-1,0 --length 1 -o " + Path("open.obj"));
+  EXPECT_EQ(open.exit_code, 3) << open.err << open.out;
+  EXPECT_NE(open.out.find("no smooth closed cyclidic net"), std::string::npos) << open.out;
+  EXPECT_NE(open.err.find("frame_closure_deg"), std::string::npos) << open.err;
+  ExpectOneLineError(
+      Gproj("canal " + curve + " --closed --first-point 3.2,-0.2,0.5 --length 0.5 --smooth -o " +
+            Path("x.obj")),
+      "--smooth");
+  ExpectOneLineError(Gproj("canal " + space +
+                           " --closed --first-point 3.3,-0.2,0.3 --length 0.4 -o " + Path("x.obj")),
+                     "folds quad");
+  EXPECT_FALSE(Exists("x.obj"));
 }
 
 }  // namespace

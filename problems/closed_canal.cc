@@ -1,0 +1,258 @@
+#include "problems/closed_canal.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "problems/circular_mesh.h"
+
+namespace gproj {
+namespace {
+
+// A sphere or plane: a |x|² + b·x + c = 0.
+struct GeneralSphere {
+  double a = 0.0;
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  double c = 0.0;
+};
+
+// The sphere (or plane) through a circle and a point off it: the member of the pencil spanned by
+// the circle's sphere |x − centre|² − r² and its plane n·(x − centre) that passes the point.
+GeneralSphere SphereThrough(const Circle& circle, const Eigen::Vector3d& point) {
+  const Eigen::Vector3d d = point - circle.centre;
+  const double lambda = circle.normal.dot(d);
+  const double mu = -(d.squaredNorm() - circle.radius * circle.radius);
+  GeneralSphere s;
+  s.a = lambda;
+  s.b = -2.0 * lambda * circle.centre + mu * circle.normal;
+  s.c = lambda * (circle.centre.squaredNorm() - circle.radius * circle.radius) -
+        mu * circle.normal.dot(circle.centre);
+  return s;
+}
+
+double DistanceTo(const GeneralSphere& s, const Eigen::Vector3d& x) {
+  if (s.a == 0.0) return std::abs(s.b.dot(x) + s.c) / s.b.norm();
+  const Eigen::Vector3d centre = -s.b / (2.0 * s.a);
+  const double r2 = centre.squaredNorm() - s.c / s.a;
+  return std::abs((x - centre).norm() - std::sqrt(std::max(0.0, r2)));
+}
+
+std::string Name(const char* letter, int k) {
+  return std::string(letter) + "_" + std::to_string(k);
+}
+
+// The second point where the line through `on` (a point of `circle`) in the planes of `circle`
+// and of the normal `plane_normal` meets the circle. Throws when the planes agree or the line
+// only touches the circle.
+Eigen::Vector3d SecondIntersection(const Circle& circle, const Eigen::Vector3d& on,
+                                   const Eigen::Vector3d& plane_normal, const std::string& what,
+                                   double scale) {
+  const Eigen::Vector3d d = circle.normal.cross(plane_normal.normalized());
+  if (!(d.norm() > 1e-12))
+    throw InputError("the closing circle lies in the plane of " + what +
+                     ": the closed strip degenerates");
+  const double s = -2.0 * d.dot(on - circle.centre) / d.squaredNorm();
+  const Eigen::Vector3d x = on + s * d;
+  if (!(std::abs(s) * d.norm() > 1e-9 * scale))
+    throw InputError("the closing circle only touches " + what +
+                     ": change the first point or the lengths");
+  return x;
+}
+
+// True when the four points (coplanar, on one circle) are in cyclic order: a convex quad.
+bool Convex(const std::array<Eigen::Vector3d, 4>& v) {
+  const Eigen::Vector3d n = (v[2] - v[0]).cross(v[3] - v[1]);
+  for (int i = 0; i < 4; ++i) {
+    const Eigen::Vector3d turn = (v[(i + 1) % 4] - v[i]).cross(v[(i + 2) % 4] - v[(i + 1) % 4]);
+    if (!(turn.dot(n) > 0.0)) return false;
+  }
+  return true;
+}
+
+double MeanEdge(const CircularStrip& strip) {
+  const int count = static_cast<int>(strip.p.size());
+  double sum = 0.0;
+  for (int k = 0; k < count; ++k) {
+    const int next = (k + 1) % count;
+    sum += (strip.p[next] - strip.p[k]).norm() + (strip.q[next] - strip.q[k]).norm() +
+           (strip.q[k] - strip.p[k]).norm();
+  }
+  return sum / (3 * count);
+}
+
+}  // namespace
+
+ClosedCircularStrip BuildClosedCircularStrip(const CircularStripInput& input) {
+  const int count = static_cast<int>(input.curve.size());
+  if (count < 3) throw InputError("a closed strip needs at least three curve points");
+  if (static_cast<int>(input.lengths.size()) != count)
+    throw InputError("the strip needs one length per curve point (" + std::to_string(count) +
+                     "), got " + std::to_string(input.lengths.size()));
+  for (int k = 0; k < count; ++k) {
+    if (!input.curve[k].allFinite())
+      throw InputError("curve point " + std::to_string(k) + " is not finite");
+    const int next = (k + 1) % count;
+    if (input.curve[k] == input.curve[next])
+      throw InputError(
+          "curve points " + std::to_string(k) + " and " + std::to_string(next) + " are the same" +
+          (next == 0 ? " (list a closed curve's points once, without repeating P_0)" : ""));
+  }
+  // Q_0..Q_{N−2}: the open strip on P_0..P_{N−2}.
+  CircularStripInput open = input;
+  open.curve.pop_back();
+  open.lengths.pop_back();
+  const CircularStrip first = BuildCircularStrip(open);
+  ClosedCircularStrip result;
+  CircularStrip& strip = result.strip;
+  strip.p = input.curve;
+  strip.q = first.q;
+  strip.q.push_back(strip.p[count - 1]);  // Q_{N−1}, set below
+  const int last = count - 1, before = count - 2;
+  const Eigen::Vector3d &p0 = strip.p[0], &pl = strip.p[last];
+  const Circle gamma0 = CircleThrough<double>(p0, strip.p[1], strip.q[0]);
+  const Circle gammal = CircleThrough<double>(strip.p[before], pl, strip.q[before]);
+  if (!std::isfinite(gammal.radius) || !(gammal.radius > 0.0))
+    throw InputError("P_" + std::to_string(before) + ", P_" + std::to_string(last) + " and Q_" +
+                     std::to_string(before) + " are collinear");
+  double scale = 0.0;
+  for (int k = 0; k < count; ++k) scale = std::max(scale, (strip.p[k] - p0).norm());
+  const GeneralSphere sa = SphereThrough(gamma0, pl), sb = SphereThrough(gammal, p0);
+  // Mean edge of the open part, for the relative measures.
+  const double edge = MeanEdge({strip.p, strip.q});
+  result.cosphericity =
+      std::max(DistanceTo(sa, strip.p[before]), DistanceTo(sa, strip.q[before])) / edge;
+  Eigen::Vector3d plane_normal;
+  const Eigen::Vector3d asked_q0 = strip.q[0];
+  if (result.cosphericity < 1e-9) {
+    result.closing_case = 1;
+    plane_normal = (p0 - strip.q[0]).cross(pl - strip.q[0]);
+    if (!(plane_normal.norm() > 1e-12 * (p0 - strip.q[0]).norm() * (pl - strip.q[0]).norm()))
+      throw InputError("Q_0, P_0 and P_" + std::to_string(last) +
+                       " are collinear: they do not fix a closing circle");
+  } else {
+    result.closing_case = 2;
+    plane_normal = sb.a * sa.b - sa.a * sb.b;  // the radical plane of the two spheres
+    if (!(plane_normal.norm() >
+          1e-12 * std::max(sa.b.norm() * std::abs(sb.a), sb.b.norm() * std::abs(sa.a))))
+      throw InputError("the spheres (Γ_0, P_" + std::to_string(last) + ") and (Γ_" +
+                       std::to_string(before) +
+                       ", P_0) are planes: the closing circle degenerates to a line");
+    strip.q[0] = SecondIntersection(gamma0, p0, plane_normal, "the first circle Γ_0", scale);
+  }
+  strip.q[last] =
+      SecondIntersection(gammal, pl, plane_normal, "the circle Γ_" + std::to_string(before), scale);
+  result.start_shift = (strip.q[0] - asked_q0).norm();
+  result.closing_circle = CircleThrough<double>(pl, p0, strip.q[0]);
+  const std::array<int, 3> checked = {0, before, last};
+  for (int k : checked) {
+    const int next = (k + 1) % count;
+    if (!Convex({strip.p[k], strip.p[next], strip.q[next], strip.q[k]})) {
+      char shift[96] = "";
+      if (result.closing_case == 2)
+        std::snprintf(shift, sizeof(shift), " (case 2 moves Q_0 by %.4g)", result.start_shift);
+      throw InputError("the closing circle folds quad " + std::to_string(k) + " (" + Name("P", k) +
+                       ", " + Name("P", next) + ", " + Name("Q", next) + ", " + Name("Q", k) + ")" +
+                       shift + ": change the first point or the lengths");
+    }
+  }
+  return result;
+}
+
+PolyMesh ClosedStripMesh(const CircularStrip& strip) {
+  std::vector<std::vector<Eigen::Vector3d>> rows;
+  for (size_t k = 0; k < strip.p.size(); ++k) rows.push_back({strip.p[k], strip.q[k]});
+  return RowsMesh(rows, true);
+}
+
+Eigen::Matrix3d LoopReflection(const std::vector<Eigen::Vector3d>& closed_curve) {
+  Eigen::Matrix3d m = Eigen::Matrix3d::Identity();
+  const int count = static_cast<int>(closed_curve.size());
+  for (int k = 0; k < count; ++k) {
+    const Eigen::Vector3d e = (closed_curve[(k + 1) % count] - closed_curve[k]).normalized();
+    m = (Eigen::Matrix3d::Identity() - 2.0 * e * e.transpose()) * m;
+  }
+  return m;
+}
+
+double FrameClosureAngle(const Eigen::Matrix3d& loop, const Frame& frame) {
+  // Each reflection reverses the sense of t1 (the arc's direction of travel) and keeps t2 and n.
+  const double t1_sense = loop.determinant() < 0.0 ? -1.0 : 1.0;
+  double worst = 0.0;
+  for (const auto& [v, sense] :
+       {std::pair<Eigen::Vector3d, double>{frame.t1, t1_sense}, {frame.t2, 1.0}, {frame.n, 1.0}}) {
+    const Eigen::Vector3d w = loop * v;
+    worst = std::max(worst, std::atan2(v.cross(w).norm(), sense * v.dot(w)));
+  }
+  return worst * 180.0 / M_PI;
+}
+
+bool ClosingFrame(const Eigen::Matrix3d& loop, const Frame& start, Frame* result,
+                  double* rotation_deg) {
+  *result = start;
+  *rotation_deg = 0.0;
+  const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
+  if (loop.determinant() > 0.0) return (loop - identity).norm() < 1e-10;
+  // An odd count: the loop must be the reflection in a plane, whose normal w becomes ±t1.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(0.5 * (loop + loop.transpose()));
+  const Eigen::Vector3d w = eigen.eigenvectors().col(0);  // eigenvalue −1
+  if (!((loop - (identity - 2.0 * w * w.transpose())).norm() < 1e-10)) return false;
+  const Eigen::Vector3d target = start.t1.dot(w) >= 0.0 ? w : Eigen::Vector3d(-w);
+  const Eigen::Matrix3d r = Eigen::Quaterniond::FromTwoVectors(start.t1, target).toRotationMatrix();
+  *result = {r * start.t1, r * start.t2, r * start.n};
+  *rotation_deg = Eigen::AngleAxisd(r).angle() * 180.0 / M_PI;
+  return true;
+}
+
+bool ClosedCanalOptions::IsValid(std::string* why) const {
+  if (segments < 1 || segments > 100000) {
+    *why = "segments must be in [1, 100000]";
+    return false;
+  }
+  return true;
+}
+
+ClosedCanalSurface BuildClosedCanalSurface(const CircularStripInput& input,
+                                           const FrameAngles& angles,
+                                           const ClosedCanalOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("closed canal surface: " + why);
+  ClosedCanalSurface s;
+  s.closed = BuildClosedCircularStrip(input);
+  const std::vector<Eigen::Vector3d>& curve = s.closed.strip.p;
+  const Eigen::Matrix3d loop = LoopReflection(curve);
+  const Frame asked = FrameOfAngles(curve, angles);
+  Frame frame = asked;
+  double rotation = 0.0;
+  if (options.close_frame) ClosingFrame(loop, asked, &frame, &rotation);
+  const double closure = FrameClosureAngle(loop, frame);
+  s.frame_closes = closure < 1e-7;
+  s.angles = AnglesOfFrame(curve, frame);
+  // The net on the curve run once around and back to P_0: its last circle is C_0 as the carried
+  // frame sees it, so every quad of the mesh is circular and the seam shows what does not close.
+  CircularStrip around = s.closed.strip;
+  around.p.push_back(around.p[0]);
+  around.q.push_back(around.q[0]);
+  s.net = MakeCyclidicStrip(around, s.angles);
+  std::vector<std::vector<Eigen::Vector3d>> rows = CanalRows(s.net, options.segments);
+  const int count = static_cast<int>(curve.size());
+  double gap = 0.0;
+  for (int j = 0; j <= options.segments; ++j)
+    gap = std::max(gap, (rows[count][j] - rows[0][j]).norm());
+  gap /= MeanEdge(s.closed.strip);
+  s.welded = s.frame_closes && gap < 1e-9;
+  if (s.welded) rows.pop_back();
+  s.mesh = RowsMesh(rows, s.welded);
+  s.measures = {{"closing_case", static_cast<double>(s.closed.closing_case)},
+                {"cosphericity", s.closed.cosphericity},
+                {"start_point_shift", s.closed.start_shift},
+                {"last_length", (s.closed.strip.q[count - 1] - curve[count - 1]).norm()},
+                {"frame_closure_deg", closure},
+                {"frame_rotation_deg", rotation},
+                {"seam_gap", gap}};
+  for (const NamedValue& v : MeasureCircularMesh(s.mesh)) s.measures.push_back(v);
+  return s;
+}
+
+}  // namespace gproj
