@@ -16,12 +16,14 @@
 #include "problems/canal_surface.h"
 #include "problems/circular_mesh.h"
 #include "problems/closed_canal.h"
+#include "problems/cyclidic_surface.h"
 
 namespace gproj {
 namespace {
 
 struct CanalArgs {
-  std::string curve, strip, second_curve;
+  std::string curve, strip, second_curve, surface, surface_picture;
+  int surface_segments = 8;
   MeshOutputs outputs;
   std::vector<double> first_point, lengths, normal, section_scales;
   double length = 0.0, psi = 0.0;
@@ -31,7 +33,10 @@ struct CanalArgs {
 
 // The canal surface of the options; its frame's normal is --normal or the default.
 std::unique_ptr<CanalSurface> CanalFromArgs(const CanalArgs& args) {
-  args.outputs.Check({{"curve", args.curve}}, {{"--strip", args.strip, true}});
+  args.outputs.Check({{"curve", args.curve}},
+                     {{"--strip", args.strip, true},
+                      {"--surface", args.surface, true},
+                      {"--surface-picture", args.surface_picture, false, ".svg"}});
   if (args.first_point.empty())
     throw InputError("--first-point x,y,z is needed (or --second-curve with --normal)");
   const CircularStripInput input =
@@ -43,6 +48,46 @@ std::unique_ptr<CanalSurface> CanalFromArgs(const CanalArgs& args) {
   FrameAngles angles = AnglesFromNormal(normal);
   angles.psi = args.psi;
   return std::make_unique<CanalSurface>(input, angles, args.options);
+}
+
+ExtraMeshes Joined(ExtraMeshes a, const ExtraMeshes& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+// The smooth cyclidic surface of the canal's net (000 §2.2) when --surface asks for it; its
+// measures go to the report's "surface".
+struct SmoothSurface {
+  CyclidicSurface surface;
+  bool made = false;
+  // Its outputs: the fine mesh (--surface) and its picture (--surface-picture).
+  ExtraMeshes Outputs(const CanalArgs& args) const {
+    char title[160];
+    std::snprintf(title, sizeof(title),
+                  "Smooth cyclidic surface (000 §2.2), %g Dupin cyclide patches",
+                  made ? ValueOf(surface.measures, "patches") : 0.0);
+    return {{args.surface, &surface.mesh}, {args.surface_picture, &surface.mesh, title}};
+  }
+};
+SmoothSurface MakeSmoothSurface(const CanalArgs& args, const CyclidicStrip& net, bool closed) {
+  SmoothSurface s;
+  if (args.surface.empty() && args.surface_picture.empty()) return s;
+  CyclidicSurfaceOptions options;
+  options.segments = args.surface_segments;
+  options.weld_closed = closed;
+  s.surface = MeshCyclidicSurface(CyclidicNetOfStrip(net), options);
+  s.made = true;
+  return s;
+}
+void PrintSmoothSurface(const SmoothSurface& s, nlohmann::json* extra) {
+  if (!s.made) return;
+  const NamedValues& m = s.surface.measures;
+  std::printf(
+      "smooth cyclidic surface (000 §2.2): %g Dupin cyclide patches, %zu fine quads; tangent "
+      "planes across the patches' shared arcs agree to %.1e deg\n",
+      ValueOf(m, "patches"), s.surface.mesh.n_faces(), ValueOf(m, "max_tangent_angle_deg"));
+  for (const NamedValue& v : m) (*extra)["surface"][v.name] = v.value;
+  (*extra)["surface"]["welded"] = s.surface.welded;
 }
 
 // 000 §4.1 from two curves: spheres equidistant from the line of curvature and the second
@@ -65,6 +110,10 @@ int RunCanalFromCurves(const CanalArgs& args) {
           "--length-weight belong to the circular-strip construction");
     if (args.normal.empty())
       throw InputError("--second-curve needs --normal x,y,z, the surface normal at P_0");
+    if (!args.surface.empty() || !args.surface_picture.empty())
+      throw InputError(
+          "--surface and --surface-picture need a circular strip's cyclidic net, not "
+          "--second-curve");
     const std::vector<Eigen::Vector3d> curve1 = ReadPoints(args.curve, 3);
     const std::vector<Eigen::Vector3d> curve2 = ReadPoints(args.second_curve, 2);
     std::printf(
@@ -112,10 +161,11 @@ int RunCCanal(const CanalArgs& args) {
   CCanalSurface c;
   RunReport report;
   try {
-    if (!args.second_curve.empty() || args.options.smooth)
+    if (!args.second_curve.empty() || args.options.smooth || !args.surface.empty() ||
+        !args.surface_picture.empty())
       throw InputError(
           "--section-scales builds a C-canal surface from a circular strip: "
-          "--second-curve and --smooth do not apply");
+          "--second-curve, --smooth, --surface and --surface-picture do not apply");
     const std::unique_ptr<CanalSurface> canal = CanalFromArgs(args);
     std::printf(
         "gproj canal: %s: C-canal surface (000 §5.2): %zu curve points, cross-section of %d "
@@ -160,8 +210,12 @@ int RunClosedCanal(const CanalArgs& args) {
   ClosedCanalSurface c;
   RunReport report;
   PolyMesh strip_mesh;
+  SmoothSurface smooth;
   try {
-    args.outputs.Check({{"curve", args.curve}}, {{"--strip", args.strip, true}});
+    args.outputs.Check({{"curve", args.curve}},
+                       {{"--strip", args.strip, true},
+                        {"--surface", args.surface, true},
+                        {"--surface-picture", args.surface_picture, false, ".svg"}});
     if (!args.second_curve.empty() || !args.section_scales.empty() || args.options.smooth)
       throw InputError(
           "--closed builds a closed circular strip: --second-curve, --section-scales and --smooth "
@@ -191,6 +245,7 @@ int RunClosedCanal(const CanalArgs& args) {
     options.segments = args.options.segments;
     c = BuildClosedCanalSurface(input, angles, options);
     strip_mesh = ClosedStripMesh(c.closed.strip);
+    smooth = MakeSmoothSurface(args, c.net, c.welded);
     report = ConstructionReport(
         "closing circle", {}, c.measures, c.frame_closes,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
@@ -227,6 +282,7 @@ int RunClosedCanal(const CanalArgs& args) {
   PrintMeasures("canal mesh", m);
   const Eigen::Vector3d n = NormalOf(c.angles);
   nlohmann::json extra = {{"curve", args.curve}};
+  PrintSmoothSurface(smooth, &extra);
   extra["frame"] = {{"lambda", c.angles.lambda}, {"theta", c.angles.theta}, {"psi", c.angles.psi}};
   extra["frame"]["normal"] = {n.x(), n.y(), n.z()};
   const Circle& circle = c.closed.closing_circle;
@@ -243,7 +299,7 @@ int RunClosedCanal(const CanalArgs& args) {
                 "Closed canal surface (000 §4.2, case %d), %zu circular quads",
                 c.closed.closing_case, c.mesh.n_faces());
   return WriteAndConclude("canal", report, c.mesh, title, args.outputs, extra, "frame_closure_deg",
-                          1e-7, args.strip, args.strip.empty() ? nullptr : &strip_mesh);
+                          1e-7, Joined({{args.strip, &strip_mesh}}, smooth.Outputs(args)));
 }
 
 int RunCanal(const CanalArgs& args) {
@@ -253,6 +309,7 @@ int RunCanal(const CanalArgs& args) {
   std::unique_ptr<CanalSurface> canal;
   RunReport report;
   PolyMesh mesh;
+  SmoothSurface smooth;
   try {
     canal = CanalFromArgs(args);
     const CircularStripInput& input = canal->input();
@@ -264,6 +321,7 @@ int RunCanal(const CanalArgs& args) {
     if (args.options.smooth) log.PrintHeader();
     report = canal->Run([&log](const RunRecord& r) { return log.Print(r), true; });
     mesh = canal->Mesh();
+    smooth = MakeSmoothSurface(args, canal->Net(), false);
   } catch (const InputError& e) {
     std::cerr << "gproj canal: " << e.what() << "\n";
     return kExitInputError;
@@ -281,12 +339,13 @@ int RunCanal(const CanalArgs& args) {
   extra["frame"]["normal"] = {n.x(), n.y(), n.z()};
   for (const NamedValue& v : strip) extra["strip"][v.name] = v.value;
   extra["mesh"] = {{"rows", canal->strip().p.size() - 1}, {"segments", args.options.segments}};
+  PrintSmoothSurface(smooth, &extra);
   char title[160];
   std::snprintf(title, sizeof(title), "Canal surface, %zu circular quads, max concyclicity %.1e",
                 mesh.n_faces(), ValueOf(report.final, "max_concyclicity"));
   // The smoothing's tolerance is Ceres' relative function decrease, not a bound on a measure.
-  return WriteAndConclude("canal", report, mesh, title, args.outputs, extra, "", 0.0, args.strip,
-                          args.strip.empty() ? nullptr : &strip_mesh);
+  return WriteAndConclude("canal", report, mesh, title, args.outputs, extra, "", 0.0,
+                          Joined({{args.strip, &strip_mesh}}, smooth.Outputs(args)));
 }
 
 }  // namespace
@@ -353,6 +412,15 @@ void RegisterCanalCommand(CLI::App* app, int* exit_code) {
       ->check(Within(1, 100000))
       ->capture_default_str();
   cmd->add_option("--strip", args->strip, "Also write the circular strip (2 x (n+1) vertices)");
+  cmd->add_option("--surface", args->surface,
+                  "Also write the smooth cyclidic surface (000 §2.2): every quad of the strip's "
+                  "cyclidic net carries a Dupin cyclide patch, meshed along its curvature lines");
+  cmd->add_option("--surface-segments", args->surface_segments,
+                  "Fine quads along every arc of the smooth surface")
+      ->check(Within(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--surface-picture", args->surface_picture,
+                  "Write a shaded SVG picture of the smooth cyclidic surface");
   cmd->add_option("--report", args->outputs.report, "Write a JSON report");
   cmd->add_option("--picture", args->outputs.picture,
                   "Write a shaded SVG picture of the canal mesh");

@@ -77,7 +77,7 @@ int RunMRevolution(const MRevolutionArgs& args) {
   std::snprintf(title, sizeof(title), "M-revolution surface (000 §5.1), %zu circular quads",
                 surface.mesh.n_faces());
   return WriteAndConclude("mrevolution", report, surface.mesh, title, args.outputs, extra, "", 0.0,
-                          args.revolution, args.revolution.empty() ? nullptr : &surface.revolution);
+                          {{args.revolution, &surface.revolution}});
 }
 
 }  // namespace

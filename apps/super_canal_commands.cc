@@ -36,14 +36,22 @@ void PrintMeasures(const char* label, const NamedValues& measures) {
 
 int WriteAndConclude(const std::string& command, const RunReport& report, const PolyMesh& mesh,
                      const std::string& title, const MeshOutputs& outputs, nlohmann::json extra,
-                     const std::string& measure, double tolerance, const std::string& also,
-                     const PolyMesh* also_mesh) {
+                     const std::string& measure, double tolerance, const ExtraMeshes& also) {
   extra["output"] = report.failed ? "" : outputs.mesh;
   try {
     OutputFiles files;
     if (!report.failed) {
       files.AddMesh(mesh, outputs.mesh);
-      if (also_mesh != nullptr) files.AddMesh(*also_mesh, also);
+      for (const ExtraOutput& extra_output : also) {
+        if (extra_output.path.empty()) continue;
+        if (extra_output.svg_title.empty()) {
+          files.AddMesh(*extra_output.mesh, extra_output.path);
+        } else {
+          SvgOptions svg;
+          svg.title = extra_output.svg_title;
+          files.AddText(extra_output.path, RenderMeshSvg(*extra_output.mesh, svg));
+        }
+      }
       if (!outputs.picture.empty()) {
         SvgOptions svg;
         svg.title = title;
@@ -57,8 +65,10 @@ int WriteAndConclude(const std::string& command, const RunReport& report, const 
     std::cerr << "gproj " << command << ": " << e.what() << "\n";
     return kExitInputError;
   }
-  return ConcludeRun(command, report, measure, tolerance,
-                     {outputs.mesh, also, outputs.picture, outputs.report});
+  std::vector<std::string> written = {outputs.mesh};
+  for (const ExtraOutput& extra_output : also) written.push_back(extra_output.path);
+  written.insert(written.end(), {outputs.picture, outputs.report});
+  return ConcludeRun(command, report, measure, tolerance, written);
 }
 
 void RegisterSuperCanalCommands(CLI::App* app, int* exit_code) {

@@ -37,13 +37,20 @@ struct MeshOutputs {
 // "<label>: max planarity …, max concyclicity …" from MeasureCircularMesh's values.
 void PrintMeasures(const char* label, const NamedValues& measures);
 
-// Unless the run failed, writes the mesh, `also_mesh` to `also` (when given) and the picture
+// Unless the run failed, writes the mesh, the `also` outputs and the picture
 // (titled `title`); then the report (ReportJson with `extra` and "output"), all or none.
 // Returns ConcludeRun's exit code, which names `measure` and `tolerance` for a missed tolerance
 // and lists the outputs as written; kExitInputError when a file cannot be written.
+// More outputs of a mesh: the mesh itself, or with `svg_title` its picture (empty paths are
+// skipped).
+struct ExtraOutput {
+  std::string path;
+  const PolyMesh* mesh = nullptr;
+  std::string svg_title = {};
+};
+using ExtraMeshes = std::vector<ExtraOutput>;
 int WriteAndConclude(const std::string& command, const RunReport& report, const PolyMesh& mesh,
                      const std::string& title, const MeshOutputs& outputs, nlohmann::json extra,
-                     const std::string& measure, double tolerance, const std::string& also = "",
-                     const PolyMesh* also_mesh = nullptr);
+                     const std::string& measure, double tolerance, const ExtraMeshes& also = {});
 
 }  // namespace gproj

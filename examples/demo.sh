@@ -64,9 +64,10 @@ echo "== Marionette closed mesh of three rings (002 Figs. 7-8, eq. 9): each ring
 ./build/gproj marionette --closed-strip examples/data/marionette_closed_rings.txt \
   -o out/demo/marionette_rings.obj --report out/demo/marionette_rings_report.json
 echo
-echo "== Canal surface from a circular strip on a shipped curve, smoothed (000 eq. 5, BFGS) =="
+echo "== Canal surface from a circular strip on a shipped curve, smoothed (000 eq. 5, BFGS); its smooth cyclidic surface (§2.2) =="
 ./build/gproj canal examples/data/canal_curve.txt --first-point -0.5,0.5,2 --length 2 --smooth \
   -o out/demo/canal.obj --strip out/demo/canal_strip.obj --picture out/demo/canal.svg \
+  --surface out/demo/canal_smooth.obj --surface-picture out/demo/canal_smooth.svg \
   --report out/demo/canal_report.json
 echo
 echo "== C-canal surface (000 §5.2): the canal's lengths found by BFGS so that the C-canal's are 2 (eq. 10) =="
@@ -82,7 +83,8 @@ echo
 echo "== Closed canal surface (000 §4.2): the closing circle of a strip on a closed curve on a sphere =="
 ./build/gproj canal examples/data/canal_closed_curve.txt --closed --first-point 3.2,-0.2,0.5 --length 0.5 \
   --normal 1,0,0 -o out/demo/canal_closed.obj --strip out/demo/canal_closed_strip.obj \
-  --picture out/demo/canal_closed.svg --report out/demo/canal_closed_report.json
+  --picture out/demo/canal_closed.svg --surface out/demo/canal_closed_smooth.obj \
+  --surface-picture out/demo/canal_closed_smooth.svg --report out/demo/canal_closed_report.json
 echo
 echo "== Torsion-free beams of constant height on the canal mesh (000 §4.3): planar beams, parallel offset =="
 ./build/gproj beams out/demo/canal.obj --height 0.1 -o out/demo/beams.obj \
@@ -137,9 +139,11 @@ echo "  marionette_rings.obj          a closed Marionette mesh of three rings (i
 echo "  marionette_kagome.obj         a Kagome plan lifted with planar hexagons (its report: the design"
 echo "                                space by eq. 16 and by rank)"
 echo "  canal.obj, canal.svg          canal surface meshed by circular quads; canal_strip.obj its strip"
+echo "  canal_smooth.obj, .svg        its smooth cyclidic surface: a Dupin cyclide patch per strip quad (000 §2.2)"
 echo "  c_canal.obj, .svg             C-canal surface: a planar cross-section, the asked lengths met (000 §5.2)"
 echo "  canal_two_curves.obj, .svg    canal surface whose spheres touch two curves (its report: the spheres)"
-echo "  canal_closed.obj, .svg        closed canal surface (000 §4.2); canal_closed_strip.obj its closed strip"
+echo "  canal_closed.obj, .svg        closed canal surface (000 §4.2); canal_closed_strip.obj its closed strip,"
+echo "                                canal_closed_smooth.obj, .svg its smooth cyclidic surface, closed"
 echo "  beams.obj, beams.svg          torsion-free beams on the canal mesh; beam_axes.obj the node axes,"
 echo "                                beam_offset.obj the parallel offset mesh"
 echo "  combescure.obj, .svg          parallel mesh of the surface of revolution (still circular)"

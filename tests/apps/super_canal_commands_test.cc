@@ -306,11 +306,11 @@ TEST_F(SuperCanalCommandTest, ClosedCanalClosesTheStripAndTheFrameWhereTheCurveA
   EXPECT_LT(report["final"]["frame_closure_deg"].get<double>(), 1e-9);
   EXPECT_LT(report["final"]["max_concyclicity"].get<double>(), 1e-10);
   EXPECT_TRUE(report["mesh"]["closed"].get<bool>());
-  EXPECT_EQ(report["lengths"].size(), 11u);
+  EXPECT_EQ(report["lengths"].size(), 21u);
   const PolyMesh mesh = ReadMesh(Path("closed.obj")), ring = ReadMesh(Path("ring.obj"));
-  EXPECT_EQ(mesh.n_faces(), 66u);
-  EXPECT_EQ(mesh.n_vertices(), 77u);  // a ring: no seam row
-  EXPECT_EQ(ring.n_faces(), 11u);
+  EXPECT_EQ(mesh.n_faces(), 126u);
+  EXPECT_EQ(mesh.n_vertices(), 147u);  // a ring: no seam row
+  EXPECT_EQ(ring.n_faces(), 21u);
   EXPECT_LT(MeasureCircularity(ring).max_concyclicity, 1e-10);
 
   // A curve whose reflections turn every frame: the strip closes, the surface cannot; exit 3.
@@ -335,6 +335,42 @@ TEST_F(SuperCanalCommandTest, ClosedCanalClosesTheStripAndTheFrameWhereTheCurveA
                            " --closed --first-point 3.3,-0.2,0.3 --length 0.4 -o " + Path("x.obj")),
                      "folds quad");
   EXPECT_FALSE(Exists("x.obj"));
+}
+
+TEST_F(SuperCanalCommandTest, CanalWritesTheSmoothCyclidicSurface) {
+  const CommandRun r = Gproj(
+      "canal " + Data("canal_curve.txt") + " --first-point -0.5,0.5,2 --length 2 --segments 4 -o " +
+      Path("c.obj") + " --surface " + Path("s.obj") + " --surface-segments 5 --surface-picture " +
+      Path("s.svg") + " --report " + Path("r.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const nlohmann::json report = Json("r.json");
+  const nlohmann::json& surface = report["surface"];
+  EXPECT_EQ(surface["patches"].get<double>(), 12.0);
+  EXPECT_LT(surface["max_tangent_angle_deg"].get<double>(), 1e-5);
+  EXPECT_LT(surface["max_face_frame_closure_deg"].get<double>(), 1e-9);
+  const PolyMesh fine = ReadMesh(Path("s.obj"));
+  EXPECT_EQ(fine.n_vertices(), 6u * 61u);  // (1·5 + 1) × (12·5 + 1)
+  EXPECT_LT(MeasureCircularity(fine).max_concyclicity, 1e-9);
+  EXPECT_TRUE(Exists("s.svg"));
+  EXPECT_NE(r.out.find("smooth cyclidic surface"), std::string::npos) << r.out;
+
+  // Closed: the fine mesh welds into a ring.
+  const CommandRun closed =
+      Gproj("canal " + Data("canal_closed_curve.txt") +
+            " --closed --first-point 3.2,-0.2,0.5 --length 0.5 --normal 1,0,0 -o " +
+            Path("cc.obj") + " --surface " + Path("cs.obj") + " --surface-segments 4");
+  ASSERT_EQ(closed.exit_code, 0) << closed.err << closed.out;
+  EXPECT_EQ(ReadMesh(Path("cs.obj")).n_vertices(), 5u * 84u);
+  ExpectOneLineError(
+      Gproj("canal " + Data("canal_curve.txt") + " --first-point -0.5,0.5,2 --length 2 -o " +
+            Path("x.obj") + " --surface-picture " + Path("x.obj")),
+      "--surface-picture");
+  ExpectOneLineError(Gproj("canal " + Data("canal_curve_fine.txt") + " --second-curve " +
+                           Data("canal_second_curve.txt") + " --normal 0,0,1 -o " + Path("x.obj") +
+                           " --surface " + Path("y.obj")),
+                     "--surface");
+  EXPECT_FALSE(Exists("x.obj"));
+  EXPECT_FALSE(Exists("y.obj"));
 }
 
 }  // namespace

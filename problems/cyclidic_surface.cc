@@ -1,0 +1,471 @@
+#include "problems/cyclidic_surface.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+namespace gproj {
+namespace {
+
+// Mirror image in the plane perpendicular to `edge` (through the origin: vectors only).
+Eigen::Vector3d Mirror(const Eigen::Vector3d& v, const Eigen::Vector3d& edge) {
+  return v - (2.0 * v.dot(edge) / edge.squaredNorm()) * edge;
+}
+
+// The mirror image from p to q (v itself when they coincide).
+Eigen::Vector3d Carry(const Eigen::Vector3d& v, const Eigen::Vector3d& p,
+                      const Eigen::Vector3d& q) {
+  const Eigen::Vector3d edge = q - p;
+  return edge.squaredNorm() > 0.0 ? Mirror(v, edge) : v;
+}
+
+// The angle between the normals carried to `point` along the two paths a → via1 → point and
+// a → via2 → point: zero on the patch's curvature-line net (frames close around its quads).
+double PathMismatch(const Eigen::Vector3d& n, const Eigen::Vector3d& a, const Eigen::Vector3d& via1,
+                    const Eigen::Vector3d& via2, const Eigen::Vector3d& point) {
+  const Eigen::Vector3d n1 = Carry(Carry(n, a, via1), via1, point);
+  const Eigen::Vector3d n2 = Carry(Carry(n, a, via2), via2, point);
+  return std::atan2(n1.cross(n2).norm(), n1.dot(n2));
+}
+
+Frame Mirror(const Frame& f, const Eigen::Vector3d& edge) {
+  return {Mirror(f.t1, edge), Mirror(f.t2, edge), Mirror(f.n, edge)};
+}
+
+// The plane m·x + offset = 0.
+struct Plane {
+  Eigen::Vector3d m = Eigen::Vector3d::Zero();
+  double offset = 0.0;
+  double At(const Eigen::Vector3d& x) const { return m.dot(x) + offset; }
+};
+
+Plane PlaneOf(const Arc& arc) { return {arc.normal, -arc.normal.dot(arc.centre)}; }
+
+// The plane of the pencil spanned by p and q that passes through x.
+Plane PencilPlane(const Plane& p, const Plane& q, const Eigen::Vector3d& x) {
+  const double wp = q.At(x), wq = -p.At(x);
+  return {wp * p.m + wq * q.m, wp * p.offset + wq * q.offset};
+}
+
+// The fractions of the arc's angle (or length) at which it meets the plane: none, one (a
+// line) or two, each taken in [−0.5, 1.5) around the arc when it can be.
+std::vector<double> CutFractions(const Arc& arc, const Plane& plane) {
+  if (arc.straight) {
+    const double slope = plane.m.dot(arc.end - arc.start);
+    const double f = -plane.At(arc.start) / slope;
+    return std::isfinite(f) ? std::vector<double>{f} : std::vector<double>{};
+  }
+  const Eigen::Vector3d e1 = arc.start - arc.centre, e2 = arc.normal.cross(e1);
+  // plane(centre + cos θ e1 + sin θ e2) = a0 + a1 cos θ + a2 sin θ.
+  const double a0 = plane.At(arc.centre), a1 = plane.m.dot(e1), a2 = plane.m.dot(e2);
+  const double rho = std::hypot(a1, a2);
+  if (!(rho > 0.0) || std::abs(a0) > rho * (1.0 + 1e-12)) return {};
+  const double base = std::atan2(a2, a1), spread = std::acos(std::clamp(-a0 / rho, -1.0, 1.0));
+  std::vector<double> out;
+  for (double theta : {base + spread, base - spread}) {
+    theta = std::fmod(theta + 4.0 * M_PI, 2.0 * M_PI);
+    double f = theta / arc.angle;
+    // The arc's start may come out as 2π: take the turn nearest the arc.
+    if (f > 1.0 && (2.0 * M_PI - theta) / arc.angle < f - 1.0) f = (theta - 2.0 * M_PI) / arc.angle;
+    out.push_back(f);
+  }
+  return out;
+}
+
+// Of the points where the plane meets the arc, the one whose normal closes (PathMismatch); when
+// both close to 1e-9, the one on the arc (fraction in [−1e-6, 1 + 1e-6]). False when none.
+bool CutPoint(const Arc& arc, const Plane& plane, const Eigen::Vector3d& n,
+              const Eigen::Vector3d& a, const Eigen::Vector3d& via1, const Eigen::Vector3d& via2,
+              Eigen::Vector3d* point) {
+  double best = INFINITY;
+  bool best_on_arc = false;
+  for (double f : CutFractions(arc, plane)) {
+    const Eigen::Vector3d x = arc.At(f);
+    const bool on_arc = f >= -1e-6 && f <= 1.0 + 1e-6;
+    const double mismatch = PathMismatch(n, a, via1, via2, x);
+    const bool tie = std::max(mismatch, best) < 1e-9;
+    if (tie ? on_arc && !best_on_arc : mismatch < best) {
+      best = mismatch;
+      best_on_arc = on_arc;
+      *point = x;
+    }
+  }
+  return std::isfinite(best);
+}
+
+// The inversion in the sphere about `centre` with squared radius `power`, of points and (as
+// its differential, a mirror image up to a positive scale) of unit vectors at a point.
+struct Inversion {
+  Eigen::Vector3d centre;
+  double power = 1.0;
+  Eigen::Vector3d operator()(const Eigen::Vector3d& x) const {
+    const Eigen::Vector3d d = x - centre;
+    return centre + (power / d.squaredNorm()) * d;
+  }
+  Eigen::Vector3d Vector(const Eigen::Vector3d& x, const Eigen::Vector3d& v) const {
+    const Eigen::Vector3d d = x - centre;
+    return (v - (2.0 * d.dot(v) / d.squaredNorm()) * d).normalized();
+  }
+};
+
+std::string Where(const std::string& where, const std::string& what) {
+  return where.empty() ? what : where + ": " + what;
+}
+
+}  // namespace
+
+Eigen::Vector3d Arc::At(double fraction) const {
+  if (straight) return start + fraction * (end - start);
+  const Eigen::Vector3d e1 = start - centre, e2 = normal.cross(e1);
+  const double theta = fraction * angle;
+  return centre + std::cos(theta) * e1 + std::sin(theta) * e2;
+}
+
+Eigen::Vector3d Arc::Tangent(const Eigen::Vector3d& point) const {
+  if (straight) return (end - start).normalized();
+  return normal.cross(point - centre).normalized();
+}
+
+double Arc::Bend() const {
+  if (straight) return 0.0;
+  const Eigen::Vector3d chord = (end - start).normalized();
+  return Tangent(start).cross(chord).norm();
+}
+
+Arc ArcFrom(const Eigen::Vector3d& a, const Eigen::Vector3d& t, const Eigen::Vector3d& b,
+            const std::string& what) {
+  const Eigen::Vector3d chord = b - a;
+  if (!(chord.norm() > 0.0)) throw InputError(what + ": its ends coincide");
+  Arc arc;
+  arc.start = a;
+  arc.end = b;
+  const Eigen::Vector3d n = t.cross(chord);
+  if (!(n.norm() > 1e-12 * chord.norm())) {
+    arc.straight = true;
+    arc.normal = t.unitOrthogonal();
+    arc.radius = INFINITY;
+    return arc;
+  }
+  arc.normal = n.normalized();
+  const Eigen::Vector3d inward = arc.normal.cross(t).normalized();
+  const double s = chord.squaredNorm() / (2.0 * chord.dot(inward));
+  arc.centre = a + s * inward;
+  arc.radius = std::abs(s);
+  const Eigen::Vector3d e1 = a - arc.centre, e2 = arc.normal.cross(e1), d = b - arc.centre;
+  arc.angle = std::atan2(d.dot(e2), d.dot(e1));
+  if (arc.angle <= 0.0) arc.angle += 2.0 * M_PI;
+  return arc;
+}
+
+namespace {
+
+// Whether the pencil construction is ill-conditioned on the patch: an arc bent less than
+// `bend` (sin of its tangent-chord angle), or opposite arcs in (nearly) one plane.
+bool Degenerate(const Arc& ab, const Arc& ad, const Arc& bc, const Arc& dc, double bend) {
+  for (const Arc* arc : {&ab, &ad, &bc, &dc})
+    if (arc->Bend() < bend) return true;
+  return ab.normal.cross(dc.normal).norm() < bend || ad.normal.cross(bc.normal).norm() < bend;
+}
+
+std::vector<std::vector<Eigen::Vector3d>> EvaluatePatch(const CyclidicPatch& patch,
+                                                        const std::vector<Eigen::Vector3d>& xs,
+                                                        const std::vector<Eigen::Vector3d>& zs,
+                                                        const std::string& where, bool inverted);
+
+// The patch evaluated after an inversion about a point off it, mapped back; its boundary
+// samples kept exactly.
+std::vector<std::vector<Eigen::Vector3d>> EvaluateInverted(
+    const CyclidicPatch& patch, const std::vector<Eigen::Vector3d>& xs,
+    const std::vector<Eigen::Vector3d>& zs, const std::vector<Eigen::Vector3d>& arc_points,
+    const std::string& where) {
+  const auto& corners = patch.corners;
+  const Eigen::Vector3d mid = 0.25 * (corners[0] + corners[1] + corners[2] + corners[3]);
+  const Frame& f = patch.frame;
+  // The centre lies well outside the ball around the corners and the boundary arcs.
+  double size = 0.0;
+  for (const Eigen::Vector3d& x : arc_points) size = std::max(size, (x - mid).norm());
+  Inversion inv;
+  inv.centre = mid + 3.0 * size * (f.n + 0.37 * f.t1 + 0.23 * f.t2).normalized();
+  inv.power = size * size;
+  CyclidicPatch p;
+  for (int k = 0; k < 4; ++k) p.corners[k] = inv(corners[k]);
+  p.frame = {inv.Vector(corners[0], f.t1), inv.Vector(corners[0], f.t2),
+             inv.Vector(corners[0], f.n)};
+  std::vector<Eigen::Vector3d> ixs, izs;
+  for (const Eigen::Vector3d& x : xs) ixs.push_back(inv(x));
+  for (const Eigen::Vector3d& z : zs) izs.push_back(inv(z));
+  std::vector<std::vector<Eigen::Vector3d>> grid = EvaluatePatch(p, ixs, izs, where, true);
+  for (auto& row : grid)
+    for (Eigen::Vector3d& x : row) x = inv(x);
+  for (size_t i = 0; i < xs.size(); ++i) grid[i][0] = xs[i];
+  for (size_t j = 0; j < zs.size(); ++j) grid[0][j] = zs[j];
+  grid.back().front() = corners[1];
+  grid.back().back() = corners[2];
+  grid.front().back() = corners[3];
+  return grid;
+}
+
+std::vector<std::vector<Eigen::Vector3d>> EvaluatePatch(const CyclidicPatch& patch,
+                                                        const std::vector<Eigen::Vector3d>& xs,
+                                                        const std::vector<Eigen::Vector3d>& zs,
+                                                        const std::string& where, bool inverted) {
+  const auto& [a, b, c, d] = patch.corners;
+  const Frame& f = patch.frame;
+  const Eigen::Vector3d t1_d = Mirror(f.t1, d - a), t2_b = Mirror(f.t2, b - a);
+  const Arc ab = ArcFrom(a, f.t1, b, Where(where, "arc a-b"));
+  const Arc ad = ArcFrom(a, f.t2, d, Where(where, "arc a-d"));
+  const Arc bc = ArcFrom(b, t2_b, c, Where(where, "arc b-c"));
+  const Arc dc = ArcFrom(d, t1_d, c, Where(where, "arc d-c"));
+  if (!inverted && Degenerate(ab, ad, bc, dc, 1e-3)) {
+    std::vector<Eigen::Vector3d> arc_points;
+    for (const Arc* arc : {&ab, &ad, &bc, &dc})
+      for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) arc_points.push_back(arc->At(t));
+    return EvaluateInverted(patch, xs, zs, arc_points, where);
+  }
+  if (inverted && Degenerate(ab, ad, bc, dc, 1e-9))
+    throw InputError(Where(where, "the patch degenerates (straight or flat arcs)"));
+  const Plane p_ab = PlaneOf(ab), p_dc = PlaneOf(dc), p_ad = PlaneOf(ad), p_bc = PlaneOf(bc);
+  const int nx = static_cast<int>(xs.size()), nz = static_cast<int>(zs.size());
+  std::vector<std::vector<Eigen::Vector3d>> grid(nx, std::vector<Eigen::Vector3d>(nz));
+  std::vector<Plane> family1(nz);  // pencil planes of the family-1 circles through zs
+  for (int j = 0; j < nz; ++j) {
+    family1[j] = PencilPlane(p_ab, p_dc, zs[j]);
+    grid[0][j] = zs[j];
+    if (j == 0 || j == nz - 1) {
+      grid[nx - 1][j] = j == 0 ? b : c;
+    } else if (!CutPoint(bc, family1[j], f.n, a, zs[j], b, &grid[nx - 1][j])) {
+      throw InputError(Where(where, "a family-1 curvature circle misses arc b-c"));
+    }
+  }
+  for (int i = 1; i < nx - 1; ++i) {
+    const Eigen::Vector3d& x = xs[i];
+    Eigen::Vector3d y;
+    if (!CutPoint(dc, PencilPlane(p_ad, p_bc, x), f.n, a, x, d, &y))
+      throw InputError(Where(where, "a family-2 curvature circle misses arc d-c"));
+    const Arc circle = ArcFrom(x, Mirror(f.t2, x - a), y, Where(where, "a family-2 circle"));
+    grid[i][0] = x;
+    grid[i][nz - 1] = y;
+    for (int j = 1; j < nz - 1; ++j)
+      if (!CutPoint(circle, family1[j], f.n, a, x, zs[j], &grid[i][j]))
+        throw InputError(Where(where, "the curvature circles do not meet"));
+  }
+  return grid;
+}
+
+}  // namespace
+
+std::vector<std::vector<Eigen::Vector3d>> EvaluateCyclidicPatch(
+    const CyclidicPatch& patch, const std::vector<Eigen::Vector3d>& xs,
+    const std::vector<Eigen::Vector3d>& zs, const std::string& where) {
+  return EvaluatePatch(patch, xs, zs, where, false);
+}
+
+CyclidicPatch CyclidicNet::Patch(int i, int j) const {
+  CyclidicPatch p;
+  p.corners = {points[shape.Vertex(i, j)], points[shape.Vertex(i, j + 1)],
+               points[shape.Vertex(i + 1, j + 1)], points[shape.Vertex(i + 1, j)]};
+  const Frame& f = frames[shape.Vertex(i, j)];
+  p.frame = {(j % 2 ? -1.0 : 1.0) * f.t1, (i % 2 ? -1.0 : 1.0) * f.t2, f.n};
+  return p;
+}
+
+CyclidicNet MakeCyclidicNet(const GridShape& shape, std::vector<Eigen::Vector3d> points,
+                            const Frame& start) {
+  CyclidicNet net;
+  net.shape = shape;
+  net.points = std::move(points);
+  net.frames.resize(net.points.size());
+  net.frames[0] = start;
+  for (int i = 0; i <= shape.rows; ++i)
+    for (int j = 0; j <= shape.cols; ++j) {
+      if (i == 0 && j == 0) continue;
+      const int from = i == 0 ? shape.Vertex(0, j - 1) : shape.Vertex(i - 1, j);
+      const Eigen::Vector3d edge = net.points[shape.Vertex(i, j)] - net.points[from];
+      if (!(edge.norm() > 0.0))
+        throw InputError("vertices " + std::to_string(from) + " and " +
+                         std::to_string(shape.Vertex(i, j)) + " coincide");
+      net.frames[shape.Vertex(i, j)] = Mirror(net.frames[from], edge);
+    }
+  return net;
+}
+
+CyclidicNet CyclidicNetOfStrip(const CyclidicStrip& strip) {
+  GridShape shape;
+  shape.rows = 1;
+  shape.cols = static_cast<int>(strip.strip.p.size()) - 1;
+  std::vector<Eigen::Vector3d> points = strip.strip.p;
+  points.insert(points.end(), strip.strip.q.begin(), strip.strip.q.end());
+  return MakeCyclidicNet(shape, std::move(points), strip.p_frames[0]);
+}
+
+double MaxFaceFrameClosure(const CyclidicNet& net, int* worst_face) {
+  double worst = 0.0;
+  if (worst_face) *worst_face = -1;
+  const GridShape& s = net.shape;
+  for (int i = 0; i < s.rows; ++i)
+    for (int j = 0; j < s.cols; ++j) {
+      const int ring[5] = {s.Vertex(i, j), s.Vertex(i, j + 1), s.Vertex(i + 1, j + 1),
+                           s.Vertex(i + 1, j), s.Vertex(i, j)};
+      Frame f = net.frames[ring[0]];
+      for (int k = 0; k < 4; ++k) f = Mirror(f, net.points[ring[k + 1]] - net.points[ring[k]]);
+      const Frame& g = net.frames[ring[0]];
+      double angle = 0.0;
+      for (const auto& [u, v] : {std::pair{f.t1, g.t1}, {f.t2, g.t2}, {f.n, g.n}})
+        angle = std::max(angle, std::atan2(u.cross(v).norm(), u.dot(v)));
+      if (angle * 180.0 / M_PI > worst) {
+        worst = angle * 180.0 / M_PI;
+        if (worst_face) *worst_face = i * s.cols + j;
+      }
+    }
+  return worst;
+}
+
+bool CyclidicSurfaceOptions::IsValid(std::string* why) const {
+  if (segments < 1 || segments > 1000) {
+    *why = "segments must be in [1, 1000]";
+    return false;
+  }
+  return true;
+}
+
+namespace {
+
+// Equal-angle samples of an arc, its ends exact.
+std::vector<Eigen::Vector3d> Samples(const Arc& arc, const Eigen::Vector3d& end, int segments) {
+  std::vector<Eigen::Vector3d> x(segments + 1);
+  for (int k = 0; k <= segments; ++k) x[k] = arc.At(static_cast<double>(k) / segments);
+  x.front() = arc.start;
+  x.back() = end;
+  return x;
+}
+
+// Second-order one-sided difference into a patch at f0 from f(ε) and f(2ε).
+Eigen::Vector3d Inward(const Eigen::Vector3d& f0, const Eigen::Vector3d& f1,
+                       const Eigen::Vector3d& f2) {
+  return 4.0 * f1 - f2 - 3.0 * f0;
+}
+
+double LineAngleDeg(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+  return std::atan2(u.cross(v).norm(), std::abs(u.dot(v))) * 180.0 / M_PI;
+}
+
+std::string PatchName(int i, int j) {
+  return "patch (" + std::to_string(i) + ", " + std::to_string(j) + ")";
+}
+
+}  // namespace
+
+CyclidicSurface MeshCyclidicSurface(const CyclidicNet& net, const CyclidicSurfaceOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("cyclidic surface: " + why);
+  const GridShape& shape = net.shape;
+  const int s = options.segments, rows = shape.rows, cols = shape.cols;
+  // Per patch, the samples on its arc a-b (xs) and a-d (zs), and its evaluated grid.
+  std::vector<std::vector<Eigen::Vector3d>> xs(rows * cols), zs(rows * cols);
+  std::vector<std::vector<std::vector<Eigen::Vector3d>>> grids(rows * cols);
+  for (int i = 0; i < rows; ++i)
+    for (int j = 0; j < cols; ++j) {
+      const int k = i * cols + j;
+      const CyclidicPatch p = net.Patch(i, j);
+      const std::string name = PatchName(i, j);
+      if (i == 0)
+        xs[k] = Samples(ArcFrom(p.corners[0], p.frame.t1, p.corners[1], name + ": arc a-b"),
+                        p.corners[1], s);
+      else
+        for (const auto& row : grids[k - cols]) xs[k].push_back(row.back());
+      if (j == 0)
+        zs[k] = Samples(ArcFrom(p.corners[0], p.frame.t2, p.corners[3], name + ": arc a-d"),
+                        p.corners[3], s);
+      else
+        zs[k] = grids[k - 1].back();
+      grids[k] = EvaluateCyclidicPatch(p, xs[k], zs[k], name);
+    }
+  // The fine grid: vertex (i s + v, j s + u) = patch (i, j)'s grid[u][v].
+  CyclidicSurface out;
+  out.fine_shape.rows = rows * s;
+  out.fine_shape.cols = cols * s;
+  std::vector<Eigen::Vector3d> fine(out.fine_shape.num_vertices());
+  for (int i = 0; i < rows; ++i)
+    for (int j = 0; j < cols; ++j)
+      for (int u = 0; u <= s; ++u)
+        for (int v = 0; v <= s; ++v)
+          fine[out.fine_shape.Vertex(i * s + v, j * s + u)] = grids[i * cols + j][u][v];
+
+  // Tangent planes across shared arcs.
+  const double eps = 1e-5;
+  double worst = 0.0;
+  for (int i = 0; i < rows; ++i)
+    for (int j = 0; j < cols; ++j) {
+      const int k = i * cols + j;
+      const CyclidicPatch p = net.Patch(i, j);
+      const Arc ab = ArcFrom(p.corners[0], p.frame.t1, p.corners[1], "");
+      const Arc ad = ArcFrom(p.corners[0], p.frame.t2, p.corners[3], "");
+      if (i + 1 < rows) {  // arc d-c, shared with patch (i + 1, j)
+        const CyclidicPatch q = net.Patch(i + 1, j);
+        const Arc qad = ArcFrom(q.corners[0], q.frame.t2, q.corners[3], "");
+        const auto near = EvaluateCyclidicPatch(
+            p, xs[k], {p.corners[0], ad.At(1 - 2 * eps), ad.At(1 - eps), p.corners[3]}, "");
+        const auto far = EvaluateCyclidicPatch(
+            q, xs[k + cols], {q.corners[0], qad.At(eps), qad.At(2 * eps), q.corners[3]}, "");
+        const Arc dc = ArcFrom(p.corners[3], Mirror(p.frame.t1, p.corners[3] - p.corners[0]),
+                               p.corners[2], "");
+        for (int u = 1; u < s; ++u) {
+          const Eigen::Vector3d& y = near[u][3];
+          const Eigen::Vector3d t = dc.Tangent(y);
+          worst = std::max(worst, LineAngleDeg(t.cross(Inward(y, near[u][2], near[u][1])),
+                                               t.cross(Inward(y, far[u][1], far[u][2]))));
+        }
+      }
+      if (j + 1 < cols) {  // arc b-c, shared with patch (i, j + 1)
+        const CyclidicPatch q = net.Patch(i, j + 1);
+        const Arc qab = ArcFrom(q.corners[0], q.frame.t1, q.corners[1], "");
+        const auto near = EvaluateCyclidicPatch(
+            p, {p.corners[0], ab.At(1 - 2 * eps), ab.At(1 - eps), p.corners[1]}, zs[k], "");
+        const auto far = EvaluateCyclidicPatch(
+            q, {q.corners[0], qab.At(eps), qab.At(2 * eps), q.corners[1]}, zs[k + 1], "");
+        const Arc bc = ArcFrom(p.corners[1], Mirror(p.frame.t2, p.corners[1] - p.corners[0]),
+                               p.corners[2], "");
+        for (int v = 1; v < s; ++v) {
+          const Eigen::Vector3d& w = near[3][v];
+          const Eigen::Vector3d t = bc.Tangent(w);
+          worst = std::max(worst, LineAngleDeg(t.cross(Inward(w, near[2][v], near[1][v])),
+                                               t.cross(Inward(w, far[1][v], far[2][v]))));
+        }
+      }
+    }
+
+  // A net closed around: weld the last fine column onto the first when they coincide.
+  double edge = 0.0;
+  int edges = 0;
+  for (int i = 0; i <= rows; ++i)
+    for (int j = 0; j < cols; ++j, ++edges)
+      edge += (net.points[shape.Vertex(i, j + 1)] - net.points[shape.Vertex(i, j)]).norm();
+  edge /= std::max(edges, 1);
+  double seam = 0.0;
+  const GridShape& fs = out.fine_shape;
+  for (int r = 0; r <= fs.rows; ++r)
+    seam = std::max(seam, (fine[fs.Vertex(r, fs.cols)] - fine[fs.Vertex(r, 0)]).norm());
+  out.welded = options.weld_closed && seam < 1e-9 * edge;
+  std::vector<PolyMesh::VertexHandle> v(fine.size());
+  for (int r = 0; r <= fs.rows; ++r)
+    for (int q = 0; q <= fs.cols; ++q) {
+      const int id = fs.Vertex(r, q);
+      if (out.welded && q == fs.cols) {
+        v[id] = v[fs.Vertex(r, 0)];
+        continue;
+      }
+      v[id] = out.mesh.add_vertex(PolyMesh::Point(fine[id].x(), fine[id].y(), fine[id].z()));
+    }
+  for (int r = 0; r < fs.rows; ++r)
+    for (int q = 0; q < fs.cols; ++q)
+      out.mesh.add_face(
+          std::vector<PolyMesh::VertexHandle>{v[fs.Vertex(r, q)], v[fs.Vertex(r + 1, q)],
+                                              v[fs.Vertex(r + 1, q + 1)], v[fs.Vertex(r, q + 1)]});
+  out.measures = {{"patches", static_cast<double>(rows * cols)},
+                  {"max_tangent_angle_deg", worst},
+                  {"max_face_frame_closure_deg", MaxFaceFrameClosure(net)}};
+  if (options.weld_closed) out.measures.push_back({"seam_gap", seam / edge});
+  return out;
+}
+
+}  // namespace gproj

@@ -1,0 +1,116 @@
+#pragma once
+// The smooth cyclidic surface of a cyclidic net (000 §2.2; Bobenko & Huhnen-Venedey 2012,
+// "Curvature line parametrized surfaces and orthogonal coordinate systems: discretization with
+// Dupin cyclides").
+//
+// A cyclidic net is a circular quad net with an orthonormal frame (t1, t2, n) at every vertex,
+// the frames of neighbours mirror images in the bisector plane of their edge. Every quad
+// (a, b, c, d) then carries one patch of a Dupin cyclide, bounded by circular arcs: a → b
+// leaves a along t1, a → d along t2, b → c leaves b along the mirror image of t2, d → c leaves d
+// along that of t1. Both families of curvature lines are circles, and the circles of each
+// family lie in the planes of a pencil: family 2 (from ab to dc) in λ·plane(ad) + μ·plane(bc),
+// family 1 (from ad to bc) in λ·plane(ab) + μ·plane(dc). The family-2 circle through x on ab
+// leaves x along t2 mirrored from a to x and ends on dc in its pencil plane; a patch point is
+// where it meets the pencil plane of the family-1 circle through z on ad. Patches sharing an
+// arc meet with a common tangent plane along it (C¹; the curvatures jump).
+//
+// The fine mesh follows the curvature lines across the whole net: the samples on the first
+// row's and first column's arcs are equal angles, and every patch hands the images of its
+// samples on its far arcs to the next patch, so neighbouring patches share their boundary
+// vertices exactly.
+
+#include <Eigen/Core>
+#include <array>
+#include <string>
+#include <vector>
+
+#include "geometry/mesh_io.h"
+#include "geometry/quad_grid.h"
+#include "problems/canal_surface.h"
+
+namespace gproj {
+
+// A circular arc: from `start`, counter-clockwise about `normal` (seen from its tip) by `angle`
+// radians (in (0, 2π)) around `centre`; or, `straight`, the segment from `start` to `end`.
+struct Arc {
+  Eigen::Vector3d centre, normal, start, end;
+  double radius = 0.0, angle = 0.0;
+  bool straight = false;
+  Eigen::Vector3d At(double fraction) const;  // the point at `fraction` of the angle (length)
+  Eigen::Vector3d Tangent(const Eigen::Vector3d& point) const;  // unit, in the arc's sense
+  double Bend() const;  // sin of the angle between the chord and the tangent at the start
+};
+
+// The arc from a to b that leaves a along t (unit); straight when t runs along b − a (to
+// 1e-12). Throws InputError naming `what` when a = b.
+Arc ArcFrom(const Eigen::Vector3d& a, const Eigen::Vector3d& t, const Eigen::Vector3d& b,
+            const std::string& what);
+
+// One patch: corners a, b, c, d (a circular quad) and the frame at a with the arcs' senses
+// (a → b leaves along t1, a → d along t2).
+struct CyclidicPatch {
+  std::array<Eigen::Vector3d, 4> corners;
+  Frame frame;
+};
+
+// Points of the patch: grid[i][j] (xs.size() × zs.size()) where the family-2 circle through
+// xs[i] (points of arc ab, xs.front() = a, xs.back() = b) meets the family-1 circle through
+// zs[j] (points of arc ad, zs.front() = a, zs.back() = d). Where a plane meets a circle twice,
+// the point taken is the one where the normals carried from a along both curvature lines agree
+// (frames close around every curvature-line quad of a cyclide). grid[i][0] = xs[i], grid[0][j] =
+// zs[j]; the last column holds the images of xs on arc dc, the last row those of zs on arc bc.
+// A patch with an arc that is straight or nearly so (bend below 1e-3), or with opposite arcs in
+// one plane (a flat patch), where the pencil planes are not defined or ill-conditioned, is
+// evaluated after an inversion in a sphere about a point off the patch (which maps cyclide
+// patches, their curvature circles and frames to the same of another) and mapped back. Throws
+// InputError (naming `where`) when a curvature circle misses its far arc.
+std::vector<std::vector<Eigen::Vector3d>> EvaluateCyclidicPatch(
+    const CyclidicPatch& patch, const std::vector<Eigen::Vector3d>& xs,
+    const std::vector<Eigen::Vector3d>& zs, const std::string& where);
+
+// A net in grid order (GridShape: vertex (i, j) = i (cols + 1) + j) with a frame at every
+// vertex: t1 along the rows (towards (i, j + 1)), t2 down the columns (towards (i + 1, j)).
+struct CyclidicNet {
+  GridShape shape;
+  std::vector<Eigen::Vector3d> points;
+  std::vector<Frame> frames;  // mirror images of the frame at (0, 0)
+  // Patch (i, j) with the frame at (i, j) turned to the arcs' senses: each mirror image
+  // reverses the sense of the frame vector along its edge.
+  CyclidicPatch Patch(int i, int j) const;
+};
+
+// The frames carried from `start` at (0, 0) by reflections along row 0, then down every column.
+// Throws InputError when a vertex repeats its neighbour.
+CyclidicNet MakeCyclidicNet(const GridShape& shape, std::vector<Eigen::Vector3d> points,
+                            const Frame& start);
+
+// A canal strip's net: row 0 the curve P_0..P_n, row 1 the points Q_k; the strip's frame at P_0.
+CyclidicNet CyclidicNetOfStrip(const CyclidicStrip& strip);
+
+// Largest angle (degrees) by which the frames, carried around a face by its four reflections,
+// miss themselves (0 for circular faces), and the face.
+double MaxFaceFrameClosure(const CyclidicNet& net, int* worst_face = nullptr);
+
+struct CyclidicSurfaceOptions {
+  int segments = 8;  // fine quads along every arc, in [1, 1000]
+  // Merge the last column of the fine mesh into the first when they coincide (to 1e-9 of the
+  // net's mean edge): a net closed around (its last column repeats the first).
+  bool weld_closed = false;
+  bool IsValid(std::string* why) const;
+};
+
+struct CyclidicSurface {
+  PolyMesh mesh;  // (rows·s + 1) × (cols·s + 1) vertices in grid order (fewer when welded)
+  GridShape fine_shape;
+  bool welded = false;
+  // patches, max_tangent_angle_deg (across shared arcs), max_face_frame_closure_deg and, with
+  // weld_closed, seam_gap (last fine column against the first, per mean edge of the net's rows).
+  NamedValues measures;
+};
+
+// The fine mesh of the smooth surface, with its tangent-plane continuity measured across every
+// arc two patches share: at the interior fine vertices of the arc, the normal from each side
+// by a second-order one-sided difference along the curvature circle into that patch.
+CyclidicSurface MeshCyclidicSurface(const CyclidicNet& net, const CyclidicSurfaceOptions& options);
+
+}  // namespace gproj
