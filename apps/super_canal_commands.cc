@@ -77,6 +77,7 @@ void RegisterSuperCanalCommands(CLI::App* app, int* exit_code) {
   RegisterCanalCommand(app, exit_code);
   RegisterBeamsCommand(app, exit_code);
   RegisterMRevolutionCommand(app, exit_code);
+  RegisterCyclidicCommand(app, exit_code);
 }
 
 }  // namespace gproj

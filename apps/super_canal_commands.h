@@ -1,7 +1,8 @@
 #pragma once
-// What `gproj combescure`, `gproj invert`, `gproj canal` and `gproj beams` (circular meshes,
-// 000) share: their registrations (RegisterSuperCanalCommands calls all of them), vector options,
-// the measures line and the writing of a mesh with its picture and report.
+// What `gproj combescure`, `gproj invert`, `gproj canal`, `gproj beams`, `gproj mrevolution` and
+// `gproj cyclidic` (circular meshes, 000) share: their registrations (RegisterSuperCanalCommands
+// calls all of them), vector options, the measures line and the writing of a mesh with its picture
+// and report.
 
 #include <CLI/CLI.hpp>
 #include <Eigen/Core>
@@ -19,6 +20,7 @@ void RegisterInvertCommand(CLI::App* app, int* exit_code);
 void RegisterCanalCommand(CLI::App* app, int* exit_code);
 void RegisterBeamsCommand(CLI::App* app, int* exit_code);
 void RegisterMRevolutionCommand(CLI::App* app, int* exit_code);
+void RegisterCyclidicCommand(CLI::App* app, int* exit_code);
 
 // x, y, z from a comma-separated option; throws InputError naming `option` unless the values
 // are three finite numbers.

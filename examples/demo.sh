@@ -107,6 +107,10 @@ echo "== M-revolution surface in one step from a shipped planar curve and two po
   --p3 1,1.7320508075688772,0 --t 1 -o out/demo/m_revolution_curve.obj \
   --picture out/demo/m_revolution_curve.svg --report out/demo/m_revolution_curve_report.json
 echo
+echo "== Its smooth cyclidic surface (000 §2.2): a Dupin cyclide patch per circular quad, joined with common tangent planes =="
+./build/gproj cyclidic out/demo/m_revolution_curve.obj --segments 4 -o out/demo/m_revolution_smooth.obj \
+  --picture out/demo/m_revolution_smooth.svg --report out/demo/m_revolution_smooth_report.json
+echo
 echo "== Weingarten surface: align the curvature isolines of a shipped bi-degree (4,4) B-spline (003) =="
 ./build/gproj weingarten examples/data/freeform_10x10.json -o out/demo/weingarten.json \
   --diagram out/demo/weingarten_diagram.svg --curvature out/demo/weingarten_curvature.csv \
@@ -156,3 +160,4 @@ echo "  cmc.json, cmc_surface.obj     the bump made CMC (H = -0.1); cmc_diagram.
 echo "  m_revolution.obj, .svg        the surface of revolution inverted (000 §5.1; still circular)"
 echo "  m_revolution_curve.obj, .svg  M-revolution surface from a planar curve and two points (circular,"
 echo "                                planar vertical arches)"
+echo "  m_revolution_smooth.obj, .svg its smooth cyclidic surface (000 §2.2, 320 Dupin cyclide patches)"

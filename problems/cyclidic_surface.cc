@@ -1,5 +1,7 @@
 #include "problems/cyclidic_surface.h"
 
+#include <ceres/ceres.h>
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -287,6 +289,154 @@ CyclidicNet MakeCyclidicNet(const GridShape& shape, std::vector<Eigen::Vector3d>
       net.frames[shape.Vertex(i, j)] = Mirror(net.frames[from], edge);
     }
   return net;
+}
+
+namespace {
+
+template <typename T>
+Vec3<T> MirrorT(const Vec3<T>& v, const Eigen::Vector3d& edge) {
+  const Vec3<T> e = edge.cast<T>();
+  return v - (T(2) * v.dot(e) / T(edge.squaredNorm())) * e;
+}
+
+// The start frame of GridStartFrame with a given t2 sign, on any scalar.
+template <typename T>
+void StartFrameT(const GridShape& shape, const std::vector<Eigen::Vector3d>& points,
+                 const T* angles, double t2_sign, Vec3<T>* t1, Vec3<T>* t2, Vec3<T>* n) {
+  using std::cos;
+  using std::sin;
+  *n = Vec3<T>(cos(angles[0]) * cos(angles[1]), cos(angles[0]) * sin(angles[1]), sin(angles[0]));
+  const Vec3<T> chord = (points[shape.Vertex(0, 1)] - points[0]).cast<T>();
+  const Vec3<T> projected = chord - chord.dot(*n) * (*n);
+  const Vec3<T> u = projected / projected.norm();
+  *t1 = cos(angles[2]) * u + sin(angles[2]) * n->cross(u);
+  *t2 = T(t2_sign) * n->cross(*t1);
+}
+
+double T2Sign(const GridShape& shape, const std::vector<Eigen::Vector3d>& points,
+              const FrameAngles& angles) {
+  const double a[3] = {angles.lambda, angles.theta, angles.psi};
+  Eigen::Vector3d t1, t2, n;
+  StartFrameT<double>(shape, points, a, 1.0, &t1, &t2, &n);
+  return t2.dot(points[shape.Vertex(1, 0)] - points[0]) < 0.0 ? -1.0 : 1.0;
+}
+
+// Eq. 5 over the net's edges: frames carried along row 0, then down every column.
+template <typename T>
+T GridEnergyT(const GridShape& shape, const std::vector<Eigen::Vector3d>& points, const T* angles,
+              double t2_sign) {
+  std::vector<Vec3<T>> t1(points.size()), t2(points.size());
+  Vec3<T> n;
+  StartFrameT<T>(shape, points, angles, t2_sign, &t1[0], &t2[0], &n);
+  T energy(0);
+  const auto arc = [](const Vec3<T>& t, const Eigen::Vector3d& chord) {
+    const double c2 = chord.squaredNorm();
+    return T(4) * t.cross(chord.cast<T>()).squaredNorm() / T(c2 * c2);
+  };
+  for (int i = 0; i <= shape.rows; ++i)
+    for (int j = 0; j <= shape.cols; ++j) {
+      const int v = shape.Vertex(i, j);
+      if (i > 0 || j > 0) {
+        const int from = i == 0 ? shape.Vertex(0, j - 1) : shape.Vertex(i - 1, j);
+        const Eigen::Vector3d edge = points[v] - points[from];
+        t1[v] = MirrorT<T>(t1[from], edge);
+        t2[v] = MirrorT<T>(t2[from], edge);
+      }
+      if (j < shape.cols) energy += arc(t1[v], points[shape.Vertex(i, j + 1)] - points[v]);
+      if (i < shape.rows) energy += arc(t2[v], points[shape.Vertex(i + 1, j)] - points[v]);
+    }
+  return energy;
+}
+
+class GridFrameObjective final : public ceres::FirstOrderFunction {
+ public:
+  GridFrameObjective(const GridShape& shape, const std::vector<Eigen::Vector3d>& points,
+                     double t2_sign, double scale)
+      : shape_(shape), points_(points), t2_sign_(t2_sign), scale_(scale) {}
+  bool Evaluate(const double* x, double* cost, double* gradient) const override {
+    using Jet = ceres::Jet<double, 3>;
+    Jet a[3];
+    for (int k = 0; k < 3; ++k) a[k] = Jet(x[k], k);
+    const Jet e = GridEnergyT<Jet>(shape_, points_, a, t2_sign_) * scale_;
+    *cost = e.a;
+    if (gradient != nullptr)
+      for (int k = 0; k < 3; ++k) gradient[k] = e.v[k];
+    return std::isfinite(*cost);
+  }
+  int NumParameters() const override { return 3; }
+
+ private:
+  GridShape shape_;
+  const std::vector<Eigen::Vector3d>& points_;
+  double t2_sign_, scale_;
+};
+
+}  // namespace
+
+Frame GridStartFrame(const GridShape& shape, const std::vector<Eigen::Vector3d>& points,
+                     const FrameAngles& angles) {
+  const double a[3] = {angles.lambda, angles.theta, angles.psi};
+  Frame f;
+  StartFrameT<double>(shape, points, a, T2Sign(shape, points, angles), &f.t1, &f.t2, &f.n);
+  return f;
+}
+
+FrameAngles DefaultGridAngles(const GridShape& shape, const std::vector<Eigen::Vector3d>& points) {
+  const Eigen::Vector3d &a = points[0], &b = points[shape.Vertex(0, 1)],
+                        &c = points[shape.Vertex(1, 1)], &d = points[shape.Vertex(1, 0)];
+  Eigen::Vector3d n = (c - a).cross(d - b);
+  if (n.dot((b - a).cross(d - a)) < 0.0) n = -n;
+  return AnglesFromNormal(n);
+}
+
+double GridNetEnergy(const CyclidicNet& net) {
+  double energy = 0.0;
+  const GridShape& s = net.shape;
+  for (int i = 0; i <= s.rows; ++i)
+    for (int j = 0; j <= s.cols; ++j) {
+      const int v = s.Vertex(i, j);
+      const Frame& f = net.frames[v];
+      for (const auto& [t, to] : {std::pair{f.t1, j < s.cols ? s.Vertex(i, j + 1) : -1},
+                                  {f.t2, i < s.rows ? s.Vertex(i + 1, j) : -1}}) {
+        if (to < 0) continue;
+        const Eigen::Vector3d chord = net.points[to] - net.points[v];
+        energy += 4.0 * t.cross(chord).squaredNorm() / (chord.squaredNorm() * chord.squaredNorm());
+      }
+    }
+  return energy;
+}
+
+GridFrameFairing FairGridFrame(const GridShape& shape, const std::vector<Eigen::Vector3d>& points,
+                               const FrameAngles& start, int max_iterations) {
+  double edge = 0.0;
+  int edges = 0;
+  for (int i = 0; i <= shape.rows; ++i)
+    for (int j = 0; j <= shape.cols; ++j) {
+      if (j < shape.cols)
+        edge += (points[shape.Vertex(i, j + 1)] - points[shape.Vertex(i, j)]).norm(), ++edges;
+      if (i < shape.rows)
+        edge += (points[shape.Vertex(i + 1, j)] - points[shape.Vertex(i, j)]).norm(), ++edges;
+    }
+  edge /= std::max(edges, 1);
+  const double t2_sign = T2Sign(shape, points, start);
+  const double scale = edge * edge / std::max(edges, 1);
+  double x[3] = {start.lambda, start.theta, start.psi};
+  GridFrameFairing out;
+  out.initial_energy = GridEnergyT<double>(shape, points, x, t2_sign);
+  ceres::GradientProblem problem(new GridFrameObjective(shape, points, t2_sign, scale));
+  ceres::GradientProblemSolver::Options options;
+  options.line_search_direction_type = ceres::BFGS;
+  options.max_num_iterations = max_iterations;
+  options.logging_type = ceres::SILENT;
+  ceres::GradientProblemSolver::Summary summary;
+  ceres::Solve(options, problem, x, &summary);
+  out.angles = {x[0], x[1], x[2]};
+  StartFrameT<double>(shape, points, x, t2_sign, &out.frame.t1, &out.frame.t2, &out.frame.n);
+  out.final_energy = GridEnergyT<double>(shape, points, x, t2_sign);
+  out.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  out.converged = summary.termination_type == ceres::CONVERGENCE;
+  out.message = summary.BriefReport();
+  return out;
 }
 
 CyclidicNet CyclidicNetOfStrip(const CyclidicStrip& strip) {

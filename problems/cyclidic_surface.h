@@ -84,6 +84,34 @@ struct CyclidicNet {
 CyclidicNet MakeCyclidicNet(const GridShape& shape, std::vector<Eigen::Vector3d> points,
                             const Frame& start);
 
+// The frame at (0, 0) of a grid net from angles (as for canal strips): the normal n by λ, θ; t1
+// the projection of the edge (0, 0) → (0, 1) onto the plane ⟂ n, turned by ψ about n;
+// t2 = ±n × t1, the sign making it point towards (1, 0) (its sense is the arc's).
+Frame GridStartFrame(const GridShape& shape, const std::vector<Eigen::Vector3d>& points,
+                     const FrameAngles& angles);
+
+// The angles of the normal of face (0, 0) (its diagonals' cross product, towards the side of
+// (0, 0) → (0, 1) × (0, 0) → (1, 0)) and ψ = 0: the default start of the frame.
+FrameAngles DefaultGridAngles(const GridShape& shape, const std::vector<Eigen::Vector3d>& points);
+
+// 000 eq. 5 for a grid net: Σ over its edges of 1 / R² of their arcs.
+double GridNetEnergy(const CyclidicNet& net);
+
+struct GridFrameFairing {
+  FrameAngles angles;
+  Frame frame;  // the frame of the angles, with the t2 sense of the start
+  double initial_energy = 0.0, final_energy = 0.0;
+  int iterations = 0;
+  bool converged = false;
+  std::string message;  // Ceres' report line
+};
+
+// The frame at (0, 0) (λ, θ, ψ) that minimises eq. 5 over the net's edges (000 §3.3: the
+// smoothest cyclidic net on a circular mesh), by Ceres' line-search BFGS from `start`, with
+// gradients by automatic differentiation. The t2 sense of `start` is kept.
+GridFrameFairing FairGridFrame(const GridShape& shape, const std::vector<Eigen::Vector3d>& points,
+                               const FrameAngles& start, int max_iterations = 200);
+
 // A canal strip's net: row 0 the curve P_0..P_n, row 1 the points Q_k; the strip's frame at P_0.
 CyclidicNet CyclidicNetOfStrip(const CyclidicStrip& strip);
 

@@ -373,5 +373,32 @@ TEST_F(SuperCanalCommandTest, CanalWritesTheSmoothCyclidicSurface) {
   EXPECT_FALSE(Exists("y.obj"));
 }
 
+TEST_F(SuperCanalCommandTest, CyclidicMakesASmoothSurfaceOfACircularMesh) {
+  const std::string input = Data("revolution_13x17.obj");
+  const CommandRun r = Gproj("cyclidic " + input + " --segments 3 -o " + Path("s.obj") +
+                             " --picture " + Path("s.svg") + " --report " + Path("r.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const nlohmann::json report = Json("r.json");
+  EXPECT_EQ(report["final"]["patches"].get<double>(), 192.0);
+  EXPECT_LT(report["final"]["max_tangent_angle_deg"].get<double>(), 1e-5);
+  EXPECT_LT(report["final"]["fine_max_concyclicity"].get<double>(), 1e-9);
+  EXPECT_LT(report["final"]["smoothness_energy"].get<double>(),
+            report["initial"]["smoothness_energy"].get<double>());
+  const PolyMesh fine = ReadMesh(Path("s.obj"));
+  EXPECT_EQ(fine.n_vertices(), 37u * 49u);
+  EXPECT_TRUE(Exists("s.svg"));
+
+  const CommandRun given =
+      Gproj("cyclidic " + input + " --normal 0,0,1 --segments 2 -o " + Path("n.obj"));
+  EXPECT_EQ(given.exit_code, 0) << given.err << given.out;
+  EXPECT_NE(given.out.find("frame from --normal"), std::string::npos) << given.out;
+
+  ExpectOneLineError(Gproj("cyclidic " + Data("noisy_grid_21x21.obj") + " -o " + Path("x.obj")),
+                     "is not circular");
+  ExpectOneLineError(Gproj("cyclidic " + Data("monkey_saddle_tri.obj") + " -o " + Path("x.obj")),
+                     "monkey_saddle_tri.obj");
+  EXPECT_FALSE(Exists("x.obj"));
+}
+
 }  // namespace
 }  // namespace gproj

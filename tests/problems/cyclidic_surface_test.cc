@@ -192,5 +192,25 @@ TEST(CyclidicSurfaceTest, NonCircularFacesShowInTheFrameClosureAndBadOptionsAreR
       std::string::npos);
 }
 
+TEST(CyclidicSurfaceTest, TheFrameOfLeastEnergyLowersEquationFive) {
+  const CyclidicNet torus = CyclideNet(3, 4, 0.35, 0.5);
+  const FrameAngles start = DefaultGridAngles(torus.shape, torus.points);
+  const GridFrameFairing fair = FairGridFrame(torus.shape, torus.points, start);
+  EXPECT_TRUE(fair.converged) << fair.message;
+  EXPECT_LT(fair.final_energy, fair.initial_energy);
+  const CyclidicNet best = MakeCyclidicNet(torus.shape, torus.points, fair.frame);
+  EXPECT_NEAR(GridNetEnergy(best), fair.final_energy, 1e-10 * fair.final_energy);
+  EXPECT_NEAR(GridNetEnergy(MakeCyclidicNet(torus.shape, torus.points,
+                                            GridStartFrame(torus.shape, torus.points, start))),
+              fair.initial_energy, 1e-10 * fair.initial_energy);
+  // t2 keeps pointing down the first column.
+  EXPECT_GT(fair.frame.t2.dot(torus.points[torus.shape.Vertex(1, 0)] - torus.points[0]), 0.0);
+  CyclidicSurfaceOptions options;
+  options.segments = 4;
+  const CyclidicSurface s = MeshCyclidicSurface(best, options);
+  EXPECT_LT(ValueOf(s.measures, "max_tangent_angle_deg"), 1e-5);
+  EXPECT_LT(MeasureCircularity(s.mesh).max_concyclicity, 1e-10);
+}
+
 }  // namespace
 }  // namespace gproj
