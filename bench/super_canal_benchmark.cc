@@ -2,12 +2,16 @@
 //   BM_CombescurePropagation/n  000 eq. 4, linear time (input checks and mesh copy included)
 //   BM_CombescureGP/n           the same by guided projection on edge-parallelism rows
 //                               (problem setup, analysis and factorisations included)
+//   BM_CyclidicSurface/n/s      the smooth cyclidic surface (000 §2.2) of the n × n grid: s fine
+//                               quads per arc, the tangent-plane measure included
+//   BM_CyclidicFrameFairing/n   the frame at vertex 0 minimising 000 eq. 5 (Ceres BFGS)
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 
 #include "geometry/parametric_grid.h"
 #include "problems/combescure.h"
+#include "problems/cyclidic_surface.h"
 
 namespace gproj {
 namespace {
@@ -51,6 +55,44 @@ void BM_CombescureGP(benchmark::State& state) {
   state.counters["iterations"] = iterations;
 }
 BENCHMARK(BM_CombescureGP)->Arg(100)->Arg(200)->Unit(benchmark::kMillisecond);
+
+std::vector<Eigen::Vector3d> Points(const PolyMesh& mesh) {
+  std::vector<Eigen::Vector3d> points;
+  for (auto v : mesh.vertices()) {
+    const auto& p = mesh.point(v);
+    points.emplace_back(p[0], p[1], p[2]);
+  }
+  return points;
+}
+
+void BM_CyclidicSurface(benchmark::State& state) {
+  const Setup s = MakeSetup(static_cast<int>(state.range(0)));
+  const std::vector<Eigen::Vector3d> points = Points(s.mesh);
+  const CyclidicNet net = MakeCyclidicNet(
+      s.shape, points, GridStartFrame(s.shape, points, DefaultGridAngles(s.shape, points)));
+  CyclidicSurfaceOptions options;
+  options.segments = static_cast<int>(state.range(1));
+  size_t quads = 0;
+  for (auto _ : state) quads = MeshCyclidicSurface(net, options).mesh.n_faces();
+  state.counters["patches"] = s.shape.rows * s.shape.cols;
+  state.counters["fine_quads"] = static_cast<double>(quads);
+}
+BENCHMARK(BM_CyclidicSurface)
+    ->Args({20, 8})
+    ->Args({100, 8})
+    ->Args({20, 32})
+    ->Unit(benchmark::kMillisecond);
+
+void BM_CyclidicFrameFairing(benchmark::State& state) {
+  const Setup s = MakeSetup(static_cast<int>(state.range(0)));
+  const std::vector<Eigen::Vector3d> points = Points(s.mesh);
+  int iterations = 0;
+  for (auto _ : state)
+    iterations = FairGridFrame(s.shape, points, DefaultGridAngles(s.shape, points)).iterations;
+  state.counters["edges"] = 2 * s.shape.rows * (s.shape.cols + 1);
+  state.counters["iterations"] = iterations;
+}
+BENCHMARK(BM_CyclidicFrameFairing)->Arg(20)->Arg(100)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace gproj
