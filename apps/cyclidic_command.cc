@@ -20,96 +20,60 @@ struct CyclidicArgs {
   std::string input;
   MeshOutputs outputs;
   std::vector<double> normal;
-  double psi = 0.0;
-  int max_iterations = 200;
-  double closure_tolerance = 1e-6;  // degrees
   double tangent_tolerance = 1e-4;  // degrees
-  CyclidicSurfaceOptions options;
+  CyclidicMeshOptions options;
 };
 
 int RunCyclidic(const CyclidicArgs& args) {
-  CyclidicSurface surface;
+  CyclidicMeshResult r;
   RunReport report;
-  GridFrameFairing fairing;
-  FrameAngles angles;
   try {
     args.outputs.Check({{"input", args.input}});
-    std::string why;
-    if (!args.options.IsValid(&why)) throw InputError(why);
-    const PolyMesh mesh = ReadMesh(args.input);
-    const GridShape shape = DetectGridShape(mesh, args.input);
-    std::vector<Eigen::Vector3d> points;
-    for (auto v : mesh.vertices()) {
-      const auto& p = mesh.point(v);
-      points.emplace_back(p[0], p[1], p[2]);
-    }
-    std::printf("gproj cyclidic: %s: %d x %d quads in grid order; %d fine quads per arc\n",
-                args.input.c_str(), shape.rows, shape.cols, args.options.segments);
-    const auto start = std::chrono::steady_clock::now();
-    Frame frame;
+    CyclidicMeshOptions options = args.options;
     if (!args.normal.empty()) {
       const Eigen::Vector3d normal = Vector3(args.normal, "--normal");
       if (normal.norm() == 0.0) throw InputError("--normal must not be zero");
-      angles = AnglesFromNormal(normal);
-      angles.psi = args.psi;
-      frame = GridStartFrame(shape, points, angles);
-    } else {
-      FrameAngles first = DefaultGridAngles(shape, points);
-      first.psi = args.psi;
-      fairing = FairGridFrame(shape, points, first, args.max_iterations);
-      angles = fairing.angles;
-      frame = fairing.frame;
-      std::printf(
-          "frame at vertex 0 by 000 eq. 5 (sum of 1/R^2 over the arcs, Ceres line-search BFGS): "
-          "%.6g -> %.6g in %d iterations\n",
-          fairing.initial_energy, fairing.final_energy, fairing.iterations);
+      options.given_frame = true;
+      options.angles = AnglesFromNormal(normal);
+      options.angles.psi = args.options.angles.psi;
     }
-    const CyclidicNet net = MakeCyclidicNet(shape, points, frame);
-    int face = -1;
-    const double closure = MaxFaceFrameClosure(net, &face);
-    if (closure > args.closure_tolerance) {
-      char text[200];
-      std::snprintf(text, sizeof(text),
-                    "%s: face %d is not circular: the frames carried around it miss by %.3g deg "
-                    "(tolerance %.1e); make the mesh circular first (gproj planarize --circular)",
-                    args.input.c_str(), face, closure, args.closure_tolerance);
-      throw InputError(text);
-    }
-    surface = MeshCyclidicSurface(net, args.options);
-    NamedValues measures = surface.measures;
-    measures.push_back({"smoothness_energy", GridNetEnergy(net)});
-    const NamedValues fine = MeasureCircularMesh(surface.mesh);
-    measures.push_back({"fine_max_concyclicity", ValueOf(fine, "max_concyclicity")});
-    const double tangent = ValueOf(measures, "max_tangent_angle_deg");
+    const PolyMesh mesh = ReadMesh(args.input);
+    std::printf("gproj cyclidic: %s: %zu quads; %d fine quads per arc; frame at vertex 0 %s\n",
+                args.input.c_str(), mesh.n_faces(), options.surface.segments,
+                options.given_frame ? "from --normal"
+                                    : "by 000 eq. 5 (sum of 1/R^2 over the arcs, Ceres BFGS)");
+    const auto start = std::chrono::steady_clock::now();
+    r = CyclidicSurfaceOfMesh(mesh, options, args.input);
     report = ConstructionReport(
-        args.normal.empty() ? "ceres-bfgs" : "none",
-        {{"smoothness_energy", args.normal.empty() ? fairing.initial_energy : GridNetEnergy(net)}},
-        measures, tangent <= args.tangent_tolerance,
+        options.given_frame ? "none" : "ceres-bfgs", r.initial, r.final,
+        ValueOf(r.final, "max_tangent_angle_deg") <= args.tangent_tolerance,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    report.iterations = fairing.iterations;
+    report.iterations = r.fairing.iterations;
     report.termination =
-        args.normal.empty() ? "frame by eq. 5: " + fairing.message : "frame from --normal";
+        options.given_frame ? "frame from --normal" : "frame by eq. 5: " + r.fairing.message;
   } catch (const InputError& e) {
     std::cerr << "gproj cyclidic: " << e.what() << "\n";
     return kExitInputError;
   }
   const NamedValues& m = report.final;
+  std::printf("eq. 5 of the net: %.6g -> %.6g\n", ValueOf(report.initial, "smoothness_energy"),
+              ValueOf(m, "smoothness_energy"));
   std::printf(
       "%g Dupin cyclide patches, %zu fine quads (circular to %.1e: curvature-line quads); "
       "tangent planes across shared arcs agree to %.1e deg; frames close around every face to "
       "%.1e deg\n",
-      ValueOf(m, "patches"), surface.mesh.n_faces(), ValueOf(m, "fine_max_concyclicity"),
+      ValueOf(m, "patches"), r.surface.mesh.n_faces(), ValueOf(m, "fine_max_concyclicity"),
       ValueOf(m, "max_tangent_angle_deg"), ValueOf(m, "max_face_frame_closure_deg"));
-  const Eigen::Vector3d n = NormalOf(angles);
+  const Eigen::Vector3d n = NormalOf(r.angles);
   nlohmann::json extra = {{"input", args.input}};
-  extra["frame"] = {{"lambda", angles.lambda}, {"theta", angles.theta}, {"psi", angles.psi}};
+  extra["frame"] = {{"lambda", r.angles.lambda}, {"theta", r.angles.theta}, {"psi", r.angles.psi}};
   extra["frame"]["normal"] = {n.x(), n.y(), n.z()};
-  extra["fine_mesh"] = {{"rows", surface.fine_shape.rows}, {"cols", surface.fine_shape.cols}};
+  extra["fine_mesh"] = {{"rows", r.surface.fine_shape.rows}, {"cols", r.surface.fine_shape.cols}};
   char title[160];
   std::snprintf(title, sizeof(title),
                 "Smooth cyclidic surface (000 §2.2), %g Dupin cyclide patches",
                 ValueOf(m, "patches"));
-  return WriteAndConclude("cyclidic", report, surface.mesh, title, args.outputs, extra,
+  return WriteAndConclude("cyclidic", report, r.surface.mesh, title, args.outputs, extra,
                           "max_tangent_angle_deg", args.tangent_tolerance);
 }
 
@@ -133,18 +97,18 @@ void RegisterCyclidicCommand(CLI::App* app, int* exit_code) {
                   "Normal of the frame at vertex 0 (default: the frame minimising 000 eq. 5)")
       ->check(Finite())
       ->delimiter(',');
-  cmd->add_option("--psi", args->psi,
+  cmd->add_option("--psi", args->options.angles.psi,
                   "Turn (radians) of the frame's first tangent about the normal (the start of "
                   "the minimisation without --normal)")
       ->check(Finite())
       ->capture_default_str();
-  cmd->add_option("--segments", args->options.segments, "Fine quads along every arc")
+  cmd->add_option("--segments", args->options.surface.segments, "Fine quads along every arc")
       ->check(Within(1, 1000))
       ->capture_default_str();
-  cmd->add_option("--max-iterations", args->max_iterations, "BFGS iterations for the frame")
+  cmd->add_option("--max-iterations", args->options.max_iterations, "BFGS iterations for the frame")
       ->check(Within(1, 100000))
       ->capture_default_str();
-  cmd->add_option("--closure-tolerance", args->closure_tolerance,
+  cmd->add_option("--closure-tolerance", args->options.closure_tolerance,
                   "Largest angle (degrees) by which frames carried around a face may miss "
                   "themselves (0 for circular faces)")
       ->check(Positive())

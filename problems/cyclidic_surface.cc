@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace gproj {
 namespace {
@@ -616,6 +617,61 @@ CyclidicSurface MeshCyclidicSurface(const CyclidicNet& net, const CyclidicSurfac
                   {"max_face_frame_closure_deg", MaxFaceFrameClosure(net)}};
   if (options.weld_closed) out.measures.push_back({"seam_gap", seam / edge});
   return out;
+}
+
+bool CyclidicMeshOptions::IsValid(std::string* why) const {
+  if (!surface.IsValid(why)) return false;
+  if (max_iterations < 1) {
+    *why = "max_iterations must be ≥ 1";
+    return false;
+  }
+  if (!(closure_tolerance > 0.0)) {
+    *why = "closure_tolerance must be positive";
+    return false;
+  }
+  return true;
+}
+
+CyclidicMeshResult CyclidicSurfaceOfMesh(const PolyMesh& mesh, const CyclidicMeshOptions& options,
+                                         const std::string& path) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("cyclidic surface: " + why);
+  const GridShape shape = DetectGridShape(mesh, path);
+  std::vector<Eigen::Vector3d> points;
+  for (auto v : mesh.vertices()) {
+    const auto& p = mesh.point(v);
+    points.emplace_back(p[0], p[1], p[2]);
+  }
+  CyclidicMeshResult r;
+  Frame frame;
+  if (options.given_frame) {
+    r.angles = options.angles;
+    frame = GridStartFrame(shape, points, r.angles);
+  } else {
+    FrameAngles start = DefaultGridAngles(shape, points);
+    start.psi = options.angles.psi;
+    r.fairing = FairGridFrame(shape, points, start, options.max_iterations);
+    r.angles = r.fairing.angles;
+    frame = r.fairing.frame;
+  }
+  const CyclidicNet net = MakeCyclidicNet(shape, points, frame);
+  int face = -1;
+  const double closure = MaxFaceFrameClosure(net, &face);
+  if (closure > options.closure_tolerance) {
+    char text[200];
+    std::snprintf(text, sizeof(text),
+                  "face %d is not circular: the frames carried around it miss by %.3g deg "
+                  "(tolerance %.1e); make the mesh circular first (gproj planarize --circular)",
+                  face, closure, options.closure_tolerance);
+    throw InputError(path.empty() ? text : path + ": " + text);
+  }
+  r.surface = MeshCyclidicSurface(net, options.surface);
+  const double energy = GridNetEnergy(net);
+  r.initial = {{"smoothness_energy", options.given_frame ? energy : r.fairing.initial_energy}};
+  r.final = r.surface.measures;
+  r.final.push_back({"smoothness_energy", energy});
+  r.final.push_back({"fine_max_concyclicity", MeasureCircularity(r.surface.mesh).max_concyclicity});
+  return r;
 }
 
 }  // namespace gproj

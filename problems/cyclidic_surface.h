@@ -27,6 +27,7 @@
 #include "geometry/mesh_io.h"
 #include "geometry/quad_grid.h"
 #include "problems/canal_surface.h"
+#include "problems/guided_problem.h"
 
 namespace gproj {
 
@@ -140,5 +141,31 @@ struct CyclidicSurface {
 // arc two patches share: at the interior fine vertices of the arc, the normal from each side
 // by a second-order one-sided difference along the curvature circle into that patch.
 CyclidicSurface MeshCyclidicSurface(const CyclidicNet& net, const CyclidicSurfaceOptions& options);
+
+struct CyclidicMeshOptions {
+  CyclidicSurfaceOptions surface;
+  bool given_frame = false;  // use `angles` as they are; else minimise eq. 5 from the default
+  FrameAngles angles;        // with given_frame; else only its ψ (the minimisation's start)
+  int max_iterations = 200;  // BFGS iterations for the frame
+  double closure_tolerance = 1e-6;  // degrees: frames carried around a face may miss by this
+  bool IsValid(std::string* why) const;
+};
+
+struct CyclidicMeshResult {
+  CyclidicSurface surface;
+  FrameAngles angles;
+  GridFrameFairing fairing;  // without given_frame
+  // initial: smoothness_energy of the starting frame; final: the surface's measures,
+  // smoothness_energy and fine_max_concyclicity.
+  NamedValues initial, final;
+};
+
+// The smooth cyclidic surface of a circular quad mesh in grid order (`gproj cyclidic`): the frame
+// at vertex 0 (given, or minimising eq. 5), the net, its faces checked, the fine mesh. Throws
+// InputError (prefixed with `path`) for a mesh that is not a grid, a face that is not circular
+// (frames carried around it miss by more than the tolerance; the face is named) or a patch that
+// degenerates.
+CyclidicMeshResult CyclidicSurfaceOfMesh(const PolyMesh& mesh, const CyclidicMeshOptions& options,
+                                         const std::string& path = "");
 
 }  // namespace gproj
