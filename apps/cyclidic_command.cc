@@ -44,13 +44,9 @@ int RunCyclidic(const CyclidicArgs& args) {
                                     : "by 000 eq. 5 (sum of 1/R^2 over the arcs, Ceres BFGS)");
     const auto start = std::chrono::steady_clock::now();
     r = CyclidicSurfaceOfMesh(mesh, options, args.input);
-    report = ConstructionReport(
-        options.given_frame ? "none" : "ceres-bfgs", r.initial, r.final,
-        ValueOf(r.final, "max_tangent_angle_deg") <= args.tangent_tolerance,
+    report = CyclidicRunReport(
+        r, args.tangent_tolerance,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    report.iterations = r.fairing.iterations;
-    report.termination =
-        options.given_frame ? "frame from --normal" : "frame by eq. 5: " + r.fairing.message;
   } catch (const InputError& e) {
     std::cerr << "gproj cyclidic: " << e.what() << "\n";
     return kExitInputError;
@@ -64,11 +60,8 @@ int RunCyclidic(const CyclidicArgs& args) {
       "%.1e deg\n",
       ValueOf(m, "patches"), r.surface.mesh.n_faces(), ValueOf(m, "fine_max_concyclicity"),
       ValueOf(m, "max_tangent_angle_deg"), ValueOf(m, "max_face_frame_closure_deg"));
-  const Eigen::Vector3d n = NormalOf(r.angles);
-  nlohmann::json extra = {{"input", args.input}};
-  extra["frame"] = {{"lambda", r.angles.lambda}, {"theta", r.angles.theta}, {"psi", r.angles.psi}};
-  extra["frame"]["normal"] = {n.x(), n.y(), n.z()};
-  extra["fine_mesh"] = {{"rows", r.surface.fine_shape.rows}, {"cols", r.surface.fine_shape.cols}};
+  nlohmann::json extra = CyclidicJson(r);
+  extra["input"] = args.input;
   char title[160];
   std::snprintf(title, sizeof(title),
                 "Smooth cyclidic surface (000 §2.2), %g Dupin cyclide patches",

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "problems/circular_mesh.h"
+
 namespace gproj {
 namespace {
 
@@ -643,6 +645,7 @@ CyclidicMeshResult CyclidicSurfaceOfMesh(const PolyMesh& mesh, const CyclidicMes
     points.emplace_back(p[0], p[1], p[2]);
   }
   CyclidicMeshResult r;
+  r.given_frame = options.given_frame;
   Frame frame;
   if (options.given_frame) {
     r.angles = options.angles;
@@ -672,6 +675,28 @@ CyclidicMeshResult CyclidicSurfaceOfMesh(const PolyMesh& mesh, const CyclidicMes
   r.final.push_back({"smoothness_energy", energy});
   r.final.push_back({"fine_max_concyclicity", MeasureCircularity(r.surface.mesh).max_concyclicity});
   return r;
+}
+
+RunReport CyclidicRunReport(const CyclidicMeshResult& result, double tangent_tolerance,
+                            double seconds) {
+  RunReport report = ConstructionReport(
+      result.given_frame ? "none" : "ceres-bfgs", result.initial, result.final,
+      ValueOf(result.final, "max_tangent_angle_deg") <= tangent_tolerance, seconds);
+  report.iterations = result.fairing.iterations;
+  report.termination =
+      result.given_frame ? "frame given" : "frame by eq. 5: " + result.fairing.message;
+  return report;
+}
+
+nlohmann::json CyclidicJson(const CyclidicMeshResult& result) {
+  const FrameAngles& a = result.angles;
+  const Eigen::Vector3d n = NormalOf(a);
+  nlohmann::json json;
+  json["frame"] = {{"lambda", a.lambda}, {"theta", a.theta}, {"psi", a.psi}};
+  json["frame"]["normal"] = {n.x(), n.y(), n.z()};
+  json["fine_mesh"] = {{"rows", result.surface.fine_shape.rows},
+                       {"cols", result.surface.fine_shape.cols}};
+  return json;
 }
 
 }  // namespace gproj

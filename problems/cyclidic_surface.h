@@ -21,6 +21,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -152,6 +153,7 @@ struct CyclidicMeshOptions {
 };
 
 struct CyclidicMeshResult {
+  bool given_frame = false;
   CyclidicSurface surface;
   FrameAngles angles;
   GridFrameFairing fairing;  // without given_frame
@@ -167,5 +169,12 @@ struct CyclidicMeshResult {
 // degenerates.
 CyclidicMeshResult CyclidicSurfaceOfMesh(const PolyMesh& mesh, const CyclidicMeshOptions& options,
                                          const std::string& path = "");
+
+// The run's report: solver "ceres-bfgs" (the frame minimised) or "none", converged when
+// max_tangent_angle_deg ≤ tangent_tolerance (degrees); and its extra keys "frame" (λ, θ, ψ,
+// normal) and "fine_mesh" (rows, cols).
+RunReport CyclidicRunReport(const CyclidicMeshResult& result, double tangent_tolerance,
+                            double seconds);
+nlohmann::json CyclidicJson(const CyclidicMeshResult& result);
 
 }  // namespace gproj

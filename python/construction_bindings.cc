@@ -1,5 +1,6 @@
-// gproj.combescure, gproj.invert, gproj.canal: the circular-mesh constructions of 000 (the
-// commands `gproj combescure`, `gproj invert`, `gproj canal`) as calls on numpy arrays.
+// gproj.combescure, gproj.invert, gproj.canal, gproj.cyclidic: the circular-mesh constructions
+// of 000 (the commands `gproj combescure`, `gproj invert`, `gproj canal`, `gproj cyclidic`) as
+// calls on numpy arrays.
 #include <pybind11/stl.h>
 
 #include <chrono>
@@ -14,6 +15,7 @@
 #include "problems/canal_surface.h"
 #include "problems/circular_mesh.h"
 #include "problems/combescure.h"
+#include "problems/cyclidic_surface.h"
 #include "python/conversions.h"
 #include "python/module.h"
 #include "python/run_bridge.h"
@@ -125,6 +127,36 @@ py::tuple RunCanal(const py::object& curve, const py::object& first_point,
                         ReportToPython("canal", report, CanalExtra(canal, segments)));
 }
 
+py::tuple RunCyclidic(const py::object& vertices, const py::object& faces, const py::object& normal,
+                      double psi, int segments, int max_iterations, double closure_tolerance,
+                      double tangent_tolerance) {
+  CyclidicMeshOptions options;
+  options.surface.segments = segments;
+  options.max_iterations = max_iterations;
+  options.closure_tolerance = closure_tolerance;
+  if (!normal.is_none()) {
+    const Eigen::Vector3d n = Vector3FromPython(normal, "normal");
+    if (n.norm() == 0.0) throw InputError("normal must not be zero");
+    options.given_frame = true;
+    options.angles = AnglesFromNormal(n);
+  }
+  options.angles.psi = psi;
+  const PolyMesh mesh = MeshFromArrays(vertices, faces, true);
+  const auto start = std::chrono::steady_clock::now();
+  const CyclidicMeshResult result = [&] {
+    py::gil_scoped_release release;
+    return CyclidicSurfaceOfMesh(mesh, options, "mesh");
+  }();
+  const RunReport report = CyclidicRunReport(
+      result, tangent_tolerance,
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  nlohmann::json extra = CyclidicJson(result);
+  extra["input"] = nullptr;
+  extra["output"] = nullptr;
+  return py::make_tuple(MeshToPython(result.surface.mesh),
+                        ReportToPython("cyclidic", report, extra));
+}
+
 const char* const kCombescureDoc = R"(combescure(V, F, ...) -> (V_out, report)
 
 Combescure transformation (`gproj combescure`, 000 §2.4-2.5): a mesh with every edge parallel
@@ -181,6 +213,25 @@ Canal surface from a circular strip (`gproj canal`, 000 §3.2-3.3, §4.1), optio
 Returns the canal mesh (V: (N, 3) float64, F: (M, 4) int32) and the report dict.
 )";
 
+const char* const kCyclidicDoc = R"(cyclidic(V, F, ...) -> ((V_fine, F_fine), report)
+
+Smooth cyclidic surface of a circular quad mesh in grid order (`gproj cyclidic`, 000 §2.1-2.2):
+a frame at vertex 0, carried to every vertex by mirror images across the edges, makes it a
+cyclidic net; every quad carries a Dupin cyclide patch; the fine mesh follows the curvature
+lines and the patches join with common tangent planes.
+
+    V: (n, 3) float64, F: (m, 4) integer quads in `grid` vertex order, every quad circular.
+    normal: (3,) normal of the frame at vertex 0 (default: the frame minimising 000 eq. 5).
+    psi: turn (radians) of the frame's first tangent about the normal.
+    segments: fine quads along every arc.
+    max_iterations: BFGS iterations for the frame.
+    closure_tolerance: degrees by which frames carried around a face may miss themselves.
+    tangent_tolerance: degrees between tangent planes along shared arcs for "converged".
+
+Returns the fine mesh (V: (N, 3) float64, F: (M, 4) int32) and the report dict (the keys of
+--report: final has patches, max_tangent_angle_deg, smoothness_energy, ...).
+)";
+
 }  // namespace
 
 void BindConstructions(py::module_& m) {
@@ -193,6 +244,11 @@ void BindConstructions(py::module_& m) {
   m.def("invert", &RunInvert, kInvertDoc, py::arg("V"), py::arg("F"), py::kw_only(),
         py::arg("centre") = py::none(), py::arg("ratio") = 1.0,
         py::arg("m_revolution") = py::none(), py::arg("t") = 1.0, py::arg("root") = 0);
+  const CyclidicMeshOptions cy;
+  m.def("cyclidic", &RunCyclidic, kCyclidicDoc, py::arg("V"), py::arg("F"), py::kw_only(),
+        py::arg("normal") = py::none(), py::arg("psi") = 0.0,
+        py::arg("segments") = cy.surface.segments, py::arg("max_iterations") = cy.max_iterations,
+        py::arg("closure_tolerance") = cy.closure_tolerance, py::arg("tangent_tolerance") = 1e-4);
   const CanalSurfaceOptions ca;
   m.def("canal", &RunCanal, kCanalDoc, py::arg("curve"), py::arg("first_point"), py::kw_only(),
         py::arg("lengths") = py::none(), py::arg("length") = 0.0, py::arg("normal") = py::none(),

@@ -1,4 +1,5 @@
-"""combescure, invert, canal, weingarten, marionette_lift/_fit against the command line."""
+"""combescure, invert, canal, cyclidic, weingarten, marionette_lift/_fit against the command
+line."""
 import json
 
 import numpy as np
@@ -78,6 +79,23 @@ def test_canal_equals_the_command_line(cli):
     assert len(records) == len(report["history"])
     with pytest.raises(ValueError, match="lengths"):
         gproj.canal(curve, [-0.5, 0.5, 2])
+
+
+def test_cyclidic_equals_the_command_line(cli):
+    V, F = gproj.read_mesh(str(DATA / "revolution_13x17.obj"))
+    cli.run("cyclidic", DATA / "revolution_13x17.obj", "--segments", 3, "-o", cli.path("s.obj"),
+            "--report", cli.path("r.json"))
+    (Vs, Fs), report = gproj.cyclidic(V, F, segments=3)
+    assert_reports_equal(report, cli.read_report("r.json"))
+    Vc, Fc = gproj.read_mesh(cli.path("s.obj"))
+    assert_close(Vs, Vc)
+    assert (Fs == Fc).all()
+    assert report["final"]["max_tangent_angle_deg"] < 1e-5
+    V_noisy, F_noisy = gproj.read_mesh(str(DATA / "noisy_grid_21x21.obj"))
+    with pytest.raises(ValueError, match="not circular"):
+        gproj.cyclidic(V_noisy, F_noisy)
+    with pytest.raises(ValueError, match="normal"):
+        gproj.cyclidic(V, F, normal=[0, 0, 0])
 
 
 def test_weingarten_equals_the_command_line(cli):

@@ -391,7 +391,7 @@ TEST_F(SuperCanalCommandTest, CyclidicMakesASmoothSurfaceOfACircularMesh) {
   const CommandRun given =
       Gproj("cyclidic " + input + " --normal 0,0,1 --segments 2 -o " + Path("n.obj"));
   EXPECT_EQ(given.exit_code, 0) << given.err << given.out;
-  EXPECT_NE(given.out.find("frame from --normal"), std::string::npos) << given.out;
+  EXPECT_NE(given.out.find("frame at vertex 0 from --normal"), std::string::npos) << given.out;
 
   ExpectOneLineError(Gproj("cyclidic " + Data("noisy_grid_21x21.obj") + " -o " + Path("x.obj")),
                      "is not circular");
