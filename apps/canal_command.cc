@@ -50,6 +50,26 @@ std::unique_ptr<CanalSurface> CanalFromArgs(const CanalArgs& args) {
   return std::make_unique<CanalSurface>(input, angles, args.options);
 }
 
+// Marks the run not converged, with the reason, when the canal mesh has crossed quads or the
+// smooth surface (when made) is not usable.
+void CheckCanalResult(const NamedValues& mesh_measures, const CyclidicSurface* surface,
+                      RunReport* report) {
+  std::string fault;
+  if (const double folded = ValueOf(mesh_measures, "folded_quads"); folded > 0) {
+    char text[200];
+    std::snprintf(text, sizeof(text),
+                  "the canal mesh has %.0f crossed quads (the frame makes the plane steps between "
+                  "the circles pass each other; try another --normal or --psi)",
+                  folded);
+    fault = text;
+  } else if (surface != nullptr) {
+    fault = CyclidicSurfaceFault(surface->measures, 1e-4);
+  }
+  if (fault.empty()) return;
+  report->converged = false;
+  report->termination = fault;
+}
+
 ExtraMeshes Joined(ExtraMeshes a, const ExtraMeshes& b) {
   a.insert(a.end(), b.begin(), b.end());
   return a;
@@ -127,6 +147,7 @@ int RunCanalFromCurves(const CanalArgs& args) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     report = ConstructionReport("spheres from two curves", {}, canal.measures, true, seconds);
+    CheckCanalResult(canal.measures, nullptr, &report);
   } catch (const InputError& e) {
     std::cerr << "gproj canal: " << e.what() << "\n";
     return kExitInputError;
@@ -184,6 +205,7 @@ int RunCCanal(const CanalArgs& args) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     report.iterations = c.iterations;
     report.termination = "ceres-bfgs: " + c.message;
+    CheckCanalResult(measures, nullptr, &report);
   } catch (const InputError& e) {
     std::cerr << "gproj canal: " << e.what() << "\n";
     return kExitInputError;
@@ -250,6 +272,8 @@ int RunClosedCanal(const CanalArgs& args) {
         "closing circle", {}, c.measures, c.frame_closes,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     report.termination = c.frame_closes ? "closed" : "the frame does not close around the curve";
+    if (c.frame_closes)
+      CheckCanalResult(c.measures, smooth.made ? &smooth.surface : nullptr, &report);
   } catch (const InputError& e) {
     std::cerr << "gproj canal: " << e.what() << "\n";
     return kExitInputError;
@@ -322,6 +346,8 @@ int RunCanal(const CanalArgs& args) {
     report = canal->Run([&log](const RunRecord& r) { return log.Print(r), true; });
     mesh = canal->Mesh();
     smooth = MakeSmoothSurface(args, canal->Net(), false);
+    if (report.converged)
+      CheckCanalResult(report.final, smooth.made ? &smooth.surface : nullptr, &report);
   } catch (const InputError& e) {
     std::cerr << "gproj canal: " << e.what() << "\n";
     return kExitInputError;

@@ -38,7 +38,7 @@ int RunCyclidic(const CyclidicArgs& args) {
       options.angles.psi = args.options.angles.psi;
     }
     const PolyMesh mesh = ReadMesh(args.input);
-    std::printf("gproj cyclidic: %s: %zu quads; %d fine quads per arc; frame at vertex 0 %s\n",
+    std::printf("gproj cyclidic: %s: %zu faces; %d fine quads per arc; frame at vertex 0 %s\n",
                 args.input.c_str(), mesh.n_faces(), options.surface.segments,
                 options.given_frame ? "from --normal"
                                     : "by 000 eq. 5 (sum of 1/R^2 over the arcs, Ceres BFGS)");
@@ -66,8 +66,7 @@ int RunCyclidic(const CyclidicArgs& args) {
   std::snprintf(title, sizeof(title),
                 "Smooth cyclidic surface (000 §2.2), %g Dupin cyclide patches",
                 ValueOf(m, "patches"));
-  return WriteAndConclude("cyclidic", report, r.surface.mesh, title, args.outputs, extra,
-                          "max_tangent_angle_deg", args.tangent_tolerance);
+  return WriteAndConclude("cyclidic", report, r.surface.mesh, title, args.outputs, extra, "", 0.0);
 }
 
 }  // namespace
@@ -81,8 +80,8 @@ void RegisterCyclidicCommand(CLI::App* app, int* exit_code) {
       "cyclidic net; every quad carries a Dupin cyclide patch (both families of curvature lines "
       "circles), the patches join with common tangent planes, and the surface is written as a "
       "fine mesh along its curvature lines. The frame minimises 000 eq. 5 unless --normal is "
-      "given. Exit codes as for planarize (3: the tangent planes disagree beyond "
-      "--tangent-tolerance).");
+      "given. Exit codes as for planarize (3: the surface folds or pinches, or the tangent planes "
+      "disagree beyond --tangent-tolerance; the result is written).");
   cmd->add_option("input", args->input, "Circular quad mesh in grid order (OBJ/OFF/PLY)")
       ->required();
   cmd->add_option("-o,--output", args->outputs.mesh, "Fine mesh of the smooth surface")->required();

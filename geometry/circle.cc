@@ -50,6 +50,15 @@ double QuadConcyclicity(const std::array<Eigen::Vector3d, 4>& quad) {
   return worst * extent;
 }
 
+bool IsConvexQuad(const std::array<Eigen::Vector3d, 4>& v) {
+  const Eigen::Vector3d n = (v[2] - v[0]).cross(v[3] - v[1]);
+  for (int i = 0; i < 4; ++i) {
+    const Eigen::Vector3d turn = (v[(i + 1) % 4] - v[i]).cross(v[(i + 2) % 4] - v[(i + 1) % 4]);
+    if (!(turn.dot(n) > 0.0)) return false;
+  }
+  return true;
+}
+
 CircularityMeasures MeasureCircularity(const PolyMesh& mesh) {
   CircularityMeasures m;
   const double mean_edge = mesh.n_edges() > 0 ? MeanEdgeLength(mesh) : 1.0;
@@ -63,6 +72,7 @@ CircularityMeasures MeasureCircularity(const PolyMesh& mesh) {
       quad[k++] = Eigen::Vector3d(p[0], p[1], p[2]);
     }
     const double c = QuadConcyclicity(quad) / mean_edge;
+    if (!IsConvexQuad(quad)) ++m.folded_quads;
     if (c > m.max_concyclicity || m.worst_face < 0) {
       m.max_concyclicity = c;
       m.worst_face = f.idx();

@@ -48,10 +48,15 @@ Circle FitCircle(const Eigen::Vector3d* points, int count);
 // Concyclicity of one quad: the largest distance of its four vertices to their fitted circle.
 double QuadConcyclicity(const std::array<Eigen::Vector3d, 4>& quad);
 
+// Whether the quad a, b, c, d (nearly planar) is convex: every turn a → b → c, … has the sense of
+// the diagonals' cross product (c − a) × (d − b). A crossed ("bow-tie") or degenerate quad is not.
+bool IsConvexQuad(const std::array<Eigen::Vector3d, 4>& quad);
+
 struct CircularityMeasures {
   double max_concyclicity = 0.0;   // max over faces of QuadConcyclicity / mean edge length
   double mean_concyclicity = 0.0;  // mean of the same
   int worst_face = -1;
+  int folded_quads = 0;  // quads that are not convex (IsConvexQuad)
 };
 // Over the quads of `mesh` (other faces are skipped).
 CircularityMeasures MeasureCircularity(const PolyMesh& mesh);

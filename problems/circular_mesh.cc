@@ -12,7 +12,8 @@ NamedValues MeasureCircularMesh(const PolyMesh& mesh) {
           {"mean_planarity", p.mean_planarity},
           {"max_concyclicity", c.max_concyclicity},
           {"mean_concyclicity", c.mean_concyclicity},
-          {"worst_concyclic_face", static_cast<double>(c.worst_face)}};
+          {"worst_concyclic_face", static_cast<double>(c.worst_face)},
+          {"folded_quads", static_cast<double>(c.folded_quads)}};
 }
 
 RunReport ConstructionReport(const std::string& solver, const NamedValues& initial,

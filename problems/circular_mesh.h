@@ -14,7 +14,8 @@ namespace gproj {
 
 // Planarity and concyclicity of a quad mesh, per mean edge length, as named values (the
 // report's keys): max_planarity, mean_planarity (diagonal distance), max_concyclicity,
-// mean_concyclicity (distance to the fitted circle), worst_concyclic_face.
+// mean_concyclicity (distance to the fitted circle), worst_concyclic_face, folded_quads (quads
+// that are not convex: crossed or degenerate).
 NamedValues MeasureCircularMesh(const PolyMesh& mesh);
 
 // The report of a construction without iterations (a propagation, an inversion): `solver`

@@ -61,16 +61,6 @@ Eigen::Vector3d SecondIntersection(const Circle& circle, const Eigen::Vector3d& 
   return x;
 }
 
-// True when the four points (coplanar, on one circle) are in cyclic order: a convex quad.
-bool Convex(const std::array<Eigen::Vector3d, 4>& v) {
-  const Eigen::Vector3d n = (v[2] - v[0]).cross(v[3] - v[1]);
-  for (int i = 0; i < 4; ++i) {
-    const Eigen::Vector3d turn = (v[(i + 1) % 4] - v[i]).cross(v[(i + 2) % 4] - v[(i + 1) % 4]);
-    if (!(turn.dot(n) > 0.0)) return false;
-  }
-  return true;
-}
-
 double MeanEdge(const CircularStrip& strip) {
   const int count = static_cast<int>(strip.p.size());
   double sum = 0.0;
@@ -148,7 +138,7 @@ ClosedCircularStrip BuildClosedCircularStrip(const CircularStripInput& input) {
   const std::array<int, 3> checked = {0, before, last};
   for (int k : checked) {
     const int next = (k + 1) % count;
-    if (!Convex({strip.p[k], strip.p[next], strip.q[next], strip.q[k]})) {
+    if (!IsConvexQuad({strip.p[k], strip.p[next], strip.q[next], strip.q[k]})) {
       char shift[96] = "";
       if (result.closing_case == 2)
         std::snprintf(shift, sizeof(shift), " (case 2 moves Q_0 by %.4g)", result.start_shift);

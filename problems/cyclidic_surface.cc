@@ -77,25 +77,38 @@ std::vector<double> CutFractions(const Arc& arc, const Plane& plane) {
   return out;
 }
 
-// Of the points where the plane meets the arc, the one whose normal closes (PathMismatch); when
-// both close to 1e-9, the one on the arc (fraction in [−1e-6, 1 + 1e-6]). False when none.
+// Of the points where the plane meets the arc, the one whose normal closes (PathMismatch below
+// 1e-4 rad, far above the rounding of circular input and far below the miss at a wrong point).
+// When both close (the other point of a spherical, flat or symmetric cyclide), the one nearer
+// to `previous`, the neighbouring sample along the same curvature line (continuity); when neither
+// closes, the one that misses least. False when the plane misses the arc's circle.
 bool CutPoint(const Arc& arc, const Plane& plane, const Eigen::Vector3d& n,
               const Eigen::Vector3d& a, const Eigen::Vector3d& via1, const Eigen::Vector3d& via2,
-              Eigen::Vector3d* point) {
-  double best = INFINITY;
-  bool best_on_arc = false;
+              const Eigen::Vector3d& previous, Eigen::Vector3d* point) {
+  constexpr double kCloses = 1e-4;
+  bool found = false;
+  double best_mismatch = 0.0, best_distance = 0.0;
   for (double f : CutFractions(arc, plane)) {
     const Eigen::Vector3d x = arc.At(f);
-    const bool on_arc = f >= -1e-6 && f <= 1.0 + 1e-6;
-    const double mismatch = PathMismatch(n, a, via1, via2, x);
-    const bool tie = std::max(mismatch, best) < 1e-9;
-    if (tie ? on_arc && !best_on_arc : mismatch < best) {
-      best = mismatch;
-      best_on_arc = on_arc;
+    const double mismatch = PathMismatch(n, a, via1, via2, x), distance = (x - previous).norm();
+    bool better = !found;
+    if (found) {
+      const bool closes = mismatch < kCloses, best_closes = best_mismatch < kCloses;
+      if (closes != best_closes)
+        better = closes;
+      else if (closes)
+        better = distance < best_distance;
+      else
+        better = mismatch < best_mismatch;
+    }
+    if (better) {
+      found = true;
+      best_mismatch = mismatch;
+      best_distance = distance;
       *point = x;
     }
   }
-  return std::isfinite(best);
+  return found;
 }
 
 // The inversion in the sphere about `centre` with squared radius `power`, of points and (as
@@ -238,20 +251,20 @@ std::vector<std::vector<Eigen::Vector3d>> EvaluatePatch(const CyclidicPatch& pat
     grid[0][j] = zs[j];
     if (j == 0 || j == nz - 1) {
       grid[nx - 1][j] = j == 0 ? b : c;
-    } else if (!CutPoint(bc, family1[j], f.n, a, zs[j], b, &grid[nx - 1][j])) {
+    } else if (!CutPoint(bc, family1[j], f.n, a, zs[j], b, grid[nx - 1][j - 1], &grid[nx - 1][j])) {
       throw InputError(Where(where, "a family-1 curvature circle misses arc b-c"));
     }
   }
+  Eigen::Vector3d y = d;
   for (int i = 1; i < nx - 1; ++i) {
     const Eigen::Vector3d& x = xs[i];
-    Eigen::Vector3d y;
-    if (!CutPoint(dc, PencilPlane(p_ad, p_bc, x), f.n, a, x, d, &y))
+    if (!CutPoint(dc, PencilPlane(p_ad, p_bc, x), f.n, a, x, d, Eigen::Vector3d(y), &y))
       throw InputError(Where(where, "a family-2 curvature circle misses arc d-c"));
     const Arc circle = ArcFrom(x, Mirror(f.t2, x - a), y, Where(where, "a family-2 circle"));
     grid[i][0] = x;
     grid[i][nz - 1] = y;
     for (int j = 1; j < nz - 1; ++j)
-      if (!CutPoint(circle, family1[j], f.n, a, x, zs[j], &grid[i][j]))
+      if (!CutPoint(circle, family1[j], f.n, a, x, zs[j], grid[i][j - 1], &grid[i][j]))
         throw InputError(Where(where, "the curvature circles do not meet"));
   }
   return grid;
@@ -259,10 +272,35 @@ std::vector<std::vector<Eigen::Vector3d>> EvaluatePatch(const CyclidicPatch& pat
 
 }  // namespace
 
+namespace {
+
+std::vector<Eigen::Vector3d> Shifted(std::vector<Eigen::Vector3d> points,
+                                     const Eigen::Vector3d& by) {
+  for (Eigen::Vector3d& x : points) x += by;
+  return points;
+}
+
+CyclidicPatch Shifted(CyclidicPatch patch, const Eigen::Vector3d& by) {
+  for (Eigen::Vector3d& x : patch.corners) x += by;
+  return patch;
+}
+
+}  // namespace
+
 std::vector<std::vector<Eigen::Vector3d>> EvaluateCyclidicPatch(
     const CyclidicPatch& patch, const std::vector<Eigen::Vector3d>& xs,
     const std::vector<Eigen::Vector3d>& zs, const std::string& where) {
-  return EvaluatePatch(patch, xs, zs, where, false);
+  // In coordinates about the corner a: the pencil planes' offsets and the circles' centres then
+  // carry no far-away translation into the intersections.
+  const Eigen::Vector3d origin = patch.corners[0];
+  std::vector<std::vector<Eigen::Vector3d>> grid = EvaluatePatch(
+      Shifted(patch, -origin), Shifted(xs, -origin), Shifted(zs, -origin), where, false);
+  for (auto& row : grid)
+    for (Eigen::Vector3d& x : row) x += origin;
+  // The samples handed in stay exact (neighbouring patches share them).
+  for (size_t i = 0; i < xs.size(); ++i) grid[i].front() = xs[i];
+  grid.front() = zs;
+  return grid;
 }
 
 CyclidicPatch CyclidicNet::Patch(int i, int j) const {
@@ -492,14 +530,10 @@ std::vector<Eigen::Vector3d> Samples(const Arc& arc, const Eigen::Vector3d& end,
   return x;
 }
 
-// Second-order one-sided difference into a patch at f0 from f(ε) and f(2ε).
-Eigen::Vector3d Inward(const Eigen::Vector3d& f0, const Eigen::Vector3d& f1,
-                       const Eigen::Vector3d& f2) {
-  return 4.0 * f1 - f2 - 3.0 * f0;
-}
-
-double LineAngleDeg(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
-  return std::atan2(u.cross(v).norm(), std::abs(u.dot(v))) * 180.0 / M_PI;
+// The angle (degrees) between two normals, with their senses: a patch that folds back across
+// an arc turns its normal by about 180°.
+double AngleDeg(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+  return std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / M_PI;
 }
 
 std::string PatchName(int i, int j) {
@@ -513,6 +547,16 @@ CyclidicSurface MeshCyclidicSurface(const CyclidicNet& net, const CyclidicSurfac
   if (!options.IsValid(&why)) throw InputError("cyclidic surface: " + why);
   const GridShape& shape = net.shape;
   const int s = options.segments, rows = shape.rows, cols = shape.cols;
+  const double fine_vertices =
+      (static_cast<double>(rows) * s + 1) * (static_cast<double>(cols) * s + 1);
+  if (fine_vertices > kMaxFineVertices) {
+    char text[160];
+    std::snprintf(text, sizeof(text),
+                  "the fine mesh would have %.3g vertices (%d x %d patches, %d segments per arc; "
+                  "at most %.0e): lower the segments",
+                  fine_vertices, rows, cols, s, kMaxFineVertices);
+    throw InputError(text);
+  }
   // Per patch, the samples on its arc a-b (xs) and a-d (zs), and its evaluated grid.
   std::vector<std::vector<Eigen::Vector3d>> xs(rows * cols), zs(rows * cols);
   std::vector<std::vector<std::vector<Eigen::Vector3d>>> grids(rows * cols);
@@ -544,45 +588,41 @@ CyclidicSurface MeshCyclidicSurface(const CyclidicNet& net, const CyclidicSurfac
         for (int v = 0; v <= s; ++v)
           fine[out.fine_shape.Vertex(i * s + v, j * s + u)] = grids[i * cols + j][u][v];
 
-  // Tangent planes across shared arcs.
-  const double eps = 1e-5;
+  // Tangent planes across shared arcs, at the arc's inner fine vertices: on each side the
+  // plane of the arc's tangent and the tangent of that patch's curvature circle crossing it (the
+  // arriving circle's on the near side, the leaving circle's frame vector on the far side), in
+  // coordinates about the near patch's corner.
   double worst = 0.0;
   for (int i = 0; i < rows; ++i)
     for (int j = 0; j < cols; ++j) {
       const int k = i * cols + j;
-      const CyclidicPatch p = net.Patch(i, j);
-      const Arc ab = ArcFrom(p.corners[0], p.frame.t1, p.corners[1], "");
-      const Arc ad = ArcFrom(p.corners[0], p.frame.t2, p.corners[3], "");
-      if (i + 1 < rows) {  // arc d-c, shared with patch (i + 1, j)
-        const CyclidicPatch q = net.Patch(i + 1, j);
-        const Arc qad = ArcFrom(q.corners[0], q.frame.t2, q.corners[3], "");
-        const auto near = EvaluateCyclidicPatch(
-            p, xs[k], {p.corners[0], ad.At(1 - 2 * eps), ad.At(1 - eps), p.corners[3]}, "");
-        const auto far = EvaluateCyclidicPatch(
-            q, xs[k + cols], {q.corners[0], qad.At(eps), qad.At(2 * eps), q.corners[3]}, "");
-        const Arc dc = ArcFrom(p.corners[3], Mirror(p.frame.t1, p.corners[3] - p.corners[0]),
-                               p.corners[2], "");
+      const Eigen::Vector3d shift = -net.points[shape.Vertex(i, j)];
+      const CyclidicPatch p = Shifted(net.Patch(i, j), shift);
+      const Eigen::Vector3d& a = p.corners[0];
+      if (i + 1 < rows) {  // arc d-c, shared with patch (i + 1, j) as its arc a-b
+        const CyclidicPatch q = Shifted(net.Patch(i + 1, j), shift);
+        const Arc dc =
+            ArcFrom(p.corners[3], Mirror(p.frame.t1, p.corners[3] - a), p.corners[2], "");
+        const Arc qab = ArcFrom(q.corners[0], q.frame.t1, q.corners[1], "");
         for (int u = 1; u < s; ++u) {
-          const Eigen::Vector3d& y = near[u][3];
-          const Eigen::Vector3d t = dc.Tangent(y);
-          worst = std::max(worst, LineAngleDeg(t.cross(Inward(y, near[u][2], near[u][1])),
-                                               t.cross(Inward(y, far[u][1], far[u][2]))));
+          const Eigen::Vector3d x = xs[k][u] + shift, y = grids[k][u][s] + shift;
+          const Arc circle = ArcFrom(x, Mirror(p.frame.t2, x - a), y, "");
+          const Eigen::Vector3d near = dc.Tangent(y).cross(circle.Tangent(y));
+          const Eigen::Vector3d far = qab.Tangent(y).cross(Carry(q.frame.t2, q.corners[0], y));
+          worst = std::max(worst, AngleDeg(near, far));
         }
       }
-      if (j + 1 < cols) {  // arc b-c, shared with patch (i, j + 1)
-        const CyclidicPatch q = net.Patch(i, j + 1);
-        const Arc qab = ArcFrom(q.corners[0], q.frame.t1, q.corners[1], "");
-        const auto near = EvaluateCyclidicPatch(
-            p, {p.corners[0], ab.At(1 - 2 * eps), ab.At(1 - eps), p.corners[1]}, zs[k], "");
-        const auto far = EvaluateCyclidicPatch(
-            q, {q.corners[0], qab.At(eps), qab.At(2 * eps), q.corners[1]}, zs[k + 1], "");
-        const Arc bc = ArcFrom(p.corners[1], Mirror(p.frame.t2, p.corners[1] - p.corners[0]),
-                               p.corners[2], "");
+      if (j + 1 < cols) {  // arc b-c, shared with patch (i, j + 1) as its arc a-d
+        const CyclidicPatch q = Shifted(net.Patch(i, j + 1), shift);
+        const Arc bc =
+            ArcFrom(p.corners[1], Mirror(p.frame.t2, p.corners[1] - a), p.corners[2], "");
+        const Arc qad = ArcFrom(q.corners[0], q.frame.t2, q.corners[3], "");
         for (int v = 1; v < s; ++v) {
-          const Eigen::Vector3d& w = near[3][v];
-          const Eigen::Vector3d t = bc.Tangent(w);
-          worst = std::max(worst, LineAngleDeg(t.cross(Inward(w, near[2][v], near[1][v])),
-                                               t.cross(Inward(w, far[1][v], far[2][v]))));
+          const Eigen::Vector3d z = zs[k][v] + shift, w = grids[k][s][v] + shift;
+          const Arc circle = ArcFrom(z, Mirror(p.frame.t1, z - a), w, "");
+          const Eigen::Vector3d near = bc.Tangent(w).cross(circle.Tangent(w));
+          const Eigen::Vector3d far = qad.Tangent(w).cross(Carry(q.frame.t1, q.corners[0], w));
+          worst = std::max(worst, AngleDeg(near, far));
         }
       }
     }
@@ -614,9 +654,12 @@ CyclidicSurface MeshCyclidicSurface(const CyclidicNet& net, const CyclidicSurfac
       out.mesh.add_face(
           std::vector<PolyMesh::VertexHandle>{v[fs.Vertex(r, q)], v[fs.Vertex(r + 1, q)],
                                               v[fs.Vertex(r + 1, q + 1)], v[fs.Vertex(r, q + 1)]});
+  const CircularityMeasures fine_measures = MeasureCircularity(out.mesh);
   out.measures = {{"patches", static_cast<double>(rows * cols)},
                   {"max_tangent_angle_deg", worst},
-                  {"max_face_frame_closure_deg", MaxFaceFrameClosure(net)}};
+                  {"max_face_frame_closure_deg", MaxFaceFrameClosure(net)},
+                  {"fine_max_concyclicity", fine_measures.max_concyclicity},
+                  {"folded_fine_quads", static_cast<double>(fine_measures.folded_quads)}};
   if (options.weld_closed) out.measures.push_back({"seam_gap", seam / edge});
   return out;
 }
@@ -673,18 +716,45 @@ CyclidicMeshResult CyclidicSurfaceOfMesh(const PolyMesh& mesh, const CyclidicMes
   r.initial = {{"smoothness_energy", options.given_frame ? energy : r.fairing.initial_energy}};
   r.final = r.surface.measures;
   r.final.push_back({"smoothness_energy", energy});
-  r.final.push_back({"fine_max_concyclicity", MeasureCircularity(r.surface.mesh).max_concyclicity});
   return r;
+}
+
+std::string CyclidicSurfaceFault(const NamedValues& measures, double tangent_tolerance) {
+  char text[240];
+  if (const double folded = ValueOf(measures, "folded_fine_quads"); folded > 0) {
+    std::snprintf(text, sizeof(text),
+                  "the smooth surface folds or pinches: %.0f fine quads are not convex (the frame "
+                  "turns patches through a cone point; try another frame)",
+                  folded);
+    return text;
+  }
+  if (const double angle = ValueOf(measures, "max_tangent_angle_deg"); angle > tangent_tolerance) {
+    std::snprintf(text, sizeof(text),
+                  "the patches' tangent planes disagree by %.3g deg across a shared arc (tolerance "
+                  "%.1e)",
+                  angle, tangent_tolerance);
+    return text;
+  }
+  if (const double c = ValueOf(measures, "fine_max_concyclicity"); c > 1e-6) {
+    std::snprintf(text, sizeof(text),
+                  "fine quads are off their circles by %.3g of the mean edge: the surface was not "
+                  "evaluated reliably",
+                  c);
+    return text;
+  }
+  return "";
 }
 
 RunReport CyclidicRunReport(const CyclidicMeshResult& result, double tangent_tolerance,
                             double seconds) {
-  RunReport report = ConstructionReport(
-      result.given_frame ? "none" : "ceres-bfgs", result.initial, result.final,
-      ValueOf(result.final, "max_tangent_angle_deg") <= tangent_tolerance, seconds);
+  const std::string fault = CyclidicSurfaceFault(result.final, tangent_tolerance);
+  RunReport report = ConstructionReport(result.given_frame ? "none" : "ceres-bfgs", result.initial,
+                                        result.final, fault.empty(), seconds);
   report.iterations = result.fairing.iterations;
   report.termination =
-      result.given_frame ? "frame given" : "frame by eq. 5: " + result.fairing.message;
+      fault.empty()
+          ? (result.given_frame ? "frame given" : "frame by eq. 5: " + result.fairing.message)
+          : fault;
   return report;
 }
 

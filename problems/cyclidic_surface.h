@@ -121,6 +121,9 @@ CyclidicNet CyclidicNetOfStrip(const CyclidicStrip& strip);
 // miss themselves (0 for circular faces), and the face.
 double MaxFaceFrameClosure(const CyclidicNet& net, int* worst_face = nullptr);
 
+// The largest fine mesh MeshCyclidicSurface makes (about 2 GB with its OBJ text).
+constexpr double kMaxFineVertices = 1e7;
+
 struct CyclidicSurfaceOptions {
   int segments = 8;  // fine quads along every arc, in [1, 1000]
   // Merge the last column of the fine mesh into the first when they coincide (to 1e-9 of the
@@ -133,14 +136,19 @@ struct CyclidicSurface {
   PolyMesh mesh;  // (rows·s + 1) × (cols·s + 1) vertices in grid order (fewer when welded)
   GridShape fine_shape;
   bool welded = false;
-  // patches, max_tangent_angle_deg (across shared arcs), max_face_frame_closure_deg and, with
-  // weld_closed, seam_gap (last fine column against the first, per mean edge of the net's rows).
+  // patches, max_tangent_angle_deg (across shared arcs), max_face_frame_closure_deg,
+  // fine_max_concyclicity (the fine quads are curvature-line quads of cyclides, hence circular),
+  // folded_fine_quads (not convex: the surface folds or pinches there) and, with weld_closed,
+  // seam_gap (last fine column against the first, per mean edge of the net's rows).
   NamedValues measures;
 };
 
 // The fine mesh of the smooth surface, with its tangent-plane continuity measured across every
-// arc two patches share: at the interior fine vertices of the arc, the normal from each side
-// by a second-order one-sided difference along the curvature circle into that patch.
+// arc two patches share: at the arc's inner fine vertices, the tangent plane of each patch is
+// spanned by the arc's tangent and that of the patch's curvature circle crossing the arc there
+// (the near patch's circle as constructed through the vertex; the far patch's frame vector
+// carried to it), and the normals are compared with their senses (a fold shows as ~180°).
+// Throws InputError when the fine mesh would exceed kMaxFineVertices.
 CyclidicSurface MeshCyclidicSurface(const CyclidicNet& net, const CyclidicSurfaceOptions& options);
 
 struct CyclidicMeshOptions {
@@ -170,9 +178,15 @@ struct CyclidicMeshResult {
 CyclidicMeshResult CyclidicSurfaceOfMesh(const PolyMesh& mesh, const CyclidicMeshOptions& options,
                                          const std::string& path = "");
 
+// Why a smooth surface (its measures) is not usable, or "": tangent planes that disagree by more
+// than `tangent_tolerance` degrees, folded fine quads (the surface folds or pinches: a frame
+// that turns the patches through a cone point), fine quads off their circles by more than 1e-6
+// of the mean edge (a point picked wrongly).
+std::string CyclidicSurfaceFault(const NamedValues& measures, double tangent_tolerance);
+
 // The run's report: solver "ceres-bfgs" (the frame minimised) or "none", converged when
-// max_tangent_angle_deg ≤ tangent_tolerance (degrees); and its extra keys "frame" (λ, θ, ψ,
-// normal) and "fine_mesh" (rows, cols).
+// CyclidicSurfaceFault finds nothing (else the termination gives the fault); and its extra keys
+// "frame" (λ, θ, ψ, normal) and "fine_mesh" (rows, cols).
 RunReport CyclidicRunReport(const CyclidicMeshResult& result, double tangent_tolerance,
                             double seconds);
 nlohmann::json CyclidicJson(const CyclidicMeshResult& result);

@@ -344,6 +344,7 @@ TEST_F(SuperCanalCommandTest, CanalWritesTheSmoothCyclidicSurface) {
       Path("s.svg") + " --report " + Path("r.json"));
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
   const nlohmann::json report = Json("r.json");
+  EXPECT_EQ(report["final"]["folded_quads"].get<double>(), 0.0);
   const nlohmann::json& surface = report["surface"];
   EXPECT_EQ(surface["patches"].get<double>(), 12.0);
   EXPECT_LT(surface["max_tangent_angle_deg"].get<double>(), 1e-5);
@@ -361,6 +362,12 @@ TEST_F(SuperCanalCommandTest, CanalWritesTheSmoothCyclidicSurface) {
             Path("cc.obj") + " --surface " + Path("cs.obj") + " --surface-segments 4");
   ASSERT_EQ(closed.exit_code, 0) << closed.err << closed.out;
   EXPECT_EQ(ReadMesh(Path("cs.obj")).n_vertices(), 5u * 84u);
+  // A frame that makes the plane steps cross: crossed quads, exit 3 with the reason.
+  const CommandRun crossed =
+      Gproj("canal " + Data("canal_curve.txt") +
+            " --first-point -0.5,0.5,2 --length 2 --psi 0.5 -o " + Path("crossed.obj"));
+  EXPECT_EQ(crossed.exit_code, 3) << crossed.err << crossed.out;
+  EXPECT_NE(crossed.err.find("crossed quads"), std::string::npos) << crossed.err;
   ExpectOneLineError(
       Gproj("canal " + Data("canal_curve.txt") + " --first-point -0.5,0.5,2 --length 2 -o " +
             Path("x.obj") + " --surface-picture " + Path("x.obj")),
@@ -393,6 +400,12 @@ TEST_F(SuperCanalCommandTest, CyclidicMakesASmoothSurfaceOfACircularMesh) {
   EXPECT_EQ(given.exit_code, 0) << given.err << given.out;
   EXPECT_NE(given.out.find("frame at vertex 0 from --normal"), std::string::npos) << given.out;
 
+  // A frame turned half round sends patches through cone points: the surface folds, exit 3.
+  const CommandRun folded = Gproj("cyclidic " + input + " --normal 1,0,0 --psi 3.14 -o " +
+                                  Path("f.obj") + " --report " + Path("f.json"));
+  EXPECT_EQ(folded.exit_code, 3) << folded.err << folded.out;
+  EXPECT_NE(folded.err.find("folds or pinches"), std::string::npos) << folded.err;
+  EXPECT_GT(Json("f.json")["final"]["folded_fine_quads"].get<double>(), 0.0);
   ExpectOneLineError(Gproj("cyclidic " + Data("noisy_grid_21x21.obj") + " -o " + Path("x.obj")),
                      "is not circular");
   ExpectOneLineError(Gproj("cyclidic " + Data("monkey_saddle_tri.obj") + " -o " + Path("x.obj")),

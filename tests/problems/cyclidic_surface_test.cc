@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 
 #include "canal_test_util.h"
@@ -210,6 +211,66 @@ TEST(CyclidicSurfaceTest, TheFrameOfLeastEnergyLowersEquationFive) {
   const CyclidicSurface s = MeshCyclidicSurface(best, options);
   EXPECT_LT(ValueOf(s.measures, "max_tangent_angle_deg"), 1e-5);
   EXPECT_LT(MeasureCircularity(s.mesh).max_concyclicity, 1e-10);
+}
+
+TEST(CyclidicSurfaceTest, LongArcsOfAFlatPatchFollowTheirCurvatureLines) {
+  // One planar polar patch spanning up to 5 rad: on a flat (or spherical) patch both plane-circle
+  // intersections carry consistent normals; continuity along the curvature line decides.
+  for (double span : {1.0, 3.3, 5.0}) {
+    GridShape shape;
+    shape.rows = shape.cols = 1;
+    std::vector<Vector3d> points;
+    for (double r : {1.0, 1.6})
+      for (double t : {0.0, span}) points.emplace_back(r * std::cos(t), r * std::sin(t), 0.0);
+    const CyclidicNet net =
+        MakeCyclidicNet(shape, points, {Vector3d::UnitY(), Vector3d::UnitX(), -Vector3d::UnitZ()});
+    CyclidicSurfaceOptions options;
+    options.segments = 8;
+    const CyclidicSurface s = MeshCyclidicSurface(net, options);
+    for (int r = 0; r <= 8; ++r)
+      for (int q = 0; q <= 8; ++q) {
+        const double radius = 1.0 + 0.6 * r / 8, t = span * q / 8;
+        EXPECT_LT((At(s.mesh, s.fine_shape.Vertex(r, q)) -
+                   Vector3d(radius * std::cos(t), radius * std::sin(t), 0.0))
+                      .norm(),
+                  1e-12)
+            << span << " " << r << " " << q;
+      }
+    EXPECT_EQ(ValueOf(s.measures, "folded_fine_quads"), 0.0);
+  }
+}
+
+TEST(CyclidicSurfaceTest, FrameJumpsAcrossAnArcAreMeasured) {
+  CyclidicSurfaceOptions options;
+  options.segments = 4;
+  const CyclidicNet torus = CyclideNet(3, 4, 0.35, 0.5);
+  // Frames that are not mirror images across an arc: the tangent planes disagree there.
+  CyclidicNet jump = torus;
+  for (int i = 0; i <= 3; ++i) {
+    Frame& f = jump.frames[jump.shape.Vertex(i, 2)];
+    f.t2 = Eigen::AngleAxisd(0.01, f.t1) * f.t2;
+    f.n = f.t1.cross(f.t2);
+  }
+  const CyclidicSurface jumped = MeshCyclidicSurface(jump, options);
+  EXPECT_GT(ValueOf(jumped.measures, "max_tangent_angle_deg"), 0.1);
+  const CyclidicSurface good = MeshCyclidicSurface(torus, options);
+  EXPECT_LT(ValueOf(good.measures, "max_tangent_angle_deg"), 1e-9);
+  EXPECT_EQ(CyclidicSurfaceFault(good.measures, 1e-4), "");
+}
+
+TEST(CyclidicSurfaceTest, FarFromTheOriginTheSurfaceAndItsMeasuresAreTheSame) {
+  const CyclidicNet torus = CyclideNet(2, 3, 0.35, 0.5);
+  CyclidicNet far = torus;
+  const Vector3d offset(1e5, -2e5, 3e5);
+  for (Vector3d& p : far.points) p += offset;
+  CyclidicSurfaceOptions options;
+  options.segments = 5;
+  const CyclidicSurface a = MeshCyclidicSurface(torus, options),
+                        b = MeshCyclidicSurface(far, options);
+  for (int v = 0; v < static_cast<int>(a.mesh.n_vertices()); ++v)
+    EXPECT_LT((At(b.mesh, v) - offset - At(a.mesh, v)).norm(), 1e-9);
+  EXPECT_LT(ValueOf(b.measures, "max_tangent_angle_deg"), 1e-6);
+  EXPECT_EQ(ValueOf(b.measures, "folded_fine_quads"), 0.0);
 }
 
 }  // namespace
