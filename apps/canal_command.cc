@@ -23,7 +23,8 @@ namespace {
 
 struct CanalArgs {
   std::string curve, strip, second_curve, surface, surface_picture;
-  int surface_segments = 8;
+  int surface_segments = 0;  // 0: 8
+  ClosedCanalOptions closed_options;
   MeshOutputs outputs;
   std::vector<double> first_point, lengths, normal, section_scales;
   double length = 0.0, psi = 0.0;
@@ -93,7 +94,7 @@ SmoothSurface MakeSmoothSurface(const CanalArgs& args, const CyclidicStrip& net,
   SmoothSurface s;
   if (args.surface.empty() && args.surface_picture.empty()) return s;
   CyclidicSurfaceOptions options;
-  options.segments = args.surface_segments;
+  options.segments = args.surface_segments > 0 ? args.surface_segments : 8;
   options.weld_closed = closed;
   s.surface = MeshCyclidicSurface(CyclidicNetOfStrip(net), options);
   s.made = true;
@@ -263,7 +264,7 @@ int RunClosedCanal(const CanalArgs& args) {
     }
     FrameAngles angles = AnglesFromNormal(normal);
     angles.psi = args.psi;
-    ClosedCanalOptions options;
+    ClosedCanalOptions options = args.closed_options;
     options.segments = args.options.segments;
     c = BuildClosedCanalSurface(input, angles, options);
     strip_mesh = ClosedStripMesh(c.closed.strip);
@@ -322,11 +323,25 @@ int RunClosedCanal(const CanalArgs& args) {
   std::snprintf(title, sizeof(title),
                 "Closed canal surface (000 §4.2, case %d), %zu circular quads",
                 c.closed.closing_case, c.mesh.n_faces());
-  return WriteAndConclude("canal", report, c.mesh, title, args.outputs, extra, "frame_closure_deg",
-                          1e-7, Joined({{args.strip, &strip_mesh}}, smooth.Outputs(args)));
+  return WriteAndConclude("canal", report, c.mesh, title, args.outputs, extra,
+                          c.frame_closes ? "" : "frame_closure_deg",
+                          args.closed_options.frame_tolerance_deg,
+                          Joined({{args.strip, &strip_mesh}}, smooth.Outputs(args)));
 }
 
 int RunCanal(const CanalArgs& args) {
+  const ClosedCanalOptions closed_defaults;
+  std::string misuse;
+  if (args.surface_segments > 0 && args.surface.empty() && args.surface_picture.empty())
+    misuse = "--surface-segments needs --surface or --surface-picture";
+  else if (!args.closed &&
+           (args.closed_options.cospherical_tolerance != closed_defaults.cospherical_tolerance ||
+            args.closed_options.frame_tolerance_deg != closed_defaults.frame_tolerance_deg))
+    misuse = "--cospherical-tolerance and --frame-tolerance belong to --closed";
+  if (!misuse.empty()) {
+    std::cerr << "gproj canal: " << misuse << "\n";
+    return kExitInputError;
+  }
   if (args.closed) return RunClosedCanal(args);
   if (!args.section_scales.empty()) return RunCCanal(args);
   if (!args.second_curve.empty()) return RunCanalFromCurves(args);
@@ -403,7 +418,8 @@ void RegisterCanalCommand(CLI::App* app, int* exit_code) {
       ->check(Finite())
       ->delimiter(',');
   cmd->add_option("--length", args->length, "The same |P_k Q_k| for every curve point")
-      ->check(Finite());
+      ->check(Finite())
+      ->check(Positive());
   cmd->add_option(
          "--normal", args->normal,
          "Normal of the cyclidic net at P_0 (default: in the first quad's plane, across the "
@@ -426,6 +442,16 @@ void RegisterCanalCommand(CLI::App* app, int* exit_code) {
                 "Close the curve by the edge P_n -> P_0 (000 §4.2): the closing circle sets the "
                 "last length (case 1) or also moves Q_0 (case 2); the frame is closed around the "
                 "curve where it can be");
+  cmd->add_option("--cospherical-tolerance", args->closed_options.cospherical_tolerance,
+                  "With --closed: the end circles count as co-spherical (case 1) within this "
+                  "distance (per mean edge)")
+      ->check(NonNegative())
+      ->capture_default_str();
+  cmd->add_option("--frame-tolerance", args->closed_options.frame_tolerance_deg,
+                  "With --closed: the frame closes around the curve when it misses itself by at "
+                  "most this many degrees")
+      ->check(NonNegative())
+      ->capture_default_str();
   cmd->add_flag("--smooth", args->options.smooth, "Minimise the smoothness energy of 000 eq. 5");
   cmd->add_option("--length-weight", args->options.smoothing.length_weight,
                   "Weight keeping the lengths near the input during --smooth")
@@ -442,9 +468,8 @@ void RegisterCanalCommand(CLI::App* app, int* exit_code) {
                   "Also write the smooth cyclidic surface (000 §2.2): every quad of the strip's "
                   "cyclidic net carries a Dupin cyclide patch, meshed along its curvature lines");
   cmd->add_option("--surface-segments", args->surface_segments,
-                  "Fine quads along every arc of the smooth surface")
-      ->check(Within(1, 1000))
-      ->capture_default_str();
+                  "Fine quads along every arc of the smooth surface (default 8)")
+      ->check(Within(1, 1000));
   cmd->add_option("--surface-picture", args->surface_picture,
                   "Write a shaded SVG picture of the smooth cyclidic surface");
   cmd->add_option("--report", args->outputs.report, "Write a JSON report");

@@ -1,9 +1,14 @@
 // The gproj command line.
+#include <glog/logging.h>
+
 #include <iostream>
 
 #include "apps/commands.h"
 
 int main(int argc, char** argv) {
+  // Ceres reports line-search trouble through glog; the commands report their runs themselves.
+  google::InitGoogleLogging(argv[0]);
+  FLAGS_minloglevel = google::GLOG_ERROR;
   CLI::App app{
       "gproj: guided projection for architectural geometry.\n"
       "Makes freeform meshes buildable by solving systems of quadratic constraints\n"

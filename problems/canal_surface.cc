@@ -405,6 +405,17 @@ Eigen::Vector3d NormalOf(const FrameAngles& angles) {
   return NormalOfAngles<double>(angles.lambda, angles.theta);
 }
 
+void CheckFrameNormal(const FrameAngles& angles, const Eigen::Vector3d& from,
+                      const Eigen::Vector3d& to) {
+  const Eigen::Vector3d n = NormalOf(angles), chord = (to - from).normalized();
+  if (!n.allFinite() || !std::isfinite(angles.psi))
+    throw InputError("the frame's normal is not finite");
+  if (!(n.cross(chord).norm() > 1e-6))
+    throw InputError(
+        "the frame's normal runs along the first edge: its first tangent (the edge projected "
+        "across the normal) is undefined; give a normal across the edge");
+}
+
 Frame FrameOfAngles(const std::vector<Eigen::Vector3d>& curve, const FrameAngles& angles) {
   const double a[3] = {angles.lambda, angles.theta, angles.psi};
   Frame f;
@@ -455,6 +466,10 @@ CyclidicStrip MakeCyclidicStrip(const CircularStrip& strip, const FrameAngles& a
 
 std::vector<std::vector<Eigen::Vector3d>> CanalRows(const CyclidicStrip& net, int m) {
   if (m < 1) throw InputError("the canal mesh needs at least one segment per circle");
+  if (const double vertices = static_cast<double>(net.strip.p.size()) * (m + 1.0); vertices > 1e7)
+    throw InputError("the canal mesh would have " +
+                     std::to_string(static_cast<long long>(vertices)) +
+                     " vertices (at most 1e7): lower the segments");
   if (const int e = ScaleExponent(net.strip.p, net.strip.q); e != 0) {
     CyclidicStrip unit = net;
     unit.strip = Scaled(net.strip, -e);
@@ -622,6 +637,7 @@ CanalSurface::CanalSurface(const CircularStripInput& input, const FrameAngles& a
   std::string why;
   if (!options.IsValid(&why)) throw InputError("invalid option: " + why);
   strip_ = BuildCircularStrip(input);
+  CheckFrameNormal(angles, input.curve[0], input.curve[1]);
 }
 
 NamedValues CanalSurface::Measure() const {

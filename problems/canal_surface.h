@@ -73,6 +73,11 @@ Eigen::Vector3d NormalOf(const FrameAngles& angles);
 struct Frame {
   Eigen::Vector3d t1, t2, n;
 };
+// Throws InputError unless the normal of `angles` leaves the chord `from` → `to` (the first
+// edge, whose projection gives the frame's first tangent) by more than 1e-6 rad, and is finite.
+void CheckFrameNormal(const FrameAngles& angles, const Eigen::Vector3d& from,
+                      const Eigen::Vector3d& to);
+
 // The frame of `angles` at P_0 of `curve` (as MakeCyclidicStrip sets it up), and the angles of a
 // right-handed orthonormal frame (t2 = n × t1; ψ takes up the turn of t1 about n).
 Frame FrameOfAngles(const std::vector<Eigen::Vector3d>& curve, const FrameAngles& angles);

@@ -43,19 +43,27 @@ std::string Name(const char* letter, int k) {
   return std::string(letter) + "_" + std::to_string(k);
 }
 
-// The second point where the line through `on` (a point of `circle`) in the planes of `circle`
-// and of the normal `plane_normal` meets the circle. Throws when the planes agree or the line
-// only touches the circle.
+// The second point where the closing circle (in the plane of normal `plane_normal`; `closing`
+// when already known) meets `circle` besides `on`: on the line through `on` in both planes, or,
+// when the planes agree (a flat strip), the mirror image of `on` in the line of the two centres.
+// Throws when the circles agree or only touch.
 Eigen::Vector3d SecondIntersection(const Circle& circle, const Eigen::Vector3d& on,
-                                   const Eigen::Vector3d& plane_normal, const std::string& what,
-                                   double scale) {
+                                   const Eigen::Vector3d& plane_normal, const Circle* closing,
+                                   const std::string& what, double scale) {
   const Eigen::Vector3d d = circle.normal.cross(plane_normal.normalized());
-  if (!(d.norm() > 1e-12))
-    throw InputError("the closing circle lies in the plane of " + what +
-                     ": the closed strip degenerates");
-  const double s = -2.0 * d.dot(on - circle.centre) / d.squaredNorm();
-  const Eigen::Vector3d x = on + s * d;
-  if (!(std::abs(s) * d.norm() > 1e-9 * scale))
+  Eigen::Vector3d x;
+  if (d.norm() > 1e-12) {
+    const double s = -2.0 * d.dot(on - circle.centre) / d.squaredNorm();
+    x = on + s * d;
+  } else {
+    Eigen::Vector3d axis = Eigen::Vector3d::Zero();
+    if (closing != nullptr) axis = closing->centre - circle.centre;
+    if (!(axis.norm() > 1e-12 * scale))
+      throw InputError("the closing circle lies on " + what + ": the closed strip degenerates");
+    const Eigen::Vector3d u = axis.normalized(), r = on - circle.centre;
+    x = circle.centre + 2.0 * r.dot(u) * u - r;
+  }
+  if (!((x - on).norm() > 1e-9 * scale))
     throw InputError("the closing circle only touches " + what +
                      ": change the first point or the lengths");
   return x;
@@ -74,12 +82,14 @@ double MeanEdge(const CircularStrip& strip) {
 
 }  // namespace
 
-ClosedCircularStrip BuildClosedCircularStrip(const CircularStripInput& input) {
+ClosedCircularStrip BuildClosedCircularStrip(const CircularStripInput& input,
+                                             double cospherical_tolerance) {
   const int count = static_cast<int>(input.curve.size());
   if (count < 3) throw InputError("a closed strip needs at least three curve points");
   if (static_cast<int>(input.lengths.size()) != count)
     throw InputError("the strip needs one length per curve point (" + std::to_string(count) +
                      "), got " + std::to_string(input.lengths.size()));
+  if (!(cospherical_tolerance >= 0.0)) throw InputError("the co-sphericity tolerance must be ≥ 0");
   for (int k = 0; k < count; ++k) {
     if (!input.curve[k].allFinite())
       throw InputError("curve point " + std::to_string(k) + " is not finite");
@@ -89,14 +99,20 @@ ClosedCircularStrip BuildClosedCircularStrip(const CircularStripInput& input) {
           "curve points " + std::to_string(k) + " and " + std::to_string(next) + " are the same" +
           (next == 0 ? " (list a closed curve's points once, without repeating P_0)" : ""));
   }
-  // Q_0..Q_{N−2}: the open strip on P_0..P_{N−2}.
+  if (!input.first_point.allFinite()) throw InputError("the first point is not finite");
+  // The construction runs about P_0 (spheres and planes of far-away points lose digits).
+  const Eigen::Vector3d origin = input.curve[0];
   CircularStripInput open = input;
+  for (Eigen::Vector3d& p : open.curve) p -= origin;
+  open.first_point -= origin;
+  const std::vector<Eigen::Vector3d> curve = open.curve;
+  // Q_0..Q_{N−2}: the open strip on P_0..P_{N−2}.
   open.curve.pop_back();
   open.lengths.pop_back();
   const CircularStrip first = BuildCircularStrip(open);
   ClosedCircularStrip result;
-  CircularStrip& strip = result.strip;
-  strip.p = input.curve;
+  CircularStrip strip;
+  strip.p = curve;
   strip.q = first.q;
   strip.q.push_back(strip.p[count - 1]);  // Q_{N−1}, set below
   const int last = count - 1, before = count - 2;
@@ -115,7 +131,7 @@ ClosedCircularStrip BuildClosedCircularStrip(const CircularStripInput& input) {
       std::max(DistanceTo(sa, strip.p[before]), DistanceTo(sa, strip.q[before])) / edge;
   Eigen::Vector3d plane_normal;
   const Eigen::Vector3d asked_q0 = strip.q[0];
-  if (result.cosphericity < 1e-9) {
+  if (result.cosphericity <= cospherical_tolerance) {
     result.closing_case = 1;
     plane_normal = (p0 - strip.q[0]).cross(pl - strip.q[0]);
     if (!(plane_normal.norm() > 1e-12 * (p0 - strip.q[0]).norm() * (pl - strip.q[0]).norm()))
@@ -129,12 +145,13 @@ ClosedCircularStrip BuildClosedCircularStrip(const CircularStripInput& input) {
       throw InputError("the spheres (Γ_0, P_" + std::to_string(last) + ") and (Γ_" +
                        std::to_string(before) +
                        ", P_0) are planes: the closing circle degenerates to a line");
-    strip.q[0] = SecondIntersection(gamma0, p0, plane_normal, "the first circle Γ_0", scale);
+    strip.q[0] =
+        SecondIntersection(gamma0, p0, plane_normal, nullptr, "the first circle Γ_0", scale);
   }
-  strip.q[last] =
-      SecondIntersection(gammal, pl, plane_normal, "the circle Γ_" + std::to_string(before), scale);
+  const Circle closing = CircleThrough<double>(pl, p0, strip.q[0]);
+  strip.q[last] = SecondIntersection(gammal, pl, plane_normal, &closing,
+                                     "the circle Γ_" + std::to_string(before), scale);
   result.start_shift = (strip.q[0] - asked_q0).norm();
-  result.closing_circle = CircleThrough<double>(pl, p0, strip.q[0]);
   const std::array<int, 3> checked = {0, before, last};
   for (int k : checked) {
     const int next = (k + 1) % count;
@@ -147,6 +164,11 @@ ClosedCircularStrip BuildClosedCircularStrip(const CircularStripInput& input) {
                        shift + ": change the first point or the lengths");
     }
   }
+  result.strip.p = input.curve;
+  result.strip.q = strip.q;
+  for (Eigen::Vector3d& q : result.strip.q) q += origin;
+  result.closing_circle = closing;
+  result.closing_circle.centre += origin;
   return result;
 }
 
@@ -178,26 +200,26 @@ double FrameClosureAngle(const Eigen::Matrix3d& loop, const Frame& frame) {
   return worst * 180.0 / M_PI;
 }
 
-bool ClosingFrame(const Eigen::Matrix3d& loop, const Frame& start, Frame* result,
-                  double* rotation_deg) {
-  *result = start;
+Frame ClosingFrame(const Eigen::Matrix3d& loop, const Frame& start, double* rotation_deg) {
   *rotation_deg = 0.0;
-  const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
-  if (loop.determinant() > 0.0) return (loop - identity).norm() < 1e-10;
-  // An odd count: the loop must be the reflection in a plane, whose normal w becomes ±t1.
+  if (loop.determinant() > 0.0) return start;  // only M = I closes: nothing to turn
+  // An odd count: the loop should be the reflection in a plane, whose normal w (the eigenvector
+  // of the least eigenvalue) becomes ±t1.
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(0.5 * (loop + loop.transpose()));
-  const Eigen::Vector3d w = eigen.eigenvectors().col(0);  // eigenvalue −1
-  if (!((loop - (identity - 2.0 * w * w.transpose())).norm() < 1e-10)) return false;
+  const Eigen::Vector3d w = eigen.eigenvectors().col(0);
   const Eigen::Vector3d target = start.t1.dot(w) >= 0.0 ? w : Eigen::Vector3d(-w);
   const Eigen::Matrix3d r = Eigen::Quaterniond::FromTwoVectors(start.t1, target).toRotationMatrix();
-  *result = {r * start.t1, r * start.t2, r * start.n};
   *rotation_deg = Eigen::AngleAxisd(r).angle() * 180.0 / M_PI;
-  return true;
+  return {r * start.t1, r * start.t2, r * start.n};
 }
 
 bool ClosedCanalOptions::IsValid(std::string* why) const {
   if (segments < 1 || segments > 100000) {
     *why = "segments must be in [1, 100000]";
+    return false;
+  }
+  if (!(cospherical_tolerance >= 0.0) || !(frame_tolerance_deg >= 0.0)) {
+    *why = "the co-sphericity and frame tolerances must be ≥ 0";
     return false;
   }
   return true;
@@ -208,16 +230,22 @@ ClosedCanalSurface BuildClosedCanalSurface(const CircularStripInput& input,
                                            const ClosedCanalOptions& options) {
   std::string why;
   if (!options.IsValid(&why)) throw InputError("closed canal surface: " + why);
+  if (input.curve.size() < 3) throw InputError("a closed strip needs at least three curve points");
+  // The construction runs about P_0 and is moved back at the end.
+  const Eigen::Vector3d origin = input.curve[0];
+  CircularStripInput local = input;
+  for (Eigen::Vector3d& p : local.curve) p -= origin;
+  local.first_point -= origin;
   ClosedCanalSurface s;
-  s.closed = BuildClosedCircularStrip(input);
+  s.closed = BuildClosedCircularStrip(local, options.cospherical_tolerance);
   const std::vector<Eigen::Vector3d>& curve = s.closed.strip.p;
   const Eigen::Matrix3d loop = LoopReflection(curve);
+  CheckFrameNormal(angles, curve[0], curve[1]);
   const Frame asked = FrameOfAngles(curve, angles);
-  Frame frame = asked;
   double rotation = 0.0;
-  if (options.close_frame) ClosingFrame(loop, asked, &frame, &rotation);
+  const Frame frame = options.close_frame ? ClosingFrame(loop, asked, &rotation) : asked;
   const double closure = FrameClosureAngle(loop, frame);
-  s.frame_closes = closure < 1e-7;
+  s.frame_closes = closure <= options.frame_tolerance_deg;
   s.angles = AnglesOfFrame(curve, frame);
   // The net on the curve run once around and back to P_0: its last circle is C_0 as the carried
   // frame sees it, so every quad of the mesh is circular and the seam shows what does not close.
@@ -231,8 +259,10 @@ ClosedCanalSurface BuildClosedCanalSurface(const CircularStripInput& input,
   for (int j = 0; j <= options.segments; ++j)
     gap = std::max(gap, (rows[count][j] - rows[0][j]).norm());
   gap /= MeanEdge(s.closed.strip);
-  s.welded = s.frame_closes && gap < 1e-9;
+  s.welded = s.frame_closes && gap <= kWeldTolerance;
   if (s.welded) rows.pop_back();
+  for (auto& row : rows)
+    for (Eigen::Vector3d& x : row) x += origin;
   s.mesh = RowsMesh(rows, s.welded);
   s.measures = {{"closing_case", static_cast<double>(s.closed.closing_case)},
                 {"cosphericity", s.closed.cosphericity},
@@ -242,6 +272,13 @@ ClosedCanalSurface BuildClosedCanalSurface(const CircularStripInput& input,
                 {"frame_rotation_deg", rotation},
                 {"seam_gap", gap}};
   for (const NamedValue& v : MeasureCircularMesh(s.mesh)) s.measures.push_back(v);
+  // Back to the input's place.
+  s.closed.strip.p = input.curve;
+  for (Eigen::Vector3d& q : s.closed.strip.q) q += origin;
+  s.closed.closing_circle.centre += origin;
+  for (auto* row : {&s.net.strip.p, &s.net.strip.q})
+    for (Eigen::Vector3d& x : *row) x += origin;
+  for (Circle& c : s.net.circles) c.centre += origin;
   return s;
 }
 

@@ -40,11 +40,16 @@ struct ClosedCircularStrip {
 };
 
 // `input.curve` has N ≥ 3 points without the repeated first point; `input.lengths` N values
-// (L_{N−1}, and in case 2 L_0, are replaced by the closing's). Throws InputError naming the
-// point or quad that breaks the construction: fewer than three points, a repeated point, the
+// (L_{N−1}, and in case 2 L_0, are replaced by the closing's). Case 1 when Γ_{N−2} is within
+// `cospherical_tolerance` (of the mean edge) of the sphere through Γ_0 and P_{N−1}: rounded
+// input of a co-spherical design stays in case 1 (case 2 is discontinuous there: it moves Q_0 by
+// the size of the strip however small the miss), its closing quad then circular to about that
+// tolerance. Runs about P_0 (the result is the same far from the origin). Throws InputError naming
+// the point or quad that breaks the construction: fewer than three points, a repeated point, the
 // open strip's errors, a closing circle that degenerates to a line or touches Γ_0 or Γ_{N−2}
 // only at P_0 or P_{N−1}, or a quad the closing folds.
-ClosedCircularStrip BuildClosedCircularStrip(const CircularStripInput& input);
+ClosedCircularStrip BuildClosedCircularStrip(const CircularStripInput& input,
+                                             double cospherical_tolerance = 1e-6);
 
 // The closed strip as a ring of N quads (P_k, P_{k+1}, Q_{k+1}, Q_k): vertex 2k = P_k, 2k + 1 =
 // Q_k.
@@ -58,14 +63,21 @@ Eigen::Matrix3d LoopReflection(const std::vector<Eigen::Vector3d>& closed_curve)
 // reversed for an odd count (det loop = −1).
 double FrameClosureAngle(const Eigen::Matrix3d& loop, const Frame& frame);
 
-// A frame that closes under `loop` (see above), nearest to `start` (the smallest rotation taking
-// t1 onto the mirror's normal), or `start` itself and false when none does (loop neither I nor a
-// reflection, to 1e-10). `rotation_deg` gets the angle between `start` and the result.
-bool ClosingFrame(const Eigen::Matrix3d& loop, const Frame& start, Frame* result,
-                  double* rotation_deg);
+// The frame nearest to `start` that closes under `loop` (see above) when one does: for an odd
+// count, `start` turned the least to put t1 on the normal of the mirror plane nearest to `loop`
+// (the eigenvector of its symmetric part's least eigenvalue); for an even count `start` (only
+// loop = I closes, whatever the frame). Whether it closes is FrameClosureAngle's to say (rounded
+// input of a pseudo-spherical curve closes to about its rounding). `rotation_deg` gets the
+// angle between `start` and the result.
+Frame ClosingFrame(const Eigen::Matrix3d& loop, const Frame& start, double* rotation_deg);
+
+// The largest seam gap (per mean edge) that BuildClosedCanalSurface welds when the frame closes.
+constexpr double kWeldTolerance = 1e-5;
 
 struct ClosedCanalOptions {
-  int segments = 12;  // quads across the strip in the canal mesh, in [1, 100000]
+  int segments = 12;                    // quads across the strip in the canal mesh, in [1, 100000]
+  double cospherical_tolerance = 1e-6;  // see BuildClosedCircularStrip
+  double frame_tolerance_deg = 1e-3;    // the frame closes when it misses itself by at most this
   // Close the frame when the curve allows it (else the asked frame is kept and the report
   // gives how far it turns around the loop).
   bool close_frame = true;
@@ -75,9 +87,9 @@ struct ClosedCanalOptions {
 // A closed canal surface as one construction: the closed strip, the (closing) frame, the cyclidic
 // net once around the curve (N + 1 points, the last P_0 again with the carried frame, so its
 // circle is C_0 when the frame closes) and its canal mesh, N × segments circular quads. The
-// mesh's rows are welded into a ring when the frame and the curvature lines close (seam gap
-// below 1e-9 of the mean edge length); otherwise the last row stays apart and the gap is
-// reported.
+// mesh's rows are welded into a ring when the frame and the curvature lines close (seam gap at
+// most kWeldTolerance of the mean edge length); otherwise the last row stays apart and the gap is
+// reported. Runs about P_0.
 struct ClosedCanalSurface {
   ClosedCircularStrip closed;
   FrameAngles angles;

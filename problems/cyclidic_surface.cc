@@ -692,6 +692,7 @@ CyclidicMeshResult CyclidicSurfaceOfMesh(const PolyMesh& mesh, const CyclidicMes
   Frame frame;
   if (options.given_frame) {
     r.angles = options.angles;
+    CheckFrameNormal(r.angles, points[0], points[shape.Vertex(0, 1)]);
     frame = GridStartFrame(shape, points, r.angles);
   } else {
     FrameAngles start = DefaultGridAngles(shape, points);

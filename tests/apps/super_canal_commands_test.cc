@@ -362,6 +362,15 @@ TEST_F(SuperCanalCommandTest, CanalWritesTheSmoothCyclidicSurface) {
             Path("cc.obj") + " --surface " + Path("cs.obj") + " --surface-segments 4");
   ASSERT_EQ(closed.exit_code, 0) << closed.err << closed.out;
   EXPECT_EQ(ReadMesh(Path("cs.obj")).n_vertices(), 5u * 84u);
+  const std::string open = "canal " + Data("canal_curve.txt") + " --first-point -0.5,0.5,2 ";
+  ExpectOneLineError(
+      Gproj(open + "--length 2 --normal 0.666667,0.517638,0.005556 -o " + Path("x.obj")),
+      "along the first edge");
+  ExpectOneLineError(Gproj(open + "--length 2 --surface-segments 3 -o " + Path("x.obj")),
+                     "--surface-segments");
+  ExpectOneLineError(Gproj(open + "--length 0 -o " + Path("x.obj")), "--length");
+  ExpectOneLineError(Gproj(open + "--length 2 --frame-tolerance 1 -o " + Path("x.obj")),
+                     "--closed");
   // A frame that makes the plane steps cross: crossed quads, exit 3 with the reason.
   const CommandRun crossed =
       Gproj("canal " + Data("canal_curve.txt") +
