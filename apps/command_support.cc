@@ -92,7 +92,9 @@ CLI::Validator FiniteWhere(const std::function<bool(double)>& ok, const std::str
           used = 0;
         }
         if (text.empty()) return std::string("an empty value is not allowed");
-        if (used != text.size() || !std::isfinite(value)) return text + " is not a finite number";
+        if (used != text.size() || !std::isfinite(value) ||
+            text.find_first_of("xX") != std::string::npos)  // decimal notation only
+          return text + " is not a finite number";
         return ok(value) ? "" : text + " is not " + rule;
       },
       description);

@@ -73,8 +73,11 @@ double ParseNumber(const std::string& word, const std::string& where) {
   // overflow gives ±inf and is refused below.
   char* end = nullptr;
   const double value = word.empty() ? 0.0 : std::strtod(word.c_str(), &end);
+  // Decimal notation only: strtod also reads hexadecimal ("0x10" is 16), which no geometry file
+  // means.
   if (word.empty() || end != word.c_str() + word.size() ||
-      std::isspace(static_cast<unsigned char>(word[0])))
+      std::isspace(static_cast<unsigned char>(word[0])) ||
+      word.find_first_of("xX") != std::string::npos)
     throw InputError(where + ": '" + word + "' is not a number");
   if (!std::isfinite(value)) throw InputError(where + ": '" + word + "' is not finite");
   return value;

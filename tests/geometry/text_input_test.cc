@@ -87,6 +87,7 @@ TEST(TextInputTest, TinyNumbersAreNumbers) {
 TEST(TextInputTest, NumbersAndIndicesAreCheckedWhole) {
   EXPECT_EQ(ParseNumber("-2.5e1", "f:1"), -25.0);
   EXPECT_EQ(MessageOf([] { ParseNumber("1.5x", "f:1"); }), "f:1: '1.5x' is not a number");
+  EXPECT_EQ(MessageOf([] { ParseNumber("0x10", "f:1"); }), "f:1: '0x10' is not a number");
   EXPECT_EQ(MessageOf([] { ParseNumber("inf", "f:2"); }), "f:2: 'inf' is not finite");
   EXPECT_EQ(ParseIndex("3", "f:1", 4, "vertex"), 3);
   EXPECT_NE(MessageOf([] { ParseIndex("4", "f:1", 4, "vertex"); }).find("'4' is not a vertex id"),
