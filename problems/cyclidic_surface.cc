@@ -592,6 +592,16 @@ CyclidicSurface MeshCyclidicSurface(const CyclidicNet& net, const CyclidicSurfac
   // plane of the arc's tangent and the tangent of that patch's curvature circle crossing it (the
   // arriving circle's on the near side, the leaving circle's frame vector on the far side), in
   // coordinates about the near patch's corner.
+  // The angle at m, a point of the arc shared as `near_arc` of the near patch and `far_arc` of the
+  // far one, between the near patch's plane (the arc and its curvature circle from `from`, which
+  // leaves along `leave`) and the far patch's (the arc and `far_vector` carried from its corner).
+  const auto jump = [](const Arc& near_arc, const Eigen::Vector3d& from,
+                       const Eigen::Vector3d& leave, const Eigen::Vector3d& m, const Arc& far_arc,
+                       const Eigen::Vector3d& far_vector, const Eigen::Vector3d& far_corner) {
+    const Arc circle = ArcFrom(from, leave, m, "");
+    return AngleDeg(near_arc.Tangent(m).cross(circle.Tangent(m)),
+                    far_arc.Tangent(m).cross(Carry(far_vector, far_corner, m)));
+  };
   double worst = 0.0;
   for (int i = 0; i < rows; ++i)
     for (int j = 0; j < cols; ++j) {
@@ -605,11 +615,9 @@ CyclidicSurface MeshCyclidicSurface(const CyclidicNet& net, const CyclidicSurfac
             ArcFrom(p.corners[3], Mirror(p.frame.t1, p.corners[3] - a), p.corners[2], "");
         const Arc qab = ArcFrom(q.corners[0], q.frame.t1, q.corners[1], "");
         for (int u = 1; u < s; ++u) {
-          const Eigen::Vector3d x = xs[k][u] + shift, y = grids[k][u][s] + shift;
-          const Arc circle = ArcFrom(x, Mirror(p.frame.t2, x - a), y, "");
-          const Eigen::Vector3d near = dc.Tangent(y).cross(circle.Tangent(y));
-          const Eigen::Vector3d far = qab.Tangent(y).cross(Carry(q.frame.t2, q.corners[0], y));
-          worst = std::max(worst, AngleDeg(near, far));
+          const Eigen::Vector3d x = xs[k][u] + shift;
+          worst = std::max(worst, jump(dc, x, Mirror(p.frame.t2, x - a), grids[k][u][s] + shift,
+                                       qab, q.frame.t2, q.corners[0]));
         }
       }
       if (j + 1 < cols) {  // arc b-c, shared with patch (i, j + 1) as its arc a-d
@@ -618,11 +626,9 @@ CyclidicSurface MeshCyclidicSurface(const CyclidicNet& net, const CyclidicSurfac
             ArcFrom(p.corners[1], Mirror(p.frame.t2, p.corners[1] - a), p.corners[2], "");
         const Arc qad = ArcFrom(q.corners[0], q.frame.t2, q.corners[3], "");
         for (int v = 1; v < s; ++v) {
-          const Eigen::Vector3d z = zs[k][v] + shift, w = grids[k][s][v] + shift;
-          const Arc circle = ArcFrom(z, Mirror(p.frame.t1, z - a), w, "");
-          const Eigen::Vector3d near = bc.Tangent(w).cross(circle.Tangent(w));
-          const Eigen::Vector3d far = qad.Tangent(w).cross(Carry(q.frame.t1, q.corners[0], w));
-          worst = std::max(worst, AngleDeg(near, far));
+          const Eigen::Vector3d z = zs[k][v] + shift;
+          worst = std::max(worst, jump(bc, z, Mirror(p.frame.t1, z - a), grids[k][s][v] + shift,
+                                       qad, q.frame.t1, q.corners[0]));
         }
       }
     }
