@@ -54,14 +54,14 @@ std::unique_ptr<CanalSurface> CanalFromArgs(const CanalArgs& args) {
 // Marks the run not converged, with the reason, when the canal mesh has crossed quads or the
 // smooth surface (when made) is not usable.
 void CheckCanalResult(const NamedValues& mesh_measures, const CyclidicSurface* surface,
-                      RunReport* report) {
+                      RunReport* report,
+                      const char* hint =
+                          "the frame makes the plane steps between the circles "
+                          "pass each other; try another --normal or --psi") {
   std::string fault;
   if (const double folded = ValueOf(mesh_measures, "folded_quads"); folded > 0) {
-    char text[200];
-    std::snprintf(text, sizeof(text),
-                  "the canal mesh has %.0f crossed quads (the frame makes the plane steps between "
-                  "the circles pass each other; try another --normal or --psi)",
-                  folded);
+    char text[240];
+    std::snprintf(text, sizeof(text), "the canal mesh has %.0f crossed quads (%s)", folded, hint);
     fault = text;
   } else if (surface != nullptr) {
     fault = CyclidicSurfaceFault(surface->measures, 1e-4);
@@ -134,7 +134,7 @@ int RunCanalFromCurves(const CanalArgs& args) {
     if (!args.surface.empty() || !args.surface_picture.empty())
       throw InputError(
           "--surface and --surface-picture need a circular strip's cyclidic net, not "
-          "--second-curve");
+          "--second-curve (gproj cyclidic makes the smooth surface of its mesh)");
     const std::vector<Eigen::Vector3d> curve1 = ReadPoints(args.curve, 3);
     const std::vector<Eigen::Vector3d> curve2 = ReadPoints(args.second_curve, 2);
     std::printf(
@@ -148,7 +148,9 @@ int RunCanalFromCurves(const CanalArgs& args) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     report = ConstructionReport("spheres from two curves", {}, canal.measures, true, seconds);
-    CheckCanalResult(canal.measures, nullptr, &report);
+    CheckCanalResult(canal.measures, nullptr, &report,
+                     "the plane steps between the circles pass each other; fewer --segments or a "
+                     "finer line of curvature");
   } catch (const InputError& e) {
     std::cerr << "gproj canal: " << e.what() << "\n";
     return kExitInputError;
@@ -270,11 +272,22 @@ int RunClosedCanal(const CanalArgs& args) {
     strip_mesh = ClosedStripMesh(c.closed.strip);
     smooth = MakeSmoothSurface(args, c.net, c.welded);
     report = ConstructionReport(
-        "closing circle", {}, c.measures, c.frame_closes,
+        "closing circle", {}, c.measures, c.welded,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    report.termination = c.frame_closes ? "closed" : "the frame does not close around the curve";
-    if (c.frame_closes)
-      CheckCanalResult(c.measures, smooth.made ? &smooth.surface : nullptr, &report);
+    char why[200];
+    if (!c.frame_closes)
+      std::snprintf(why, sizeof(why),
+                    "the frame comes back %.3g deg off after the loop (--frame-tolerance %.1e)",
+                    ValueOf(c.measures, "frame_closure_deg"), options.frame_tolerance_deg);
+    else if (!c.welded)
+      std::snprintf(why, sizeof(why),
+                    "the curvature lines across the circles do not close around the curve (seam "
+                    "gap %.3g of the mean edge): the canal mesh is open at P_0",
+                    ValueOf(c.measures, "seam_gap"));
+    else
+      std::snprintf(why, sizeof(why), "closed");
+    report.termination = why;
+    if (c.welded) CheckCanalResult(c.measures, smooth.made ? &smooth.surface : nullptr, &report);
   } catch (const InputError& e) {
     std::cerr << "gproj canal: " << e.what() << "\n";
     return kExitInputError;
@@ -296,6 +309,12 @@ int RunClosedCanal(const CanalArgs& args) {
   if (c.frame_closes)
     std::printf("frame closes around the curve (%.1e deg; turned %.4g deg from the asked one)\n",
                 ValueOf(m, "frame_closure_deg"), ValueOf(m, "frame_rotation_deg"));
+  else if (ValueOf(m, "frame_closure_deg") < 0.1)
+    std::printf(
+        "the frame comes back %.3g deg off after the loop, more than --frame-tolerance %.1e: is "
+        "the curve a rounded pseudo-spherical one? A looser --frame-tolerance closes it; the "
+        "canal mesh is left open at P_0\n",
+        ValueOf(m, "frame_closure_deg"), args.closed_options.frame_tolerance_deg);
   else
     std::printf(
         "the reflections along the curve turn every frame (%.4g deg for this one): no smooth "
@@ -323,9 +342,7 @@ int RunClosedCanal(const CanalArgs& args) {
   std::snprintf(title, sizeof(title),
                 "Closed canal surface (000 §4.2, case %d), %zu circular quads",
                 c.closed.closing_case, c.mesh.n_faces());
-  return WriteAndConclude("canal", report, c.mesh, title, args.outputs, extra,
-                          c.frame_closes ? "" : "frame_closure_deg",
-                          args.closed_options.frame_tolerance_deg,
+  return WriteAndConclude("canal", report, c.mesh, title, args.outputs, extra, "", 0.0,
                           Joined({{args.strip, &strip_mesh}}, smooth.Outputs(args)));
 }
 

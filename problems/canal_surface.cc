@@ -466,6 +466,17 @@ CyclidicStrip MakeCyclidicStrip(const CircularStrip& strip, const FrameAngles& a
 
 std::vector<std::vector<Eigen::Vector3d>> CanalRows(const CyclidicStrip& net, int m) {
   if (m < 1) throw InputError("the canal mesh needs at least one segment per circle");
+  // About P_0: the plane steps intersect planes and circles, which lose digits far away.
+  if (const Eigen::Vector3d origin = net.strip.p[0]; origin != Eigen::Vector3d::Zero()) {
+    CyclidicStrip local = net;
+    for (auto* row : {&local.strip.p, &local.strip.q})
+      for (Eigen::Vector3d& x : *row) x -= origin;
+    for (Circle& c : local.circles) c.centre -= origin;
+    std::vector<std::vector<Eigen::Vector3d>> rows = CanalRows(local, m);
+    for (auto& row : rows)
+      for (Eigen::Vector3d& x : row) x += origin;
+    return rows;
+  }
   if (const double vertices = static_cast<double>(net.strip.p.size()) * (m + 1.0); vertices > 1e7)
     throw InputError("the canal mesh would have " +
                      std::to_string(static_cast<long long>(vertices)) +

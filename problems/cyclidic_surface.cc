@@ -53,7 +53,7 @@ Plane PencilPlane(const Plane& p, const Plane& q, const Eigen::Vector3d& x) {
 }
 
 // The fractions of the arc's angle (or length) at which it meets the plane: none, one (a
-// line) or two, each taken in [−0.5, 1.5) around the arc when it can be.
+// line) or two, each as the turn of the circle nearest to the arc.
 std::vector<double> CutFractions(const Arc& arc, const Plane& plane) {
   if (arc.straight) {
     const double slope = plane.m.dot(arc.end - arc.start);
@@ -412,6 +412,19 @@ class GridFrameObjective final : public ceres::FirstOrderFunction {
   double t2_sign_, scale_;
 };
 
+// The frame with t1 turned towards (0, 1) and t2 towards (1, 0), so that the arcs along the first
+// edges leave towards their ends (eq. 5 is the same for either sense; the patches are not: the
+// other sense runs the arcs the long way round). `psi` follows t1.
+Frame TowardsEdges(Frame f, const GridShape& shape, const std::vector<Eigen::Vector3d>& points,
+                   double* psi) {
+  if (f.t1.dot(points[shape.Vertex(0, 1)] - points[0]) < 0.0) {
+    f.t1 = -f.t1;
+    *psi = std::remainder(*psi + M_PI, 2.0 * M_PI);
+  }
+  if (f.t2.dot(points[shape.Vertex(1, 0)] - points[0]) < 0.0) f.t2 = -f.t2;
+  return f;
+}
+
 }  // namespace
 
 Frame GridStartFrame(const GridShape& shape, const std::vector<Eigen::Vector3d>& points,
@@ -419,7 +432,8 @@ Frame GridStartFrame(const GridShape& shape, const std::vector<Eigen::Vector3d>&
   const double a[3] = {angles.lambda, angles.theta, angles.psi};
   Frame f;
   StartFrameT<double>(shape, points, a, T2Sign(shape, points, angles), &f.t1, &f.t2, &f.n);
-  return f;
+  double psi = angles.psi;
+  return TowardsEdges(f, shape, points, &psi);
 }
 
 FrameAngles DefaultGridAngles(const GridShape& shape, const std::vector<Eigen::Vector3d>& points) {
@@ -473,6 +487,7 @@ GridFrameFairing FairGridFrame(const GridShape& shape, const std::vector<Eigen::
   ceres::Solve(options, problem, x, &summary);
   out.angles = {x[0], x[1], x[2]};
   StartFrameT<double>(shape, points, x, t2_sign, &out.frame.t1, &out.frame.t2, &out.frame.n);
+  out.frame = TowardsEdges(out.frame, shape, points, &out.angles.psi);
   out.final_energy = GridEnergyT<double>(shape, points, x, t2_sign);
   out.iterations = static_cast<int>(summary.iterations.size()) - 1;
   out.converged = summary.termination_type == ceres::CONVERGENCE;
@@ -644,7 +659,7 @@ CyclidicSurface MeshCyclidicSurface(const CyclidicNet& net, const CyclidicSurfac
   const GridShape& fs = out.fine_shape;
   for (int r = 0; r <= fs.rows; ++r)
     seam = std::max(seam, (fine[fs.Vertex(r, fs.cols)] - fine[fs.Vertex(r, 0)]).norm());
-  out.welded = options.weld_closed && seam < 1e-9 * edge;
+  out.welded = options.weld_closed && seam <= kSurfaceWeldTolerance * edge;
   std::vector<PolyMesh::VertexHandle> v(fine.size());
   for (int r = 0; r <= fs.rows; ++r)
     for (int q = 0; q <= fs.cols; ++q) {
@@ -660,12 +675,25 @@ CyclidicSurface MeshCyclidicSurface(const CyclidicNet& net, const CyclidicSurfac
       out.mesh.add_face(
           std::vector<PolyMesh::VertexHandle>{v[fs.Vertex(r, q)], v[fs.Vertex(r + 1, q)],
                                               v[fs.Vertex(r + 1, q + 1)], v[fs.Vertex(r, q + 1)]});
+  // Arcs that run the long way round (beyond 225°: semicircles are a canal's own).
+  int long_arcs = 0;
+  for (int i = 0; i < rows; ++i)
+    for (int j = 0; j < cols; ++j) {
+      const CyclidicPatch p = net.Patch(i, j);
+      const auto& [a, b, c, d] = p.corners;
+      const Arc arcs[4] = {ArcFrom(a, p.frame.t1, b, ""), ArcFrom(a, p.frame.t2, d, ""),
+                           ArcFrom(b, Mirror(p.frame.t2, b - a), c, ""),
+                           ArcFrom(d, Mirror(p.frame.t1, d - a), c, "")};
+      for (const Arc& arc : arcs)
+        if (!arc.straight && arc.angle > 1.25 * M_PI) ++long_arcs;
+    }
   const CircularityMeasures fine_measures = MeasureCircularity(out.mesh);
   out.measures = {{"patches", static_cast<double>(rows * cols)},
                   {"max_tangent_angle_deg", worst},
                   {"max_face_frame_closure_deg", MaxFaceFrameClosure(net)},
                   {"fine_max_concyclicity", fine_measures.max_concyclicity},
-                  {"folded_fine_quads", static_cast<double>(fine_measures.folded_quads)}};
+                  {"folded_fine_quads", static_cast<double>(fine_measures.folded_quads)},
+                  {"long_arcs", static_cast<double>(long_arcs)}};
   if (options.weld_closed) out.measures.push_back({"seam_gap", seam / edge});
   return out;
 }
@@ -735,6 +763,13 @@ std::string CyclidicSurfaceFault(const NamedValues& measures, double tangent_tol
                   folded);
     return text;
   }
+  if (const double arcs = ValueOf(measures, "long_arcs"); arcs > 0) {
+    std::snprintf(text, sizeof(text),
+                  "%.0f patch arcs run more than 225 deg round their circles: the frame points "
+                  "away from the edges and the surface wraps round (try the default frame)",
+                  arcs);
+    return text;
+  }
   if (const double angle = ValueOf(measures, "max_tangent_angle_deg"); angle > tangent_tolerance) {
     std::snprintf(text, sizeof(text),
                   "the patches' tangent planes disagree by %.3g deg across a shared arc (tolerance "
@@ -742,7 +777,7 @@ std::string CyclidicSurfaceFault(const NamedValues& measures, double tangent_tol
                   angle, tangent_tolerance);
     return text;
   }
-  if (const double c = ValueOf(measures, "fine_max_concyclicity"); c > 1e-6) {
+  if (const double c = ValueOf(measures, "fine_max_concyclicity"); c > 1e-4) {
     std::snprintf(text, sizeof(text),
                   "fine quads are off their circles by %.3g of the mean edge: the surface was not "
                   "evaluated reliably",

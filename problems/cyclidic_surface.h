@@ -87,8 +87,9 @@ CyclidicNet MakeCyclidicNet(const GridShape& shape, std::vector<Eigen::Vector3d>
                             const Frame& start);
 
 // The frame at (0, 0) of a grid net from angles (as for canal strips): the normal n by λ, θ; t1
-// the projection of the edge (0, 0) → (0, 1) onto the plane ⟂ n, turned by ψ about n;
-// t2 = ±n × t1, the sign making it point towards (1, 0) (its sense is the arc's).
+// the projection of the edge (0, 0) → (0, 1) onto the plane ⟂ n, turned by ψ about n; t2 =
+// n × t1. The senses (the arcs') are then turned towards the first edges: t1 towards (0, 1), t2
+// towards (1, 0), so ψ and ψ + π give the same frame.
 Frame GridStartFrame(const GridShape& shape, const std::vector<Eigen::Vector3d>& points,
                      const FrameAngles& angles);
 
@@ -110,7 +111,8 @@ struct GridFrameFairing {
 
 // The frame at (0, 0) (λ, θ, ψ) that minimises eq. 5 over the net's edges (000 §3.3: the
 // smoothest cyclidic net on a circular mesh), by Ceres' line-search BFGS from `start`, with
-// gradients by automatic differentiation. The t2 sense of `start` is kept.
+// gradients by automatic differentiation. The senses of `frame` are turned towards the first
+// edges as in GridStartFrame (eq. 5 does not see them; the patches do).
 GridFrameFairing FairGridFrame(const GridShape& shape, const std::vector<Eigen::Vector3d>& points,
                                const FrameAngles& start, int max_iterations = 200);
 
@@ -123,11 +125,13 @@ double MaxFaceFrameClosure(const CyclidicNet& net, int* worst_face = nullptr);
 
 // The largest fine mesh MeshCyclidicSurface makes (about 2 GB with its OBJ text).
 constexpr double kMaxFineVertices = 1e7;
+// The largest seam gap (per mean edge of the net's rows) welded with weld_closed.
+constexpr double kSurfaceWeldTolerance = 1e-5;
 
 struct CyclidicSurfaceOptions {
   int segments = 8;  // fine quads along every arc, in [1, 1000]
-  // Merge the last column of the fine mesh into the first when they coincide (to 1e-9 of the
-  // net's mean edge): a net closed around (its last column repeats the first).
+  // Merge the last column of the fine mesh into the first when they coincide (to
+  // kSurfaceWeldTolerance): a net closed around (its last column repeats the first).
   bool weld_closed = false;
   bool IsValid(std::string* why) const;
 };
@@ -138,7 +142,8 @@ struct CyclidicSurface {
   bool welded = false;
   // patches, max_tangent_angle_deg (across shared arcs), max_face_frame_closure_deg,
   // fine_max_concyclicity (the fine quads are curvature-line quads of cyclides, hence circular),
-  // folded_fine_quads (not convex: the surface folds or pinches there) and, with weld_closed,
+  // folded_fine_quads (not convex: the surface folds or pinches there), long_arcs (patch arcs
+  // beyond 225° round their circles: the surface wraps round) and, with weld_closed,
   // seam_gap (last fine column against the first, per mean edge of the net's rows).
   NamedValues measures;
 };
@@ -156,7 +161,7 @@ struct CyclidicMeshOptions {
   bool given_frame = false;  // use `angles` as they are; else minimise eq. 5 from the default
   FrameAngles angles;        // with given_frame; else only its ψ (the minimisation's start)
   int max_iterations = 200;  // BFGS iterations for the frame
-  double closure_tolerance = 1e-6;  // degrees: frames carried around a face may miss by this
+  double closure_tolerance = 1e-4;  // degrees: frames carried around a face may miss by this
   bool IsValid(std::string* why) const;
 };
 
@@ -178,10 +183,10 @@ struct CyclidicMeshResult {
 CyclidicMeshResult CyclidicSurfaceOfMesh(const PolyMesh& mesh, const CyclidicMeshOptions& options,
                                          const std::string& path = "");
 
-// Why a smooth surface (its measures) is not usable, or "": tangent planes that disagree by more
-// than `tangent_tolerance` degrees, folded fine quads (the surface folds or pinches: a frame
-// that turns the patches through a cone point), fine quads off their circles by more than 1e-6
-// of the mean edge (a point picked wrongly).
+// Why a smooth surface (its measures) is not usable, or "": folded fine quads (the surface folds
+// or pinches: a frame that turns the patches through a cone point), long arcs (the surface wraps
+// round), tangent planes that disagree by more than `tangent_tolerance` degrees, fine quads off
+// their circles by more than 1e-4 of the mean edge (a point picked wrongly).
 std::string CyclidicSurfaceFault(const NamedValues& measures, double tangent_tolerance);
 
 // The run's report: solver "ceres-bfgs" (the frame minimised) or "none", converged when

@@ -326,7 +326,20 @@ TEST_F(SuperCanalCommandTest, ClosedCanalClosesTheStripAndTheFrameWhereTheCurveA
       Gproj("canal " + space + " --closed --first-point 2,-1,0 --length 1 -o " + Path("open.obj"));
   EXPECT_EQ(open.exit_code, 3) << open.err << open.out;
   EXPECT_NE(open.out.find("no smooth closed cyclidic net"), std::string::npos) << open.out;
-  EXPECT_NE(open.err.find("frame_closure_deg"), std::string::npos) << open.err;
+  EXPECT_NE(open.err.find("the frame comes back"), std::string::npos) << open.err;
+  // A flat ellipse: the frame closes but the curvature lines across the circles do not; the
+  // mesh is written open at P_0 and the run exits 3.
+  std::string ellipse;
+  for (int k = 0; k < 9; ++k)
+    ellipse += std::to_string(3.0 * std::cos(2.0 * M_PI * k / 9)) + " " +
+               std::to_string(2.0 * std::sin(2.0 * M_PI * k / 9)) + " 0\n";
+  const CommandRun flat = Gproj("canal " + Write("ellipse.txt", ellipse) +
+                                " --closed --first-point 3.4,0.2,0 --length 0.4 -o " +
+                                Path("e.obj") + " --report " + Path("e.json"));
+  EXPECT_EQ(flat.exit_code, 3) << flat.err << flat.out;
+  EXPECT_NE(flat.err.find("do not close"), std::string::npos) << flat.err;
+  EXPECT_FALSE(Json("e.json")["mesh"]["closed"].get<bool>());
+  EXPECT_GT(Json("e.json")["final"]["seam_gap"].get<double>(), 1e-3);
   ExpectOneLineError(
       Gproj("canal " + curve + " --closed --first-point 3.2,-0.2,0.5 --length 0.5 --smooth -o " +
             Path("x.obj")),
@@ -371,6 +384,28 @@ TEST_F(SuperCanalCommandTest, CanalWritesTheSmoothCyclidicSurface) {
   ExpectOneLineError(Gproj(open + "--length 0 -o " + Path("x.obj")), "--length");
   ExpectOneLineError(Gproj(open + "--length 2 --frame-tolerance 1 -o " + Path("x.obj")),
                      "--closed");
+  // A closed strip whose closing frame turns patches through cone points: the smooth surface
+  // pinches, exit 3 with the reason.
+  const std::string pinched =
+      Write("pinched.txt",
+            "2.9999941331895998 0 -0.0059330285673002397\n"
+            "2.5200632769705056 1.6195463281038918 0.16232920621342212\n"
+            "1.2405409158119767 2.7164056985197247 0.28670248908223106\n"
+            "-0.42466865507468721 2.9536353734280265 0.30934546098454396\n"
+            "-1.9580790844175293 2.2597437254867772 0.24389463768141756\n"
+            "-2.8773376890274331 0.84486257462851 0.084469244665465779\n"
+            "-2.8771839112935904 -0.84481742141182881 -0.08997924800966961\n"
+            "-1.9582423597782141 -2.2599321552977938 -0.24081842500382086\n"
+            "-0.42466029080269302 -2.9535771986384778 -0.30991187311597984\n"
+            "1.24058844112127 -2.716509764431092 -0.28550835277944253\n"
+            "2.519187200910789 -1.6189833082072798 -0.18052394443252145\n");
+  const CommandRun pinch = Gproj("canal " + pinched +
+                                 " --closed --first-point 2.456876017858424,-0.4691432830211836,"
+                                 "0.008893963253167743 --length 0.2413839908600255 -o " +
+                                 Path("p.obj") + " --surface " + Path("ps.obj"));
+  EXPECT_EQ(pinch.exit_code, 3) << pinch.err << pinch.out;
+  EXPECT_NE(pinch.err.find("folds or pinches"), std::string::npos) << pinch.err;
+  EXPECT_TRUE(Exists("ps.obj"));
   // A frame that makes the plane steps cross: crossed quads, exit 3 with the reason.
   const CommandRun crossed =
       Gproj("canal " + Data("canal_curve.txt") +
@@ -409,12 +444,13 @@ TEST_F(SuperCanalCommandTest, CyclidicMakesASmoothSurfaceOfACircularMesh) {
   EXPECT_EQ(given.exit_code, 0) << given.err << given.out;
   EXPECT_NE(given.out.find("frame at vertex 0 from --normal"), std::string::npos) << given.out;
 
-  // A frame turned half round sends patches through cone points: the surface folds, exit 3.
-  const CommandRun folded = Gproj("cyclidic " + input + " --normal 1,0,0 --psi 3.14 -o " +
+  // ψ and ψ + π give the same frame: its senses are turned towards the first edges (the other
+  // sense runs the arcs the long way round and the surface wraps round).
+  const CommandRun turned = Gproj("cyclidic " + input + " --normal 1,0,0 --psi 3.14 -o " +
                                   Path("f.obj") + " --report " + Path("f.json"));
-  EXPECT_EQ(folded.exit_code, 3) << folded.err << folded.out;
-  EXPECT_NE(folded.err.find("folds or pinches"), std::string::npos) << folded.err;
-  EXPECT_GT(Json("f.json")["final"]["folded_fine_quads"].get<double>(), 0.0);
+  EXPECT_EQ(turned.exit_code, 0) << turned.err << turned.out;
+  EXPECT_EQ(Json("f.json")["final"]["long_arcs"].get<double>(), 0.0);
+  EXPECT_EQ(Json("f.json")["final"]["folded_fine_quads"].get<double>(), 0.0);
   ExpectOneLineError(Gproj("cyclidic " + Data("noisy_grid_21x21.obj") + " -o " + Path("x.obj")),
                      "is not circular");
   ExpectOneLineError(Gproj("cyclidic " + Data("monkey_saddle_tri.obj") + " -o " + Path("x.obj")),
