@@ -233,6 +233,7 @@ int RunCCanal(const CanalArgs& args) {
 // Q_0), the frame closed around the loop where the curve allows, the canal mesh as a ring.
 int RunClosedCanal(const CanalArgs& args) {
   ClosedCanalSurface c;
+  ClosedCanalOptions options;
   RunReport report;
   PolyMesh strip_mesh;
   SmoothSurface smooth;
@@ -256,38 +257,22 @@ int RunClosedCanal(const CanalArgs& args) {
     const auto start = std::chrono::steady_clock::now();
     Eigen::Vector3d normal;
     if (args.normal.empty()) {
-      CircularStripInput open = input;
-      open.curve.pop_back();
-      open.lengths.pop_back();
-      normal = DefaultCanalNormal(BuildCircularStrip(open));
+      normal = DefaultClosedCanalNormal(input);
     } else {
       normal = Vector3(args.normal, "--normal");
       if (normal.norm() == 0.0) throw InputError("--normal must not be zero");
     }
     FrameAngles angles = AnglesFromNormal(normal);
     angles.psi = args.psi;
-    ClosedCanalOptions options = args.closed_options;
+    options = args.closed_options;
     options.segments = args.options.segments;
     c = BuildClosedCanalSurface(input, angles, options);
     strip_mesh = ClosedStripMesh(c.closed.strip);
     smooth = MakeSmoothSurface(args, c.net, c.welded);
-    report = ConstructionReport(
-        "closing circle", {}, c.measures, c.welded,
+    report = ClosedCanalRunReport(
+        c, options,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    char why[200];
-    if (!c.frame_closes)
-      std::snprintf(why, sizeof(why),
-                    "the frame comes back %.3g deg off after the loop (--frame-tolerance %.1e)",
-                    ValueOf(c.measures, "frame_closure_deg"), options.frame_tolerance_deg);
-    else if (!c.welded)
-      std::snprintf(why, sizeof(why),
-                    "the curvature lines across the circles do not close around the curve (seam "
-                    "gap %.3g of the mean edge): the canal mesh is open at P_0",
-                    ValueOf(c.measures, "seam_gap"));
-    else
-      std::snprintf(why, sizeof(why), "closed");
-    report.termination = why;
-    if (c.welded) CheckCanalResult(c.measures, smooth.made ? &smooth.surface : nullptr, &report);
+    if (report.converged && smooth.made) CheckCanalResult(c.measures, &smooth.surface, &report);
   } catch (const InputError& e) {
     std::cerr << "gproj canal: " << e.what() << "\n";
     return kExitInputError;
@@ -324,20 +309,9 @@ int RunClosedCanal(const CanalArgs& args) {
   std::printf("canal mesh: %zu quads, %s (seam gap %.1e of the mean edge)\n", c.mesh.n_faces(),
               c.welded ? "a closed ring" : "open at P_0", ValueOf(m, "seam_gap"));
   PrintMeasures("canal mesh", m);
-  const Eigen::Vector3d n = NormalOf(c.angles);
-  nlohmann::json extra = {{"curve", args.curve}};
+  nlohmann::json extra = ClosedCanalJson(c, options);
+  extra["curve"] = args.curve;
   PrintSmoothSurface(smooth, &extra);
-  extra["frame"] = {{"lambda", c.angles.lambda}, {"theta", c.angles.theta}, {"psi", c.angles.psi}};
-  extra["frame"]["normal"] = {n.x(), n.y(), n.z()};
-  const Circle& circle = c.closed.closing_circle;
-  extra["closing_circle"] = {{"centre", {circle.centre.x(), circle.centre.y(), circle.centre.z()}},
-                             {"normal", {circle.normal.x(), circle.normal.y(), circle.normal.z()}},
-                             {"radius", circle.radius}};
-  std::vector<double> lengths;
-  for (int k = 0; k < count; ++k)
-    lengths.push_back((c.closed.strip.q[k] - c.closed.strip.p[k]).norm());
-  extra["lengths"] = lengths;
-  extra["mesh"] = {{"rows", count}, {"segments", args.options.segments}, {"closed", c.welded}};
   char title[160];
   std::snprintf(title, sizeof(title),
                 "Closed canal surface (000 §4.2, case %d), %zu circular quads",

@@ -282,4 +282,59 @@ ClosedCanalSurface BuildClosedCanalSurface(const CircularStripInput& input,
   return s;
 }
 
+Eigen::Vector3d DefaultClosedCanalNormal(const CircularStripInput& input) {
+  if (input.curve.size() < 3) throw InputError("a closed strip needs at least three curve points");
+  CircularStripInput open = input;
+  open.curve.pop_back();
+  open.lengths.pop_back();
+  return DefaultCanalNormal(BuildCircularStrip(open));
+}
+
+RunReport ClosedCanalRunReport(const ClosedCanalSurface& surface, const ClosedCanalOptions& options,
+                               double seconds) {
+  const NamedValues& m = surface.measures;
+  const double folded = ValueOf(m, "folded_quads");
+  RunReport report =
+      ConstructionReport("closing circle", {}, m, surface.welded && folded == 0.0, seconds);
+  char why[240];
+  if (!surface.frame_closes)
+    std::snprintf(why, sizeof(why),
+                  "the frame comes back %.3g deg off after the loop (--frame-tolerance %.1e)",
+                  ValueOf(m, "frame_closure_deg"), options.frame_tolerance_deg);
+  else if (!surface.welded)
+    std::snprintf(why, sizeof(why),
+                  "the curvature lines across the circles do not close around the curve (seam "
+                  "gap %.3g of the mean edge): the canal mesh is open at P_0",
+                  ValueOf(m, "seam_gap"));
+  else if (folded > 0.0)
+    std::snprintf(why, sizeof(why),
+                  "the canal mesh has %.0f crossed quads (the frame makes the plane steps between "
+                  "the circles pass each other; try another --normal or --psi)",
+                  folded);
+  else
+    std::snprintf(why, sizeof(why), "closed");
+  report.termination = why;
+  return report;
+}
+
+nlohmann::json ClosedCanalJson(const ClosedCanalSurface& surface,
+                               const ClosedCanalOptions& options) {
+  const FrameAngles& a = surface.angles;
+  const Eigen::Vector3d n = NormalOf(a);
+  nlohmann::json json;
+  json["frame"] = {{"lambda", a.lambda}, {"theta", a.theta}, {"psi", a.psi}};
+  json["frame"]["normal"] = {n.x(), n.y(), n.z()};
+  const Circle& c = surface.closed.closing_circle;
+  json["closing_circle"] = {{"centre", {c.centre.x(), c.centre.y(), c.centre.z()}},
+                            {"normal", {c.normal.x(), c.normal.y(), c.normal.z()}},
+                            {"radius", c.radius}};
+  const CircularStrip& strip = surface.closed.strip;
+  std::vector<double> lengths;
+  for (size_t k = 0; k < strip.p.size(); ++k) lengths.push_back((strip.q[k] - strip.p[k]).norm());
+  json["lengths"] = lengths;
+  json["mesh"] = {
+      {"rows", strip.p.size()}, {"segments", options.segments}, {"closed", surface.welded}};
+  return json;
+}
+
 }  // namespace gproj

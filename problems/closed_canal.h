@@ -23,6 +23,7 @@
 // Where a closing frame exists, the frame nearest the asked one is taken.
 
 #include <Eigen/Core>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "problems/canal_surface.h"
@@ -106,5 +107,19 @@ struct ClosedCanalSurface {
 ClosedCanalSurface BuildClosedCanalSurface(const CircularStripInput& input,
                                            const FrameAngles& angles,
                                            const ClosedCanalOptions& options);
+
+// The frame's default normal on a closed curve: DefaultCanalNormal of the open strip on
+// P_0..P_{N−2}. Throws InputError as BuildCircularStrip does.
+Eigen::Vector3d DefaultClosedCanalNormal(const CircularStripInput& input);
+
+// The run's report: solver "closing circle", converged when the ring closes (the frame and the
+// curvature lines) and no quad is crossed; the termination says why not.
+RunReport ClosedCanalRunReport(const ClosedCanalSurface& surface, const ClosedCanalOptions& options,
+                               double seconds);
+
+// The report's extra keys: frame (λ, θ, ψ, normal), closing_circle (centre, normal, radius),
+// lengths (|P_k Q_k|), mesh (rows, segments, closed).
+nlohmann::json ClosedCanalJson(const ClosedCanalSurface& surface,
+                               const ClosedCanalOptions& options);
 
 }  // namespace gproj

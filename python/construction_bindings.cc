@@ -14,6 +14,7 @@
 #include "geometry/quad_grid.h"
 #include "problems/canal_surface.h"
 #include "problems/circular_mesh.h"
+#include "problems/closed_canal.h"
 #include "problems/combescure.h"
 #include "problems/cyclidic_surface.h"
 #include "python/conversions.h"
@@ -104,11 +105,42 @@ nlohmann::json CanalExtra(const CanalSurface& canal, int segments) {
   return extra;
 }
 
+// 000 §4.2: the closed strip, as `gproj canal --closed`.
+py::tuple RunClosedCanal(const CircularStripInput& input, const py::object& normal, double psi,
+                         int segments, double cospherical_tolerance, double frame_tolerance) {
+  ClosedCanalOptions options;
+  options.segments = segments;
+  options.cospherical_tolerance = cospherical_tolerance;
+  options.frame_tolerance_deg = frame_tolerance;
+  FrameAngles angles = AnglesFromNormal(normal.is_none() ? DefaultClosedCanalNormal(input)
+                                                         : Vector3FromPython(normal, "normal"));
+  angles.psi = psi;
+  const auto start = std::chrono::steady_clock::now();
+  const ClosedCanalSurface c = [&] {
+    py::gil_scoped_release release;
+    return BuildClosedCanalSurface(input, angles, options);
+  }();
+  const RunReport report = ClosedCanalRunReport(
+      c, options, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  nlohmann::json extra = ClosedCanalJson(c, options);
+  extra["curve"] = nullptr;
+  extra["output"] = nullptr;
+  return py::make_tuple(MeshToPython(c.mesh), ReportToPython("canal", report, extra));
+}
+
 py::tuple RunCanal(const py::object& curve, const py::object& first_point,
                    const std::optional<std::vector<double>>& lengths, double length,
                    const py::object& normal, double psi, int segments, bool smooth,
                    double length_weight, bool fixed_lengths, int max_iterations,
-                   const py::object& callback) {
+                   const py::object& callback, bool closed, double cospherical_tolerance,
+                   double frame_tolerance) {
+  if (closed) {
+    if (smooth) throw InputError("closed builds a closed circular strip: smooth does not apply");
+    if (!normal.is_none() && Vector3FromPython(normal, "normal").norm() == 0.0)
+      throw InputError("normal must not be zero");
+    return RunClosedCanal(StripInput(curve, first_point, lengths, length), normal, psi, segments,
+                          cospherical_tolerance, frame_tolerance);
+  }
   CanalSurfaceOptions options;
   options.segments = segments;
   options.smooth = smooth;
@@ -209,6 +241,11 @@ Canal surface from a circular strip (`gproj canal`, 000 §3.2-3.3, §4.1), optio
     smooth: minimise the smoothness energy of 000 eq. 5 first; length_weight keeps the lengths
         near the input, fixed_lengths smooths over the frame only, max_iterations bounds BFGS.
     callback: as for planarize, with the smoothing's records.
+    closed: close the curve by P_{n-1} -> P_0 (`--closed`, 000 §4.2): the closing circle sets
+        the last length (and moves Q_0 unless the end circles are co-spherical); the frame is
+        closed around the curve where it can be. The report's termination says why a ring
+        stays open (then converged is False). cospherical_tolerance and frame_tolerance
+        (degrees) as the options of the same names.
 
 Returns the canal mesh (V: (N, 3) float64, F: (M, 4) int32) and the report dict.
 )";
@@ -250,11 +287,14 @@ void BindConstructions(py::module_& m) {
         py::arg("segments") = cy.surface.segments, py::arg("max_iterations") = cy.max_iterations,
         py::arg("closure_tolerance") = cy.closure_tolerance, py::arg("tangent_tolerance") = 1e-4);
   const CanalSurfaceOptions ca;
+  const ClosedCanalOptions cl;
   m.def("canal", &RunCanal, kCanalDoc, py::arg("curve"), py::arg("first_point"), py::kw_only(),
         py::arg("lengths") = py::none(), py::arg("length") = 0.0, py::arg("normal") = py::none(),
         py::arg("psi") = 0.0, py::arg("segments") = ca.segments, py::arg("smooth") = false,
         py::arg("length_weight") = ca.smoothing.length_weight, py::arg("fixed_lengths") = false,
-        py::arg("max_iterations") = ca.smoothing.max_iterations, py::arg("callback") = py::none());
+        py::arg("max_iterations") = ca.smoothing.max_iterations, py::arg("callback") = py::none(),
+        py::arg("closed") = false, py::arg("cospherical_tolerance") = cl.cospherical_tolerance,
+        py::arg("frame_tolerance") = cl.frame_tolerance_deg);
 }
 
 }  // namespace gproj::python

@@ -81,6 +81,25 @@ def test_canal_equals_the_command_line(cli):
         gproj.canal(curve, [-0.5, 0.5, 2])
 
 
+def test_closed_canal_equals_the_command_line(cli):
+    source = DATA / "canal_closed_curve.txt"
+    curve = np.loadtxt(source)
+    cli.run("canal", source, "--closed", "--first-point", "3.2,-0.2,0.5", "--length", 0.5,
+            "--normal", "1,0,0", "-o", cli.path("c.obj"), "--report", cli.path("r.json"))
+    (V, F), report = gproj.canal(curve, [3.2, -0.2, 0.5], length=0.5, normal=[1, 0, 0],
+                                 closed=True)
+    expected = cli.read_report("r.json")
+    expected["curve"] = None
+    assert_reports_equal(report, expected)
+    Vc, Fc = gproj.read_mesh(cli.path("c.obj"))
+    assert_close(V, Vc)
+    assert (F == Fc).all()
+    assert report["converged"] and report["mesh"]["closed"]
+    assert report["final"]["closing_case"] == 2
+    with pytest.raises(ValueError, match="smooth"):
+        gproj.canal(curve, [3.2, -0.2, 0.5], length=0.5, closed=True, smooth=True)
+
+
 def test_cyclidic_equals_the_command_line(cli):
     V, F = gproj.read_mesh(str(DATA / "revolution_13x17.obj"))
     cli.run("cyclidic", DATA / "revolution_13x17.obj", "--segments", 3, "-o", cli.path("s.obj"),
