@@ -54,18 +54,9 @@ std::unique_ptr<CanalSurface> CanalFromArgs(const CanalArgs& args) {
 // Marks the run not converged, with the reason, when the canal mesh has crossed quads or the
 // smooth surface (when made) is not usable.
 void CheckCanalResult(const NamedValues& mesh_measures, const CyclidicSurface* surface,
-                      RunReport* report,
-                      const char* hint =
-                          "the frame makes the plane steps between the circles "
-                          "pass each other; try another --normal or --psi") {
-  std::string fault;
-  if (const double folded = ValueOf(mesh_measures, "folded_quads"); folded > 0) {
-    char text[240];
-    std::snprintf(text, sizeof(text), "the canal mesh has %.0f crossed quads (%s)", folded, hint);
-    fault = text;
-  } else if (surface != nullptr) {
-    fault = CyclidicSurfaceFault(surface->measures, 1e-4);
-  }
+                      RunReport* report, const char* hint = kCrossedQuadsHint) {
+  std::string fault = CrossedQuadsFault(mesh_measures, hint);
+  if (fault.empty() && surface != nullptr) fault = CyclidicSurfaceFault(surface->measures, 1e-4);
   if (fault.empty()) return;
   report->converged = false;
   report->termination = fault;

@@ -16,6 +16,13 @@ NamedValues MeasureCircularMesh(const PolyMesh& mesh) {
           {"folded_quads", static_cast<double>(c.folded_quads)}};
 }
 
+std::string CrossedQuadsFault(const NamedValues& measures, const std::string& hint) {
+  const double folded = ValueOf(measures, "folded_quads");
+  if (!(folded > 0.0)) return "";
+  return "the canal mesh has " + std::to_string(static_cast<long long>(folded)) +
+         " crossed quads (" + hint + ")";
+}
+
 RunReport ConstructionReport(const std::string& solver, const NamedValues& initial,
                              const NamedValues& final, bool converged, double seconds) {
   RunReport report;

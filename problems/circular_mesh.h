@@ -20,6 +20,10 @@ NamedValues MeasureCircularMesh(const PolyMesh& mesh);
 
 // The report of a construction without iterations (a propagation, an inversion): `solver`
 // names it, iterations 0, an empty history, `initial` and `final` its measures.
+// "" when MeasureCircularMesh's `measures` have no folded quads, else "the canal mesh has N
+// crossed quads (<hint>)".
+std::string CrossedQuadsFault(const NamedValues& measures, const std::string& hint);
+
 RunReport ConstructionReport(const std::string& solver, const NamedValues& initial,
                              const NamedValues& final, bool converged, double seconds);
 

@@ -293,9 +293,9 @@ Eigen::Vector3d DefaultClosedCanalNormal(const CircularStripInput& input) {
 RunReport ClosedCanalRunReport(const ClosedCanalSurface& surface, const ClosedCanalOptions& options,
                                double seconds) {
   const NamedValues& m = surface.measures;
-  const double folded = ValueOf(m, "folded_quads");
+  const std::string crossed = CrossedQuadsFault(m, kCrossedQuadsHint);
   RunReport report =
-      ConstructionReport("closing circle", {}, m, surface.welded && folded == 0.0, seconds);
+      ConstructionReport("closing circle", {}, m, surface.welded && crossed.empty(), seconds);
   char why[240];
   if (!surface.frame_closes)
     std::snprintf(why, sizeof(why),
@@ -306,11 +306,8 @@ RunReport ClosedCanalRunReport(const ClosedCanalSurface& surface, const ClosedCa
                   "the curvature lines across the circles do not close around the curve (seam "
                   "gap %.3g of the mean edge): the canal mesh is open at P_0",
                   ValueOf(m, "seam_gap"));
-  else if (folded > 0.0)
-    std::snprintf(why, sizeof(why),
-                  "the canal mesh has %.0f crossed quads (the frame makes the plane steps between "
-                  "the circles pass each other; try another --normal or --psi)",
-                  folded);
+  else if (!crossed.empty())
+    std::snprintf(why, sizeof(why), "%s", crossed.c_str());
   else
     std::snprintf(why, sizeof(why), "closed");
   report.termination = why;

@@ -112,6 +112,11 @@ ClosedCanalSurface BuildClosedCanalSurface(const CircularStripInput& input,
 // P_0..P_{N−2}. Throws InputError as BuildCircularStrip does.
 Eigen::Vector3d DefaultClosedCanalNormal(const CircularStripInput& input);
 
+// Why a canal mesh of a circular strip has crossed quads (CrossedQuadsFault's hint).
+inline constexpr const char* kCrossedQuadsHint =
+    "the frame makes the plane steps between the circles pass each other; try another --normal "
+    "or --psi";
+
 // The run's report: solver "closing circle", converged when the ring closes (the frame and the
 // curvature lines) and no quad is crossed; the termination says why not.
 RunReport ClosedCanalRunReport(const ClosedCanalSurface& surface, const ClosedCanalOptions& options,

@@ -177,6 +177,20 @@ Arc ArcFrom(const Eigen::Vector3d& a, const Eigen::Vector3d& t, const Eigen::Vec
 
 namespace {
 
+// The patch's four boundary arcs: a → b along t1, a → d along t2, b → c and d → c along the
+// mirror images of t2 and t1.
+struct PatchArcs {
+  Arc ab, ad, bc, dc;
+};
+PatchArcs ArcsOf(const CyclidicPatch& patch, const std::string& where) {
+  const auto& [a, b, c, d] = patch.corners;
+  const Frame& f = patch.frame;
+  return {ArcFrom(a, f.t1, b, Where(where, "arc a-b")),
+          ArcFrom(a, f.t2, d, Where(where, "arc a-d")),
+          ArcFrom(b, Mirror(f.t2, b - a), c, Where(where, "arc b-c")),
+          ArcFrom(d, Mirror(f.t1, d - a), c, Where(where, "arc d-c"))};
+}
+
 // Whether the pencil construction is ill-conditioned on the patch: an arc bent less than
 // `bend` (sin of its tangent-chord angle), or opposite arcs in (nearly) one plane.
 bool Degenerate(const Arc& ab, const Arc& ad, const Arc& bc, const Arc& dc, double bend) {
@@ -229,11 +243,7 @@ std::vector<std::vector<Eigen::Vector3d>> EvaluatePatch(const CyclidicPatch& pat
                                                         const std::string& where, bool inverted) {
   const auto& [a, b, c, d] = patch.corners;
   const Frame& f = patch.frame;
-  const Eigen::Vector3d t1_d = Mirror(f.t1, d - a), t2_b = Mirror(f.t2, b - a);
-  const Arc ab = ArcFrom(a, f.t1, b, Where(where, "arc a-b"));
-  const Arc ad = ArcFrom(a, f.t2, d, Where(where, "arc a-d"));
-  const Arc bc = ArcFrom(b, t2_b, c, Where(where, "arc b-c"));
-  const Arc dc = ArcFrom(d, t1_d, c, Where(where, "arc d-c"));
+  const auto [ab, ad, bc, dc] = ArcsOf(patch, where);
   if (!inverted && Degenerate(ab, ad, bc, dc, 1e-3)) {
     std::vector<Eigen::Vector3d> arc_points;
     for (const Arc* arc : {&ab, &ad, &bc, &dc})
@@ -581,13 +591,11 @@ CyclidicSurface MeshCyclidicSurface(const CyclidicNet& net, const CyclidicSurfac
       const CyclidicPatch p = net.Patch(i, j);
       const std::string name = PatchName(i, j);
       if (i == 0)
-        xs[k] = Samples(ArcFrom(p.corners[0], p.frame.t1, p.corners[1], name + ": arc a-b"),
-                        p.corners[1], s);
+        xs[k] = Samples(ArcsOf(p, name).ab, p.corners[1], s);
       else
         for (const auto& row : grids[k - cols]) xs[k].push_back(row.back());
       if (j == 0)
-        zs[k] = Samples(ArcFrom(p.corners[0], p.frame.t2, p.corners[3], name + ": arc a-d"),
-                        p.corners[3], s);
+        zs[k] = Samples(ArcsOf(p, name).ad, p.corners[3], s);
       else
         zs[k] = grids[k - 1].back();
       grids[k] = EvaluateCyclidicPatch(p, xs[k], zs[k], name);
@@ -624,26 +632,23 @@ CyclidicSurface MeshCyclidicSurface(const CyclidicNet& net, const CyclidicSurfac
       const Eigen::Vector3d shift = -net.points[shape.Vertex(i, j)];
       const CyclidicPatch p = Shifted(net.Patch(i, j), shift);
       const Eigen::Vector3d& a = p.corners[0];
+      const PatchArcs arcs = ArcsOf(p, "");
       if (i + 1 < rows) {  // arc d-c, shared with patch (i + 1, j) as its arc a-b
         const CyclidicPatch q = Shifted(net.Patch(i + 1, j), shift);
-        const Arc dc =
-            ArcFrom(p.corners[3], Mirror(p.frame.t1, p.corners[3] - a), p.corners[2], "");
-        const Arc qab = ArcFrom(q.corners[0], q.frame.t1, q.corners[1], "");
         for (int u = 1; u < s; ++u) {
           const Eigen::Vector3d x = xs[k][u] + shift;
-          worst = std::max(worst, jump(dc, x, Mirror(p.frame.t2, x - a), grids[k][u][s] + shift,
-                                       qab, q.frame.t2, q.corners[0]));
+          worst =
+              std::max(worst, jump(arcs.dc, x, Mirror(p.frame.t2, x - a), grids[k][u][s] + shift,
+                                   ArcsOf(q, "").ab, q.frame.t2, q.corners[0]));
         }
       }
       if (j + 1 < cols) {  // arc b-c, shared with patch (i, j + 1) as its arc a-d
         const CyclidicPatch q = Shifted(net.Patch(i, j + 1), shift);
-        const Arc bc =
-            ArcFrom(p.corners[1], Mirror(p.frame.t2, p.corners[1] - a), p.corners[2], "");
-        const Arc qad = ArcFrom(q.corners[0], q.frame.t2, q.corners[3], "");
         for (int v = 1; v < s; ++v) {
           const Eigen::Vector3d z = zs[k][v] + shift;
-          worst = std::max(worst, jump(bc, z, Mirror(p.frame.t1, z - a), grids[k][s][v] + shift,
-                                       qad, q.frame.t1, q.corners[0]));
+          worst =
+              std::max(worst, jump(arcs.bc, z, Mirror(p.frame.t1, z - a), grids[k][s][v] + shift,
+                                   ArcsOf(q, "").ad, q.frame.t1, q.corners[0]));
         }
       }
     }
@@ -679,13 +684,9 @@ CyclidicSurface MeshCyclidicSurface(const CyclidicNet& net, const CyclidicSurfac
   int long_arcs = 0;
   for (int i = 0; i < rows; ++i)
     for (int j = 0; j < cols; ++j) {
-      const CyclidicPatch p = net.Patch(i, j);
-      const auto& [a, b, c, d] = p.corners;
-      const Arc arcs[4] = {ArcFrom(a, p.frame.t1, b, ""), ArcFrom(a, p.frame.t2, d, ""),
-                           ArcFrom(b, Mirror(p.frame.t2, b - a), c, ""),
-                           ArcFrom(d, Mirror(p.frame.t1, d - a), c, "")};
-      for (const Arc& arc : arcs)
-        if (!arc.straight && arc.angle > 1.25 * M_PI) ++long_arcs;
+      const PatchArcs arcs = ArcsOf(net.Patch(i, j), "");
+      for (const Arc* arc : {&arcs.ab, &arcs.ad, &arcs.bc, &arcs.dc})
+        if (!arc->straight && arc->angle > 1.25 * M_PI) ++long_arcs;
     }
   const CircularityMeasures fine_measures = MeasureCircularity(out.mesh);
   out.measures = {{"patches", static_cast<double>(rows * cols)},
