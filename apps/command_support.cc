@@ -10,6 +10,7 @@
 #include "geometry/face_colours.h"
 #include "geometry/mesh_io.h"
 #include "geometry/svg_render.h"
+#include "problems/run/mesh_outputs.h"
 
 namespace gproj {
 
@@ -245,36 +246,20 @@ void AddFaceOutputs(const PolyMesh& result, const std::vector<double>& values,
                     const ColourScale& scale, const std::string& csv,
                     const std::string& face_values, const std::string& heatmap,
                     const std::string& picture, const std::string& title, OutputFiles* out) {
-  const std::vector<Rgb> colours = ColoursOf(values, scale);
-  char legend[256];
-  std::snprintf(legend, sizeof(legend),
-                "colour: %s per face (/ mean edge), %s scale, blue %.1e to red %.1e",
-                scale.measure.c_str(), scale.logarithmic ? "log" : "linear", scale.min, scale.max);
-  if (!face_values.empty()) out->AddText(face_values, csv);
-  if (!heatmap.empty()) out->AddText(heatmap, ColouredPlyText(result, colours));
-  if (!picture.empty()) {
-    SvgOptions svg;
-    svg.title = title;
-    svg.legend = legend;
-    svg.face_colours = colours;
-    out->AddText(picture, RenderMeshSvg(result, svg));
-  }
+  RunContext context;
+  for (const auto& [name, path] : {std::pair{"face_values", &face_values},
+                                   std::pair{"heatmap", &heatmap}, std::pair{"picture", &picture}})
+    if (!path->empty()) context.outputs.insert(name);
+  RunResult texts;
+  AddFaceOutputTexts(result, values, scale, csv, title, context, &texts);
+  if (!face_values.empty()) out->AddText(face_values, texts.texts["face_values"]);
+  if (!heatmap.empty()) out->AddText(heatmap, texts.texts["heatmap"]);
+  if (!picture.empty()) out->AddText(picture, texts.texts["picture"]);
 }
 
 void PrintPanelSummary(const NamedValues& initial, const NamedValues& final) {
-  const double glide = ValueOf(final, "max_glide_distance");  // NaN without gliding
-  if (glide >= 0.0)
-    std::printf(
-        "       boundary vertices glided; max distance from the input boundary %.2e of the bbox "
-        "diagonal\n",
-        glide);
-  std::printf(
-      "panels: non-convex quads %.0f -> %.0f, smallest corner angle %.1f -> %.1f deg, max kink "
-      "%.2e -> %.2e deg, max planarity %.2e -> %.2e (diagonal distance, input units)\n",
-      ValueOf(initial, "non_convex_quads"), ValueOf(final, "non_convex_quads"),
-      ValueOf(initial, "min_corner_angle_deg"), ValueOf(final, "min_corner_angle_deg"),
-      ValueOf(initial, "max_kink_deg"), ValueOf(final, "max_kink_deg"),
-      ValueOf(initial, "max_planarity_abs"), ValueOf(final, "max_planarity_abs"));
+  for (const std::string& line : PanelSummaryLines(initial, final))
+    std::printf("%s\n", line.c_str());
 }
 
 ShapeChange WarnIfFarFromInput(const std::string& command, const std::string& target,
@@ -282,13 +267,8 @@ ShapeChange WarnIfFarFromInput(const std::string& command, const std::string& ta
                                double max_displacement, double threshold_deg) {
   const ShapeChange change = CompareCornerAngles(input, result, threshold_deg);
   std::fflush(stdout);
-  if (change.share_changed > 0.05 || max_displacement > 0.02)
-    std::fprintf(stderr,
-                 "gproj %s: warning: the input is far from %s: %.1f%% of the quads changed a "
-                 "corner angle by more than %g deg (at most %.1f deg), max displacement %.2f%% of "
-                 "the bbox diagonal\n",
-                 command.c_str(), target.c_str(), 100.0 * change.share_changed, threshold_deg,
-                 change.max_corner_change_deg, 100.0 * max_displacement);
+  if (const auto warning = FarFromInputWarning(target, change, max_displacement))
+    std::fprintf(stderr, "gproj %s: warning: %s\n", command.c_str(), warning->c_str());
   return change;
 }
 

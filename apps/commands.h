@@ -5,14 +5,18 @@
 #include <CLI/CLI.hpp>
 
 #include "apps/command_support.h"
+#include "problems/run/registry.h"
 
 namespace gproj {
 
-// Registers `gproj planarize`; *exit_code receives the handler's exit code.
-void RegisterPlanarizeCommand(CLI::App* app, int* exit_code);
+// Registers the subcommand of a problem of the registry (problems/run/registry.h), generated
+// from its spec; *exit_code receives the handler's exit code. `spec` must outlive `app`.
+void RegisterProblemCommand(CLI::App* app, const ProblemSpec& spec, int* exit_code);
+// Registers `gproj schema` (the registry as JSON).
+void RegisterSchemaCommand(CLI::App* app, int* exit_code);
 // Registers `gproj grid` (noisy test grids).
 void RegisterGridCommand(CLI::App* app, int* exit_code);
-// Registers `gproj anet` and `gproj hnet`.
+// Registers `gproj hnet`.
 void RegisterNetCommands(CLI::App* app, int* exit_code);
 // Registers `gproj marionette`.
 void RegisterMarionetteCommand(CLI::App* app, int* exit_code);
@@ -21,9 +25,5 @@ void RegisterMarionetteCommand(CLI::App* app, int* exit_code);
 void RegisterSuperCanalCommands(CLI::App* app, int* exit_code);
 // Registers `gproj weingarten`.
 void RegisterWeingartenCommand(CLI::App* app, int* exit_code);
-// Registers `gproj field` (curvature direction fields of triangle meshes).
-void RegisterFieldCommand(CLI::App* app, int* exit_code);
-// Registers `gproj remesh` (field-aligned quad remeshing of triangle meshes).
-void RegisterRemeshCommand(CLI::App* app, int* exit_code);
 
 }  // namespace gproj

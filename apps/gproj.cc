@@ -1,6 +1,8 @@
-// The gproj command line.
+// The gproj command line: one subcommand per problem of the registry, generated from its spec,
+// and the hand-wired commands not yet in it.
 #include <glog/logging.h>
 
+#include <cstring>
 #include <iostream>
 
 #include "apps/commands.h"
@@ -15,21 +17,35 @@ int main(int argc, char** argv) {
       "(planar and circular quads, ...) with Gauss-Newton-style guided projection and sparse "
       "Cholesky."};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("gproj ") + gproj::GprojVersion());
   int exit_code = gproj::kExitOk;
-  gproj::RegisterPlanarizeCommand(&app, &exit_code);
+  for (const gproj::ProblemSpec& spec : gproj::Registry::Builtin().problems())
+    gproj::RegisterProblemCommand(&app, spec, &exit_code);
+  gproj::RegisterSchemaCommand(&app, &exit_code);
   gproj::RegisterGridCommand(&app, &exit_code);
   gproj::RegisterNetCommands(&app, &exit_code);
   gproj::RegisterMarionetteCommand(&app, &exit_code);
   gproj::RegisterSuperCanalCommands(&app, &exit_code);
   gproj::RegisterWeingartenCommand(&app, &exit_code);
-  gproj::RegisterFieldCommand(&app, &exit_code);
-  gproj::RegisterRemeshCommand(&app, &exit_code);
   gproj::RefuseEmptyValues(&app);
+  // An unknown subcommand is refused before any --help after it could print the main help.
+  std::string commands;
+  bool known = false;
+  for (const CLI::App* command : app.get_subcommands([](const CLI::App*) { return true; })) {
+    commands += (commands.empty() ? "" : ", ") + command->get_name();
+    known = known || (argc > 1 && command->get_name() == argv[1]);
+  }
+  if (argc > 1 && argv[1][0] != '-' && !known) {
+    std::cerr << "gproj: unknown command '" << argv[1] << "' (commands: " << commands << ")\n";
+    return gproj::kExitInputError;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // One line, naming the option and the rule broken; --help explains every option.

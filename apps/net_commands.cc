@@ -1,4 +1,5 @@
-// `gproj anet` and `gproj hnet`: A-nets and H-nets (smooth skins from rational bilinear patches).
+// `gproj hnet`: H-nets (smooth skins from rational bilinear patches); `gproj anet` comes from
+// the registry (problems/anet_problem.cc).
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -110,61 +111,6 @@ const IterationLog& StarLog() {
   return log;
 }
 
-int RunANet(NetArgs& args) {
-  PolyMesh mesh;
-  std::unique_ptr<PolyMesh> reference;
-  if (!Prepare("anet", &args, &mesh, &reference)) return kExitInputError;
-  std::unique_ptr<ANet> anet;
-  try {
-    anet = std::make_unique<ANet>(mesh, reference.get(), args.options.anet);
-  } catch (const InputError& e) {
-    std::cerr << "gproj anet: " << args.input << ": " << e.what() << "\n";
-    return kExitInputError;
-  }
-  std::printf("gproj anet: %s: %zu vertices, %zu quads, %d variables\n", args.input.c_str(),
-              mesh.n_vertices(), mesh.n_faces(), anet->problem().layout().num_variables());
-  StarLog().PrintHeader();
-  const auto print = [](const RunRecord& r) { return StarLog().Print(r), true; };
-  const RunReport report = args.solver == "gp"
-                               ? anet->Run(print)
-                               : anet->RunCeres(args.options.anet.solver.max_iterations, print);
-  nlohmann::json extra = ANetFacts(mesh, anet->Result());
-  extra["input"] = args.input;
-  extra["output"] = report.failed ? "" : args.output;
-  try {
-    OutputFiles files;
-    if (!report.failed) {
-      const PolyMesh result = anet->Result();
-      files.AddMesh(result, args.output);
-      char title[128];
-      std::snprintf(title, sizeof(title), "A-net: %zu quads, max star planarity %.2e",
-                    mesh.n_faces(), anet->Measures().max_star_planarity);
-      AddFaceOutputs(result, FaceStarPlanarity(result), StarPlanarityColourScale(result),
-                     ANetFaceValuesCsv(result), args.face_values, args.heatmap, args.picture, title,
-                     &files);
-    }
-    if (!report.failed && !args.report.empty())
-      files.AddText(args.report, ReportJson("anet", report, extra).dump(2) + "\n");
-    files.Commit();
-  } catch (const InputError& e) {
-    std::cerr << "gproj anet: " << e.what() << "\n";
-    return kExitInputError;
-  }
-  if (!report.failed) {
-    const StarPlanarityMeasures m = anet->Measures();
-    std::printf(
-        "final: max star planarity %.3e, mean %.3e, max displacement %.3e of the bbox "
-        "diagonal\n",
-        m.max_star_planarity, m.mean_star_planarity, m.max_displacement);
-    PrintPanelSummary(report.initial, report.final);
-    WarnIfFarFromInput("anet", "an A-net (asymptotic)", mesh, anet->Result(), m.max_displacement,
-                       kANetShapeChangeDeg);
-    HintBoundaryControl("anet", args.options.anet.vertices, report.converged);
-  }
-  return ConcludeRun("anet", report, "max_star_planarity", args.options.anet.tolerance,
-                     {args.output, args.picture, args.face_values, args.heatmap, args.report});
-}
-
 // Prints one H-net round, with the table's header before round 0.
 void LogRound(const HNetRound& r) {
   if (r.round == 0)
@@ -250,19 +196,6 @@ int RunHNet(NetArgs& args) {
 }  // namespace
 
 void RegisterNetCommands(CLI::App* app, int* exit_code) {
-  auto anet = std::make_shared<NetArgs>();
-  CLI::App* a = app->add_subcommand(
-      "anet",
-      "A-net: make the vertex stars of a quad mesh planar, close to a reference surface and "
-      "fair (004 §3.2). Exit codes as for planarize.");
-  AddSharedOptions(a, anet.get());
-  a->add_option("-o,--output", anet->output, "A-net mesh to write")->required();
-  AddFaceOutputOptions(a, &anet->face_values, &anet->heatmap, &anet->picture,
-                       "face, star_planarity (largest of its corners', / mean edge), kink_deg, "
-                       "min_angle_deg",
-                       "star planarity");
-  a->callback([anet, exit_code]() { *exit_code = RunANet(*anet); });
-
   auto hnet = std::make_shared<NetArgs>();
   CLI::App* h = app->add_subcommand(
       "hnet",

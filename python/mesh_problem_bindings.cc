@@ -1,5 +1,4 @@
-// gproj.planarize, gproj.anet, gproj.hnet: the commands `gproj planarize`, `gproj anet` and
-// `gproj hnet` as calls on numpy arrays, with the same reports.
+// gproj.hnet: the command `gproj hnet` as calls on numpy arrays, with the same reports.
 #include <pybind11/stl.h>
 
 #include <memory>
@@ -7,7 +6,6 @@
 
 #include "problems/anet.h"
 #include "problems/hnet.h"
-#include "problems/pq_planarization.h"
 #include "python/conversions.h"
 #include "python/module.h"
 #include "python/run_bridge.h"
@@ -15,11 +13,6 @@
 
 namespace gproj::python {
 namespace {
-
-void CheckSolverName(const std::string& solver) {
-  if (solver != "gp" && solver != "ceres")
-    throw InputError("solver must be gp or ceres, not '" + solver + "'");
-}
 
 std::unique_ptr<PolyMesh> ReferenceMesh(const py::object& reference) {
   if (reference.is_none()) return nullptr;
@@ -61,78 +54,6 @@ void ApplyMeshControl(double min_angle, const py::object& edge_length, bool allo
     throw InputError("invalid option: " + why);
 }
 
-py::tuple Planarize(const py::object& vertices, const py::object& faces, double tolerance,
-                    bool circular, double closeness, int fairness_order, double ceres_soft_scale,
-                    double min_angle, const py::object& edge_length, bool allow_folds,
-                    const py::object& fixed, bool fix_boundary, bool glide_boundary,
-                    const py::object& reference, const std::string& solver,
-                    const py::object& callback, int max_iterations, double fairness, double epsilon,
-                    double soft_decay, double soft_floor, double soft_residual, double epsilon_min,
-                    const std::string& linear_solver, int threads) {
-  PQPlanarizationOptions options;
-  options.tolerance = tolerance;
-  options.circular = circular;
-  options.closeness_weight = closeness;
-  options.fairness_order = fairness_order;
-  options.ceres_soft_scale = ceres_soft_scale;
-  SolverArgs{max_iterations, fairness,    epsilon,       soft_decay, soft_floor,
-             soft_residual,  epsilon_min, linear_solver, threads}
-      .ApplyTo(&options.solver);
-  CheckSolverName(solver);
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError("invalid option: " + why);
-  const PolyMesh input = MeshFromArrays(vertices, faces, true);
-  ApplyMeshControl(min_angle, edge_length, allow_folds, fixed, fix_boundary, glide_boundary,
-                   static_cast<int>(input.n_vertices()), &options.panels, &options.vertices);
-  const std::unique_ptr<PolyMesh> ref = ReferenceMesh(reference);
-  PQPlanarization pq(input, options, ref.get());
-  RunBridge bridge(callback);
-  const RunReport report = bridge.Call([&] {
-    return solver == "gp" ? pq.Run(bridge.callback())
-                          : pq.RunCeres(options.solver.max_iterations, bridge.callback());
-  });
-  nlohmann::json extra = PlanarizationFacts(input, pq.Result(), options);
-  extra["input"] = nullptr;
-  extra["output"] = nullptr;
-  return py::make_tuple(VerticesToArray(pq.Result()), ReportToPython("planarize", report, extra));
-}
-
-const char* const kPlanarizeDoc = R"(planarize(V, F, ...) -> (V_out, report)
-
-PQ planarisation (`gproj planarize`): every quad planar, the shape kept by closeness to the
-input and fairness along the mesh polylines. Circular quads (planar and concyclic) with
-circular=True.
-
-    V: (n, 3) float64 vertex positions (any real dtype is converted).
-    F: (m, 4) integer array of quads (0-based vertex indices), or a list of faces.
-    tolerance: stop when max planarity (diagonal distance / mean edge length) <= this.
-    circular: circular quads (000 §2); the tolerance then also bounds the concyclicity.
-    closeness: weight of closeness to the input (mesh scaled to mean edge 1).
-    fairness_order: 2 (second differences) or 3 (third differences).
-    ceres_soft_scale: with solver="ceres", fixed factor on the closeness and fairness weights
-        (0: tolerance / 100).
-    min_angle: every quad corner angle stays within [min_angle, 180 - min_angle] degrees (a
-        corner already outside in the input is kept from getting worse); 0 keeps quads convex.
-    edge_length: None or (min, max) edge lengths in the input's units; without it no edge
-        shrinks below 10% of its input length.
-    allow_folds: no corner-angle or default edge bounds (quads may fold).
-    fixed: None or a sequence / integer array of 0-based vertex ids that do not move at all
-        (returned bit for bit).
-    fix_boundary: every boundary vertex stays where it is.
-    glide_boundary: boundary vertices slide along the input's boundary (they stay on it to
-        rounding); report["final"]["max_glide_distance"] measures it.
-    reference: None or a reference surface (Vr, Fr), any polygon mesh: vertices keep close to
-        it through the tangent plane of their closest point instead of to their start.
-    solver: "gp" (guided projection) or "ceres" (Levenberg-Marquardt on the same rows).
-    callback: None or callback(record: dict) called at the start and after every iteration
-        with the keys of report["history"] entries; returning False stops the run (the result
-        so far is returned). Ctrl-C stops the run and raises KeyboardInterrupt.
-
-Returns V_out: (n, 3) float64, and the report dict (the keys of `--report`; "input" and
-"output" are None). Raises ValueError for bad arrays or options, with the command line's
-message.
-)";
-
 const char* const kStarFormDoc = R"(
     star_form: "normals" (an auxiliary normal per inner vertex) or "quads" (n-2 quads per star).
     tolerance: stop when max star planarity (neighbour distance from the star plane / mean
@@ -142,7 +63,7 @@ const char* const kStarFormDoc = R"(
     fairness_order: 2 or 3.
     reference: None (the input itself) or a reference surface (Vr, Fr), any polygon mesh.
     min_angle, edge_length, allow_folds: the quads' corner-angle and edge-length bounds, as for
-        planarize.
+        planarize (see its docstring).
     fixed, fix_boundary, glide_boundary: held and gliding vertices, as for planarize.
 )";
 
@@ -160,30 +81,6 @@ ANetOptions NetOptions(const std::string& star_form, double tolerance, double ta
   std::string why;
   if (!o.IsValid(&why)) throw InputError("invalid option: " + why);
   return o;
-}
-
-py::tuple RunANet(const py::object& vertices, const py::object& faces, const std::string& star_form,
-                  double tolerance, double tangent, double point, int fairness_order,
-                  const py::object& reference, double min_angle, const py::object& edge_length,
-                  bool allow_folds, const py::object& fixed, bool fix_boundary, bool glide_boundary,
-                  const py::object& callback, int max_iterations, double fairness, double epsilon,
-                  double soft_decay, double soft_floor, double soft_residual, double epsilon_min,
-                  const std::string& linear_solver, int threads) {
-  ANetOptions options = NetOptions(star_form, tolerance, tangent, point, fairness_order,
-                                   {max_iterations, fairness, epsilon, soft_decay, soft_floor,
-                                    soft_residual, epsilon_min, linear_solver, threads});
-  const PolyMesh mesh = MeshFromArrays(vertices, faces, true);
-  CheckANetTopology(mesh, "mesh");
-  ApplyMeshControl(min_angle, edge_length, allow_folds, fixed, fix_boundary, glide_boundary,
-                   static_cast<int>(mesh.n_vertices()), &options.panels, &options.vertices);
-  const std::unique_ptr<PolyMesh> ref = ReferenceMesh(reference);
-  ANet anet(mesh, ref.get(), options);
-  RunBridge bridge(callback);
-  const RunReport report = bridge.Call([&] { return anet.Run(bridge.callback()); });
-  nlohmann::json extra = ANetFacts(mesh, anet.Result());
-  extra["input"] = nullptr;
-  extra["output"] = nullptr;
-  return py::make_tuple(VerticesToArray(anet.Result()), ReportToPython("anet", report, extra));
 }
 
 py::tuple RunHNet(const py::object& vertices, const py::object& faces, const std::string& star_form,
@@ -249,21 +146,6 @@ dict.
 }  // namespace
 
 void BindMeshProblems(py::module_& m) {
-  const PQPlanarizationOptions pq;
-  DefineFunction(
-      m, "planarize", &Planarize, (std::string(kPlanarizeDoc) + kSolverArgsDoc).c_str(),
-      std::tuple_cat(
-          std::make_tuple(py::arg("V"), py::arg("F"), py::kw_only(),
-                          py::arg("tolerance") = pq.tolerance, py::arg("circular") = pq.circular,
-                          py::arg("closeness") = pq.closeness_weight,
-                          py::arg("fairness_order") = pq.fairness_order,
-                          py::arg("ceres_soft_scale") = pq.ceres_soft_scale,
-                          py::arg("min_angle") = pq.panels.min_angle_deg,
-                          py::arg("edge_length") = py::none(), py::arg("allow_folds") = false,
-                          py::arg("fixed") = py::none(), py::arg("fix_boundary") = false,
-                          py::arg("glide_boundary") = false, py::arg("reference") = py::none(),
-                          py::arg("solver") = "gp", py::arg("callback") = py::none()),
-          SolverArgList(pq.solver)));
   const ANetOptions an;
   const auto net_args = std::make_tuple(
       py::arg("V"), py::arg("F"), py::kw_only(), py::arg("star_form") = "normals",
@@ -273,16 +155,6 @@ void BindMeshProblems(py::module_& m) {
       py::arg("edge_length") = py::none(), py::arg("allow_folds") = false,
       py::arg("fixed") = py::none(), py::arg("fix_boundary") = false,
       py::arg("glide_boundary") = false);
-  const std::string anet_doc = std::string(R"(anet(V, F, ...) -> (V_out, report)
-
-A-net (`gproj anet`): makes the vertex stars of a quad mesh planar, close to a reference surface
-and fair (004 §3.2).
-
-    V: (n, 3) float64, F: (m, 4) integer quads roughly along asymptotic directions.)") +
-                               kStarFormDoc + "    callback: as for planarize.\n" + kSolverArgsDoc;
-  DefineFunction(m, "anet", &RunANet, anet_doc.c_str(),
-                 std::tuple_cat(net_args, std::make_tuple(py::arg("callback") = py::none()),
-                                SolverArgList(an.solver)));
   const HNetOptions hn;
   DefineFunction(m, "hnet", &RunHNet,
                  (std::string(kHNetDoc) + kStarFormDoc + kSolverArgsDoc).c_str(),

@@ -2,6 +2,7 @@
 #include "python/module.h"
 
 #include "geometry/input_error.h"
+#include "problems/run/option_schema.h"
 
 PYBIND11_MODULE(gproj, m) {
   m.doc() = R"(gproj: guided projection for architectural geometry, from numpy.
@@ -14,6 +15,7 @@ vertex indices; a list of faces for meshes with faces of different sizes).
     marionette_lift, marionette_fit, result and the report as a dict (the keys of --report)
     combescure, invert, canal,
     weingarten
+    schema                           the registry of problems as a dict (`gproj schema`)
     Problem                          your own problem: variable blocks, built-in terms
                                      (planarity, closeness, fairness), terms written in Python,
                                      solved by guided projection or Ceres
@@ -23,11 +25,14 @@ Bad input raises ValueError with the command line's message.)";
   py::register_exception_translator([](std::exception_ptr error) {
     try {
       if (error) std::rethrow_exception(error);
+    } catch (const gproj::OptionError& e) {
+      PyErr_SetString(e.type_mismatch() ? PyExc_TypeError : PyExc_ValueError, e.what());
     } catch (const gproj::InputError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
     }
   });
   gproj::python::BindMeshIo(m);
+  gproj::python::BindRegistry(m);
   gproj::python::BindMeshProblems(m);
   gproj::python::BindConstructions(m);
   gproj::python::BindWeingarten(m);

@@ -132,15 +132,39 @@ def test_ctrl_c_stops_the_run():
     assert len(records) < 100000  # stopped (possibly at the very first record)
 
 
-def test_bad_options_raise_value_error():
+def test_bad_options_raise_errors_naming_the_keyword():
     V, F = gproj.grid(nu=3, nv=3)
-    for kwargs, match in [({"solver": "newton"}, "solver must be gp or ceres"),
-                          ({"linear_solver": "mkl"}, "linear_solver must be cholmod or eigen"),
-                          ({"tolerance": -1.0}, "invalid option"),
-                          ({"fairness_order": 4}, "invalid option"),
-                          ({"epsilon": 0.0}, "invalid option")]:
-        with pytest.raises(ValueError, match=match):
+    for kwargs, error, match in [
+            ({"solver": "newton"}, ValueError, "solver: 'newton' is not one of gp, ceres"),
+            ({"linear_solver": "mkl"}, ValueError,
+             "linear_solver: 'mkl' is not one of cholmod, eigen"),
+            ({"tolerance": -1.0}, ValueError, r"tolerance: -1 is not > 0"),
+            ({"fairness_order": 4}, ValueError, r"fairness_order: 4 is not in \[2, 3\]"),
+            ({"epsilon": 0.0}, ValueError, "epsilon: 0 is not > 0"),
+            ({"tolerance": "small"}, TypeError, "tolerance: small is not a number"),
+            ({"max_iterations": 2.5}, ValueError, "max_iterations: 2.5 is not an integer"),
+            ({"circular": 1}, TypeError, "circular: 1 is not true or false"),
+            ({"edge_length": 0.2}, TypeError, "edge_length: 0.2 is not a list of numbers"),
+            ({"edge_length": (0.1, 0.2, 0.3)}, ValueError, r"edge_length: expects 2 numbers"),
+            ({"tolerence": 1e-6}, TypeError, r"tolerence: there is no such option \(did you mean "
+                                             r"tolerance\?\)"),
+            ({"fixed": 5}, TypeError, "fixed: expected a sequence of 0-based vertex ids"),
+            ({"fixed": [0.5]}, TypeError, "fixed: expected .*an entry is float"),
+            ({"reference": V}, TypeError, r"reference: expected a pair \(V, F\)")]:
+        with pytest.raises(error, match=match):
             gproj.planarize(V, F, **kwargs)
+
+
+def test_a_boolean_mask_fixes_the_vertices_it_marks():
+    V, F = gproj.grid(nu=5, nv=5, noise=0.05)
+    mask = np.zeros(len(V), dtype=bool)
+    mask[[3, 7, 11]] = True
+    V_out, report = gproj.planarize(V, F, fixed=mask)
+    assert report["fixed_vertices"] == 3
+    assert np.array_equal(V_out[mask], V[mask])
+    assert not np.array_equal(V_out[[0, 1]], V[[0, 1]])
+    with pytest.raises(ValueError, match="the boolean mask has 4 entries; the mesh has 25"):
+        gproj.planarize(V, F, fixed=mask[:4])
 
 
 @pytest.mark.parametrize("star_form", ["normals", "quads"])

@@ -1,0 +1,14 @@
+#pragma once
+// The registrations of gproj's own problems, one function per problem (each in its family's
+// folder); Registry::Builtin() adds them in this order.
+
+#include "problems/run/registry.h"
+
+namespace gproj {
+
+ProblemSpec PlanarizeProblem();  // problems/planarize_problem.cc
+ProblemSpec ANetProblem();       // problems/anet_problem.cc
+ProblemSpec FieldProblem();      // problems/field_problem.cc
+ProblemSpec RemeshProblem();     // problems/remesh_problem.cc
+
+}  // namespace gproj

@@ -1,0 +1,228 @@
+#include "problems/run/option_schema.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace gproj {
+namespace {
+
+std::string Compact(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", value);
+  return text;
+}
+
+// The value as a user wrote it, for messages.
+std::string Shown(const nlohmann::json& value) {
+  if (value.is_string()) return value.get<std::string>();
+  if (value.is_number_float()) return Compact(value.get<double>());
+  return value.dump();
+}
+
+// Levenshtein distance, for "did you mean".
+size_t EditDistance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// A finite number within the spec's range, or OptionError.
+double CheckNumber(const OptionSpec& spec, const nlohmann::json& value, bool integer) {
+  const char* expected = integer ? "an integer" : "a number";
+  if (!value.is_number() || (integer && value.is_number_float() &&
+                             std::floor(value.get<double>()) != value.get<double>()))
+    throw OptionError(spec.name, Shown(value) + " is not " + expected, !value.is_number());
+  const double v = value.get<double>();
+  if (!std::isfinite(v)) throw OptionError(spec.name, Shown(value) + " is not a finite number");
+  const bool low = spec.min_exclusive ? !(v > spec.min) : !(v >= spec.min);
+  const bool high = spec.max_exclusive ? !(v < spec.max) : !(v <= spec.max);
+  if (low || high) throw OptionError(spec.name, Shown(value) + " is not " + spec.RangeText());
+  return v;
+}
+
+// Decimal text as a number: the whole text, no hexadecimal, finite.
+nlohmann::json NumberFromText(const OptionSpec& spec, const std::string& text, bool integer) {
+  if (text.empty()) throw OptionError(spec.name, "an empty value is not allowed");
+  size_t used = 0;
+  double value = 0.0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || text.find_first_of("xX") != std::string::npos || !std::isfinite(value))
+    throw OptionError(spec.name,
+                      text + (integer ? " is not an integer" : " is not a finite number"));
+  if (integer) {
+    if (std::floor(value) != value || text.find_first_of(".eE") != std::string::npos)
+      throw OptionError(spec.name, text + " is not an integer");
+    return nlohmann::json(static_cast<long long>(value));
+  }
+  return nlohmann::json(value);
+}
+
+}  // namespace
+
+const char* OptionTypeName(OptionType type) {
+  switch (type) {
+    case OptionType::kBool:
+      return "bool";
+    case OptionType::kInt:
+      return "int";
+    case OptionType::kNumber:
+      return "number";
+    case OptionType::kChoice:
+      return "choice";
+    case OptionType::kNumbers:
+      return "numbers";
+  }
+  return "?";
+}
+
+std::string OptionSpec::RangeText() const {
+  const bool has_min = std::isfinite(min), has_max = std::isfinite(max);
+  if (has_min && has_max)
+    return std::string("in ") + (min_exclusive ? "(" : "[") + Compact(min) + ", " + Compact(max) +
+           (max_exclusive ? ")" : "]");
+  if (has_min) return (min_exclusive ? "> " : ">= ") + Compact(min);
+  if (has_max) return (max_exclusive ? "< " : "<= ") + Compact(max);
+  return "";
+}
+
+OptionError::OptionError(std::string option, std::string rule, bool type_mismatch)
+    : InputError(option + ": " + rule),
+      option_(std::move(option)),
+      rule_(std::move(rule)),
+      type_mismatch_(type_mismatch) {}
+
+nlohmann::json CheckOptionValue(const OptionSpec& spec, const nlohmann::json& value) {
+  switch (spec.type) {
+    case OptionType::kBool:
+      if (!value.is_boolean())
+        throw OptionError(spec.name, Shown(value) + " is not true or false", true);
+      return value;
+    case OptionType::kInt:
+      return nlohmann::json(static_cast<long long>(CheckNumber(spec, value, true)));
+    case OptionType::kNumber:
+      return nlohmann::json(CheckNumber(spec, value, false));
+    case OptionType::kChoice: {
+      std::string list;
+      for (const std::string& c : spec.choices) list += (list.empty() ? "" : ", ") + c;
+      if (!value.is_string())
+        throw OptionError(spec.name, Shown(value) + " is not a text; one of " + list, true);
+      const std::string text = value.get<std::string>();
+      if (std::find(spec.choices.begin(), spec.choices.end(), text) == spec.choices.end())
+        throw OptionError(spec.name, "'" + text + "' is not one of " + list);
+      return value;
+    }
+    case OptionType::kNumbers: {
+      if (!value.is_array())
+        throw OptionError(spec.name, Shown(value) + " is not a list of numbers", true);
+      if (spec.count > 0 && static_cast<int>(value.size()) != spec.count)
+        throw OptionError(spec.name, "expects " + std::to_string(spec.count) + " numbers (" +
+                                         spec.placeholder + "), not " +
+                                         std::to_string(value.size()));
+      nlohmann::json out = nlohmann::json::array();
+      for (const nlohmann::json& v : value) out.push_back(CheckNumber(spec, v, false));
+      return out;
+    }
+  }
+  return value;
+}
+
+nlohmann::json ParseOptionText(const OptionSpec& spec, const std::string& text) {
+  switch (spec.type) {
+    case OptionType::kBool:
+      if (text == "true" || text == "1") return true;
+      if (text == "false" || text == "0") return false;
+      throw OptionError(spec.name, text + " is not true or false");
+    case OptionType::kInt:
+    case OptionType::kNumber:
+      return CheckOptionValue(spec, NumberFromText(spec, text, spec.type == OptionType::kInt));
+    case OptionType::kChoice:
+      if (text.empty()) throw OptionError(spec.name, "an empty value is not allowed");
+      return CheckOptionValue(spec, text);
+    case OptionType::kNumbers: {
+      if (text.empty()) throw OptionError(spec.name, "an empty value is not allowed");
+      nlohmann::json values = nlohmann::json::array();
+      size_t start = 0;
+      while (true) {
+        const size_t comma = text.find(',', start);
+        values.push_back(NumberFromText(spec, text.substr(start, comma - start), false));
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+      }
+      return CheckOptionValue(spec, values);
+    }
+  }
+  return nullptr;
+}
+
+std::string OptionText(const nlohmann::json& value) {
+  if (value.is_array()) {
+    std::string out;
+    for (const nlohmann::json& v : value) out += (out.empty() ? "" : ",") + OptionText(v);
+    return out;
+  }
+  return Shown(value);
+}
+
+nlohmann::json OptionSpecJson(const OptionSpec& spec) {
+  nlohmann::json j = {{"name", spec.name},
+                      {"type", OptionTypeName(spec.type)},
+                      {"doc", spec.doc},
+                      {"default", spec.default_value}};
+  if (!spec.unit.empty()) j["unit"] = spec.unit;
+  if (!spec.group.empty()) j["group"] = spec.group;
+  if (std::isfinite(spec.min)) {
+    j["minimum"] = spec.min;
+    j["minimum_exclusive"] = spec.min_exclusive;
+  }
+  if (std::isfinite(spec.max)) {
+    j["maximum"] = spec.max;
+    j["maximum_exclusive"] = spec.max_exclusive;
+  }
+  if (!spec.choices.empty()) j["choices"] = spec.choices;
+  if (spec.type == OptionType::kNumbers) j["count"] = spec.count;
+  if (!spec.negation.empty()) j["negation"] = spec.negation;
+  return j;
+}
+
+nlohmann::json CompleteOptions(const std::vector<OptionSpec>& specs, const nlohmann::json& given) {
+  if (!given.is_null() && !given.is_object())
+    throw InputError("options must be an object of named values");
+  nlohmann::json out = nlohmann::json::object();
+  if (given.is_object())
+    for (const auto& [name, value] : given.items()) {
+      const auto spec = std::find_if(specs.begin(), specs.end(),
+                                     [&](const OptionSpec& s) { return s.name == name; });
+      if (spec != specs.end()) continue;
+      std::string closest;
+      size_t best = 4;  // suggest only near misses
+      for (const OptionSpec& s : specs)
+        if (const size_t d = EditDistance(name, s.name); d < best) best = d, closest = s.name;
+      throw OptionError(
+          name,
+          "there is no such option" + (closest.empty() ? "" : " (did you mean " + closest + "?)"),
+          true);
+    }
+  for (const OptionSpec& spec : specs) {
+    const nlohmann::json* value = &spec.default_value;
+    if (given.is_object() && given.contains(spec.name) && !given[spec.name].is_null())
+      value = &given[spec.name];
+    if (!value->is_null()) out[spec.name] = CheckOptionValue(spec, *value);
+  }
+  return out;
+}
+
+}  // namespace gproj

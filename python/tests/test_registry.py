@@ -1,0 +1,96 @@
+"""The Python functions of the registry's problems agree with the registry and the command line:
+the same schema, every problem a function, every option a keyword with the schema's default."""
+import json
+import pathlib
+import warnings
+
+import numpy as np
+import pytest
+
+import gproj
+
+
+def test_schema_is_the_command_lines(cli):
+    printed = json.loads(cli.run("schema").stdout)
+    assert gproj.schema() == printed
+    assert printed["version"] == gproj.__version__
+
+
+def test_version_is_the_command_lines(cli):
+    assert cli.run("--version").stdout.strip() == "gproj " + gproj.__version__
+
+
+def python_literal(value):
+    return repr(value) if not isinstance(value, float) else "%g" % value
+
+
+@pytest.mark.parametrize("problem", [p["name"] for p in gproj.schema()["problems"]])
+def test_every_problem_is_a_function_whose_doc_gives_every_option(problem):
+    spec = next(p for p in gproj.schema()["problems"] if p["name"] == problem)
+    function = getattr(gproj, problem)
+    signature = function.__doc__.splitlines()[0]
+    for option in spec["options"]:
+        default = option["default"]
+        shown = "None" if default is None else python_literal(default)
+        assert f"{option['name']}={shown}" in signature, option["name"]
+        assert f"    {option['name']} ({option['type']}" in function.__doc__
+    for item in spec["inputs"]:
+        if not item["required"]:
+            assert f"{item['name']}=None" in signature
+
+
+def test_python_defaults_run_like_the_command_lines(cli):
+    # No keyword given: the schema's defaults, as on the command line without flags.
+    V, F = gproj.grid(nu=6, nv=6, noise=0.05)
+    source = cli.write_mesh("in.obj", V, F)
+    cli.run("planarize", source, "-o", cli.path("out.obj"), "--report", cli.path("r.json"))
+    V_out, report = gproj.planarize(V, F)
+    assert report["options"] == cli.read_report("r.json")["options"]
+    assert np.max(np.abs(V_out - gproj.read_mesh(cli.path("out.obj"))[0])) <= 1e-12
+
+
+def test_far_from_input_warns():
+    # A sheared grid of quads that are far from planar: planarizing changes many corner angles.
+    V, F = gproj.grid(nu=6, nv=6, noise=0.6)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        gproj.planarize(V, F, allow_folds=True)
+    assert any("the input is far from a PQ (conjugate) mesh" in str(w.message) for w in caught)
+
+
+def test_field_is_the_command_lines_with_its_directions_as_arrays(cli):
+    mesh = str(pathlib.Path(__file__).resolve().parents[2] / "examples/data/monkey_saddle_tri.obj")
+    V, F = gproj.read_mesh(mesh)
+    cli.run("field", mesh, "-o", cli.path("f.obj"), "--report", cli.path("r.json"))
+    result, report = gproj.field(V, F)
+    command_line = cli.read_report("r.json")
+    assert report["singularities"] == command_line["singularities"]
+    assert report["options"] == command_line["options"]
+    with open(cli.path("f.obj")) as f:
+        assert result["output"] == f.read()
+    first, second = result["first"], result["second"]
+    assert first.shape == second.shape == (len(V), 3)
+    # unit lines, the two of a vertex distinct (the asymptotic pair of a saddle)
+    fitted = np.linalg.norm(first, axis=1) > 0
+    assert fitted.sum() == report["final"]["fitted_vertices"]
+    assert np.allclose(np.linalg.norm(first[fitted], axis=1), 1.0)
+    assert np.all(np.abs(np.einsum("ij,ij->i", first[fitted], second[fitted])) < 0.999)
+    # the monkey saddle's flat point: one singularity of index -1/2
+    assert [s["index"] for s in report["singularities"]] == [-0.5]
+
+
+def test_remesh_is_the_command_lines(cli):
+    mesh = str(pathlib.Path(__file__).resolve().parents[2] / "examples/data/monkey_saddle_tri.obj")
+    V, F = gproj.read_mesh(mesh)
+    cli.run("remesh", mesh, "--edge-length", 0.15, "-o", cli.path("q.obj"), "--report",
+            cli.path("r.json"))
+    result, report = gproj.remesh(V, F, edge_length=0.15)
+    Vq, Fq = result["output"]
+    Vc, Fc = gproj.read_mesh(cli.path("q.obj"))
+    assert np.array_equal(np.asarray(Fq), np.asarray(Fc))
+    assert np.max(np.abs(Vq - Vc)) <= 1e-12
+    assert report["converged"] == cli.read_report("r.json")["converged"]
+    assert report["inner_valences"] == cli.read_report("r.json")["inner_valences"]
+    # 004 Theorem 6: the flat point of the monkey saddle becomes one vertex of valence 6
+    assert report["inner_valences"].get("6") == 1
+    assert np.asarray(Fq).shape[1] == 4
