@@ -16,8 +16,6 @@ void RegisterProblemCommand(CLI::App* app, const ProblemSpec& spec, int* exit_co
 void RegisterSchemaCommand(CLI::App* app, int* exit_code);
 // Registers `gproj grid` (noisy test grids).
 void RegisterGridCommand(CLI::App* app, int* exit_code);
-// Registers `gproj hnet`.
-void RegisterNetCommands(CLI::App* app, int* exit_code);
 // Registers `gproj marionette`.
 void RegisterMarionetteCommand(CLI::App* app, int* exit_code);
 // Registers `gproj combescure`, `gproj invert`, `gproj canal`, `gproj beams` and

@@ -23,7 +23,6 @@ int main(int argc, char** argv) {
     gproj::RegisterProblemCommand(&app, spec, &exit_code);
   gproj::RegisterSchemaCommand(&app, &exit_code);
   gproj::RegisterGridCommand(&app, &exit_code);
-  gproj::RegisterNetCommands(&app, &exit_code);
   gproj::RegisterMarionetteCommand(&app, &exit_code);
   gproj::RegisterSuperCanalCommands(&app, &exit_code);
   gproj::RegisterWeingartenCommand(&app, &exit_code);

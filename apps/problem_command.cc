@@ -109,10 +109,18 @@ int RunProblemCommand(const ProblemSpec& spec, const ProblemArgs& args) {
     const RunInputs inputs = ReadInputs(spec, args);
     result = RunProblem(spec, inputs, options, context);
     OutputFiles files;
-    if (!result.report.failed) {
+    // A run that failed, or ended before its result (e.g. an H-net without rounds), writes
+    // nothing.
+    bool complete = !result.report.failed;
+    for (const OutputSpec& output : spec.outputs)
+      if (output.required)
+        complete =
+            complete && (result.meshes.count(output.name) || result.texts.count(output.name));
+    if (complete) {
       for (const OutputSpec& output : spec.outputs) {
         const std::string& path = args.paths.at(output.name);
         if (path.empty()) continue;
+        if (!result.meshes.count(output.name) && !result.texts.count(output.name)) continue;
         if (output.kind == OutputKind::kMesh)
           files.AddMesh(result.meshes.at(output.name), path);
         else
@@ -129,7 +137,7 @@ int RunProblemCommand(const ProblemSpec& spec, const ProblemArgs& args) {
     }
     files.Commit();
   } catch (const InputError& e) {
-    std::cerr << name << ": " << e.what() << "\n";
+    std::cerr << name << ": " << SpellOptions(e.what(), true) << "\n";
     return kExitInputError;
   }
   if (!result.report.failed)

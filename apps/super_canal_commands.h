@@ -15,12 +15,9 @@
 
 namespace gproj {
 
-void RegisterCombescureCommand(CLI::App* app, int* exit_code);
-void RegisterInvertCommand(CLI::App* app, int* exit_code);
 void RegisterCanalCommand(CLI::App* app, int* exit_code);
 void RegisterBeamsCommand(CLI::App* app, int* exit_code);
 void RegisterMRevolutionCommand(CLI::App* app, int* exit_code);
-void RegisterCyclidicCommand(CLI::App* app, int* exit_code);
 
 // x, y, z from a comma-separated option; throws InputError naming `option` unless the values
 // are three finite numbers.

@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include "problems/anet.h"
+#include "problems/anet_options.h"
 #include "problems/run/builtin_problems.h"
 #include "problems/run/mesh_outputs.h"
 #include "problems/run/shared_options.h"
@@ -19,32 +20,10 @@ const OptionSchema<ANetSettings>& Schema() {
   static const OptionSchema<ANetSettings> schema = [] {
     using S = ANetSettings;
     OptionSchema<S> s;
-    AddMethodOption<S>(&s, [](S& x) -> std::string& { return x.solver; });
-    s.Field<std::string>("star_form", OptionType::kChoice,
-                         "Vertex-star planarity: normals (auxiliary normal per inner vertex) or "
-                         "quads (n-2 quads of each star)",
-                         [](S& x) -> std::string& { return x.star_form; })
-        .Choices({"normals", "quads"});
-    s.Field<double>("tolerance", OptionType::kNumber,
-                    "Stop when max star planarity (neighbour distance from the star plane / mean "
-                    "edge) is <= this",
-                    [](S& x) -> double& { return x.problem.tolerance; })
-        .Positive();
-    s.Field<double>("tangent", OptionType::kNumber,
-                    "Weight of the distance to the reference's tangent planes",
-                    [](S& x) -> double& { return x.problem.tangent_weight; })
-        .NonNegative();
-    s.Field<double>("point", OptionType::kNumber,
-                    "Weight of the distance to the reference's closest points",
-                    [](S& x) -> double& { return x.problem.point_weight; })
-        .NonNegative();
-    s.Field<int>("fairness_order", OptionType::kInt, "2: second differences, 3: third differences",
-                 [](S& x) -> int& { return x.problem.fairness_order; })
-        .Range(2, 3);
-    AddSolverOptions<S>(&s, [](S& x) -> SolverOptions& { return x.problem.solver; });
-    AddPanelBoundsOptions<S>(&s, [](S& x) -> PanelBoundsOptions& { return x.problem.panels; });
-    AddVertexControlOptions<S>(&s,
-                               [](S& x) -> VertexControlOptions& { return x.problem.vertices; });
+    AddANetOptions<S>(
+        &s, [](S& x) -> ANetOptions& { return x.problem; },
+        [](S& x) -> std::string& { return x.solver; },
+        [](S& x) -> std::string& { return x.star_form; });
     return s;
   }();
   return schema;
@@ -53,8 +32,7 @@ const OptionSchema<ANetSettings>& Schema() {
 RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunContext& context) {
   ANetSettings settings = Schema().Apply(values);
   ANetOptions& options = settings.problem;
-  options.star_form =
-      settings.star_form == "quads" ? StarPlanarityForm::kQuads : StarPlanarityForm::kNormals;
+  options.star_form = StarFormOf(settings.star_form);
   const PolyMesh& mesh = inputs.Mesh("mesh");
   const std::string source = inputs.Source("mesh");
   options.vertices.fixed = inputs.VertexIds("fixed");
@@ -94,14 +72,8 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   result.Info(line);
   AddPanelMessages("an A-net (asymptotic)", mesh, net, kANetShapeChangeDeg, m.max_displacement,
                    &result);
-  if (!result.report.converged &&
-      (options.vertices.fix_boundary || options.vertices.glide_boundary))
-    result.shortfalls.push_back(
-        std::string("note: an asymptotic net is fixed by two crossing boundary curves; keeping "
-                    "the whole boundary") +
-        (options.vertices.glide_boundary ? " on the input's loops" : "") +
-        " over-determines it unless the boundary is already asymptotic (hold a few vertices "
-        "with `fixed` instead)");
+  if (!result.report.converged && !BoundaryControlNote(options.vertices).empty())
+    result.shortfalls.push_back(BoundaryControlNote(options.vertices));
   return result;
 }
 

@@ -781,7 +781,7 @@ nlohmann::json HNetJson(const PolyMesh& mesh, const std::vector<std::array<doubl
   return {{"vertices", vertices}, {"faces", faces}, {"weights", w}};
 }
 
-nlohmann::json HNet::ReportJson(const HNetSummary& summary) {
+nlohmann::json HNet::ReportFacts(const HNetSummary& summary) {
   nlohmann::json rounds = nlohmann::json::array(), violations = nlohmann::json::array();
   for (const HNetRound& r : summary.rounds) {
     nlohmann::json round = nlohmann::json::object();
@@ -789,11 +789,10 @@ nlohmann::json HNet::ReportJson(const HNetSummary& summary) {
     rounds.push_back(round);
   }
   for (const auto& [a, b] : summary.equitwist_violations) violations.push_back({a, b});
-  return gproj::ReportJson("hnet", summary.report,
-                           {{"rounds", rounds},
-                            {"worst_edges", summary.worst_edges},
-                            {"simply_connected", summary.simply_connected},
-                            {"equitwist_violations", violations}});
+  return {{"rounds", rounds},
+          {"worst_edges", summary.worst_edges},
+          {"simply_connected", summary.simply_connected},
+          {"equitwist_violations", violations}};
 }
 
 }  // namespace gproj

@@ -162,9 +162,9 @@ class HNet {
   const std::vector<std::array<double, 4>>& weights() const { return weights_; }
   const std::vector<double>& shape_parameters() const { return w_; }
 
-  // The run's report (shared schema), with the rounds, equitwist violations and
-  // simple connectivity as its own keys.
-  static nlohmann::json ReportJson(const HNetSummary& summary);
+  // The report's own keys of a run: rounds, worst_edges, simply_connected and
+  // equitwist_violations (the rest is the shared schema of summary.report).
+  static nlohmann::json ReportFacts(const HNetSummary& summary);
 
  private:
   // Runs the A-net step when the stars are not planar to tolerance; false (with the message in

@@ -3,6 +3,7 @@
 
 #include "geometry/input_error.h"
 #include "problems/run/option_schema.h"
+#include "problems/run/registry.h"
 
 PYBIND11_MODULE(gproj, m) {
   m.doc() = R"(gproj: guided projection for architectural geometry, from numpy.
@@ -26,14 +27,14 @@ Bad input raises ValueError with the command line's message.)";
     try {
       if (error) std::rethrow_exception(error);
     } catch (const gproj::OptionError& e) {
-      PyErr_SetString(e.type_mismatch() ? PyExc_TypeError : PyExc_ValueError, e.what());
+      PyErr_SetString(e.type_mismatch() ? PyExc_TypeError : PyExc_ValueError,
+                      gproj::SpellOptions(e.what(), false).c_str());
     } catch (const gproj::InputError& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
+      PyErr_SetString(PyExc_ValueError, gproj::SpellOptions(e.what(), false).c_str());
     }
   });
   gproj::python::BindMeshIo(m);
   gproj::python::BindRegistry(m);
-  gproj::python::BindMeshProblems(m);
   gproj::python::BindConstructions(m);
   gproj::python::BindWeingarten(m);
   gproj::python::BindMarionette(m);

@@ -9,7 +9,6 @@ namespace py = pybind11;
 
 void BindMeshIo(py::module_& m);          // read_mesh, write_mesh, grid
 void BindRegistry(py::module_& m);        // the registry's problems (planarize, ...), schema
-void BindMeshProblems(py::module_& m);    // anet, hnet
 void BindConstructions(py::module_& m);   // combescure, invert, canal
 void BindWeingarten(py::module_& m);      // weingarten
 void BindMarionette(py::module_& m);      // marionette_lift, marionette_fit

@@ -96,11 +96,29 @@ py::object Call(const ProblemSpec& spec, const py::args& args, const py::kwargs&
     TypeError(spec.name + "() takes " + std::to_string(next) + " positional arguments but " +
               std::to_string(args.size()) + " were given");
   py::object callback = py::none();
+  std::set<std::string> outputs;
+  for (const OutputSpec& output : spec.outputs)
+    if (output.required) outputs.insert(output.name);
   nlohmann::json options = nlohmann::json::object();
   for (const auto& [key, value] : kwargs) {
     const std::string name = py::str(key);
     if (name == "callback") {
       callback = py::reinterpret_borrow<py::object>(value);
+    } else if (name == "outputs") {
+      if (py::isinstance<py::str>(value) || !py::hasattr(value, "__iter__"))
+        TypeError("outputs: expected a sequence of output names, not " + TypeNameOf(value));
+      for (const py::handle item : value) {
+        const std::string output = py::str(item);
+        const auto known = std::find_if(spec.outputs.begin(), spec.outputs.end(),
+                                        [&](const OutputSpec& o) { return o.name == output; });
+        if (known == spec.outputs.end()) {
+          std::string names;
+          for (const OutputSpec& o : spec.outputs) names += (names.empty() ? "" : ", ") + o.name;
+          throw InputError("outputs: " + spec.name + " has no output '" + output + "' (" + names +
+                           ")");
+        }
+        outputs.insert(output);
+      }
     } else if (const InputSpec* input = spec.FindInput(name)) {
       if (value.is_none()) continue;
       if (input->kind == InputKind::kVertexIds)
@@ -116,9 +134,16 @@ py::object Call(const ProblemSpec& spec, const py::args& args, const py::kwargs&
       }
     }
   }
+  bool keeps = false;
+  for (const OutputSpec& output : spec.outputs) keeps = keeps || output.same_connectivity;
+  if (keeps && outputs.size() > 1)
+    throw InputError("outputs: " + spec.name +
+                     "() returns its result's vertices; its other outputs are made by the command "
+                     "line (--picture, ...)");
   RunBridge bridge(callback);
   RunContext context;
   context.on_record = bridge.callback();
+  context.outputs = outputs;
   const RunResult result = bridge.Call([&] { return RunProblem(spec, inputs, options, context); });
   const py::module_ warnings = py::module_::import("warnings");
   for (const RunMessage& message : result.messages)
@@ -136,7 +161,15 @@ py::object Call(const ProblemSpec& spec, const py::args& args, const py::kwargs&
   if (result.report.failed) return py::make_tuple(py::none(), report);
   py::dict out;
   for (const auto& [name, mesh] : result.meshes) out[name.c_str()] = MeshToPython(mesh);
-  for (const auto& [name, text] : result.texts) out[name.c_str()] = text;
+  for (const auto& [name, text] : result.texts) {
+    const OutputSpec* output = nullptr;
+    for (const OutputSpec& o : spec.outputs)
+      if (o.name == name) output = &o;
+    if (output && output->kind == OutputKind::kJson)
+      out[name.c_str()] = JsonToPython(nlohmann::json::parse(text));
+    else
+      out[name.c_str()] = text;
+  }
   for (const auto& [name, array] : result.arrays) {
     py::array_t<double> a({array.rows(), array.cols()});
     auto view = a.mutable_unchecked<2>();
@@ -145,6 +178,14 @@ py::object Call(const ProblemSpec& spec, const py::args& args, const py::kwargs&
     out[name.c_str()] = a;
   }
   return py::make_tuple(out, report);
+}
+
+// "picture, face_values" (or "none").
+std::string OptionalOutputs(const ProblemSpec& spec) {
+  std::string names;
+  for (const OutputSpec& o : spec.outputs)
+    if (!o.required) names += (names.empty() ? "" : ", ") + o.name;
+  return names.empty() ? "none" : names;
 }
 
 // "planarize(V, F, *, solver='gp', ...) -> (V_out, report)" and one entry per argument.
@@ -182,7 +223,7 @@ std::string DocOf(const ProblemSpec& spec) {
                  (option.RangeText().empty() ? "" : ", " + option.RangeText()) +
                  "): " + option.doc + ".\n";
   }
-  signature += ", callback=None)";
+  signature += ", outputs=(), callback=None)";
   bool keeps = false;
   for (const OutputSpec& output : spec.outputs) keeps = keeps || output.same_connectivity;
   signature += keeps ? " -> (V_out, report)" : " -> (result, report)";
@@ -200,6 +241,8 @@ std::string DocOf(const ProblemSpec& spec) {
     returns += "And the report";
   }
   return signature + "\n\n" + spec.summary + "\n\n" + arguments +
+         "    outputs: names of optional outputs to make as well (" + OptionalOutputs(spec) +
+         "); each comes back in the result dict under its name.\n"
          "    callback: None or callback(record: dict) called at the start and after every "
          "iteration with the keys of report[\"history\"] entries; returning False stops the run. "
          "Ctrl-C stops the run and raises KeyboardInterrupt.\n\n" +

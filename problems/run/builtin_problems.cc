@@ -7,8 +7,12 @@ const Registry& Registry::Builtin() {
     Registry r;
     r.Add(PlanarizeProblem());
     r.Add(ANetProblem());
+    r.Add(HNetProblem());
     r.Add(FieldProblem());
     r.Add(RemeshProblem());
+    r.Add(InvertProblem());
+    r.Add(CyclidicProblem());
+    r.Add(CombescureProblem());
     return r;
   }();
   return registry;

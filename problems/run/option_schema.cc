@@ -85,6 +85,8 @@ const char* OptionTypeName(OptionType type) {
       return "choice";
     case OptionType::kNumbers:
       return "numbers";
+    case OptionType::kPoints:
+      return "points";
   }
   return "?";
 }
@@ -136,6 +138,29 @@ nlohmann::json CheckOptionValue(const OptionSpec& spec, const nlohmann::json& va
       for (const nlohmann::json& v : value) out.push_back(CheckNumber(spec, v, false));
       return out;
     }
+    case OptionType::kPoints: {
+      const std::string expected =
+          spec.count > 0 ? std::to_string(spec.count) + " points" : "points";
+      if (!value.is_array())
+        throw OptionError(spec.name, Shown(value) + " is not a list of " + expected + " (x, y, z)",
+                          true);
+      if (spec.count > 0 && static_cast<int>(value.size()) != spec.count)
+        throw OptionError(spec.name, "expects " + expected + " (" + spec.placeholder + "), not " +
+                                         std::to_string(value.size()));
+      nlohmann::json out = nlohmann::json::array();
+      for (size_t i = 0; i < value.size(); ++i) {
+        const nlohmann::json& p = value[i];
+        if (!p.is_array() || p.size() != 3)
+          throw OptionError(spec.name,
+                            "point " + std::to_string(i) + " is not three numbers x, y, z" +
+                                (p.is_array() ? " (it has " + std::to_string(p.size()) + ")" : ""),
+                            !p.is_array());
+        nlohmann::json point = nlohmann::json::array();
+        for (const nlohmann::json& v : p) point.push_back(CheckNumber(spec, v, false));
+        out.push_back(point);
+      }
+      return out;
+    }
   }
   return value;
 }
@@ -163,6 +188,22 @@ nlohmann::json ParseOptionText(const OptionSpec& spec, const std::string& text) 
         start = comma + 1;
       }
       return CheckOptionValue(spec, values);
+    }
+    case OptionType::kPoints: {
+      OptionSpec list;
+      list.name = spec.name, list.type = OptionType::kNumbers;
+      const nlohmann::json numbers = ParseOptionText(list, text);
+      if (numbers.size() % 3 != 0 ||
+          (spec.count > 0 && static_cast<int>(numbers.size()) != 3 * spec.count))
+        throw OptionError(spec.name, "expects " +
+                                         (spec.count > 0 ? std::to_string(3 * spec.count)
+                                                         : std::string("3 per point")) +
+                                         " comma-separated numbers (" + spec.placeholder +
+                                         "), not " + std::to_string(numbers.size()));
+      nlohmann::json points = nlohmann::json::array();
+      for (size_t i = 0; i < numbers.size(); i += 3)
+        points.push_back({numbers[i], numbers[i + 1], numbers[i + 2]});
+      return CheckOptionValue(spec, points);
     }
   }
   return nullptr;
@@ -193,7 +234,8 @@ nlohmann::json OptionSpecJson(const OptionSpec& spec) {
     j["maximum_exclusive"] = spec.max_exclusive;
   }
   if (!spec.choices.empty()) j["choices"] = spec.choices;
-  if (spec.type == OptionType::kNumbers) j["count"] = spec.count;
+  if (spec.type == OptionType::kNumbers || spec.type == OptionType::kPoints)
+    j["count"] = spec.count;
   if (!spec.negation.empty()) j["negation"] = spec.negation;
   return j;
 }
@@ -203,7 +245,8 @@ nlohmann::json CompleteOptions(const std::vector<OptionSpec>& specs, const nlohm
     throw InputError("options must be an object of named values");
   nlohmann::json out = nlohmann::json::object();
   if (given.is_object())
-    for (const auto& [name, value] : given.items()) {
+    for (const auto& item : given.items()) {
+      const std::string name = item.key();
       const auto spec = std::find_if(specs.begin(), specs.end(),
                                      [&](const OptionSpec& s) { return s.name == name; });
       if (spec != specs.end()) continue;

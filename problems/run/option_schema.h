@@ -21,8 +21,11 @@ enum class OptionType {
   kNumber,   // a finite real number
   kChoice,   // one of `choices`
   kNumbers,  // a list of `count` finite numbers (0: any length), "a,b,..." on the command line
+  kPoints,   // a list of `count` points [x, y, z] (0: any number), "x,y,z,x,y,z,..." on the
+             // command line; in Python an (n, 3) array
 };
-const char* OptionTypeName(OptionType type);  // "bool", "int", "number", "choice", "numbers"
+// "bool", "int", "number", "choice", "numbers", "points"
+const char* OptionTypeName(OptionType type);
 
 struct OptionSpec {
   std::string name;  // identifier, e.g. "min_angle"
@@ -35,7 +38,7 @@ struct OptionSpec {
   double max = std::numeric_limits<double>::infinity();
   bool min_exclusive = false, max_exclusive = false;
   std::vector<std::string> choices;  // kChoice
-  int count = 0;                     // kNumbers
+  int count = 0;                     // kNumbers, kPoints
   std::string negation;     // kBool: the identifier of the switch that turns it off ("plain_steps")
   std::string group;        // where the option belongs in help pages, e.g. "solver", "panels"
   std::string placeholder;  // the value's name in help, e.g. "MIN,MAX"

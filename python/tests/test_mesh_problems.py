@@ -192,7 +192,8 @@ def test_anet_refuses_odd_valence():
 
 def test_hnet_equals_the_command_line(cli):
     V, F = gproj.grid(nu=6, nv=6, surface="hypar", noise=0.02)
-    hnet, report = compare_with_command_line(cli, "hnet", V, F, {}, [], output="h.json")
+    result, report = compare_with_command_line(cli, "hnet", V, F, {}, [], output="h.json")
+    hnet = result["output"]
     import json
     with open(cli.path("h.json")) as f:
         expected = json.load(f)
@@ -205,12 +206,14 @@ def test_hnet_surface_equals_the_command_lines_surface_mesh(cli):
     source = cli.write_mesh("in.obj", V, F)
     cli.run("hnet", source, "-o", cli.path("h.json"), "--surface-mesh", cli.path("s.obj"),
             "--samples", 3)
-    hnet, report = gproj.hnet(V, F, surface_samples=3)
-    Vs, Fs = hnet["surface"]
+    result, report = gproj.hnet(V, F, outputs=["surface_mesh"], samples=3)
+    Vs, Fs = result["surface_mesh"]
     Ve, Fe = gproj.read_mesh(cli.path("s.obj"))
     assert Vs.shape == (len(F) * 16, 3) and Fs.shape == (len(F) * 18, 3)
     assert_close(Vs, Ve)
     assert (Fs == Fe).all()
-    assert "surface" not in gproj.hnet(V, F, rounds=1)[0]
-    with pytest.raises(ValueError, match="surface_samples"):
-        gproj.hnet(V, F, surface_samples=-1)
+    assert "surface_mesh" not in gproj.hnet(V, F, rounds=1)[0]
+    with pytest.raises(ValueError, match=r"samples: -1 is not in \[1, 200\]"):
+        gproj.hnet(V, F, samples=-1)
+    with pytest.raises(ValueError, match="outputs: hnet has no output 'surface'"):
+        gproj.hnet(V, F, outputs=["surface"])

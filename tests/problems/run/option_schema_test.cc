@@ -74,6 +74,31 @@ TEST(OptionSchemaTest, ChoicesListsAndSwitches) {
   EXPECT_EQ(RuleOf([&] { CheckOptionValue(flag, 1); }), "1 is not true or false");
 }
 
+// Points are (n, 3): a transposed (3, n) list is refused, never read in the wrong order.
+TEST(OptionSchemaTest, PointsAreTriplesInTheirOrder) {
+  OptionSpec points = Spec(OptionType::kPoints);
+  points.count = 2, points.placeholder = "P1,P2";
+  EXPECT_EQ(ParseOptionText(points, "1,2,3,4,5,6"),
+            nlohmann::json({{1.0, 2.0, 3.0}, {4.0, 5.0, 6.0}}));
+  EXPECT_EQ(CheckOptionValue(points, {{1, 2, 3}, {4, 5, 6}}),
+            nlohmann::json({{1.0, 2.0, 3.0}, {4.0, 5.0, 6.0}}));
+  EXPECT_EQ(RuleOf([&] {
+              CheckOptionValue(points, {{1, 4}, {2, 5}, {3, 6}});
+            }),
+            "expects 2 points (P1,P2), not 3");
+  OptionSpec any = Spec(OptionType::kPoints);
+  EXPECT_EQ(RuleOf([&] {
+              CheckOptionValue(any, {{1, 4}, {2, 5}, {3, 6}});
+            }),
+            "point 0 is not three numbers x, y, z (it has 2)");
+  EXPECT_EQ(RuleOf([&] { ParseOptionText(points, "1,2,3,4,5"); }),
+            "expects 6 comma-separated numbers (P1,P2), not 5");
+  EXPECT_EQ(RuleOf([&] {
+              CheckOptionValue(any, {1, 2, 3});
+            }),
+            "point 0 is not three numbers x, y, z");
+}
+
 TEST(OptionSchemaTest, CompleteOptionsFillsDefaultsAndRefusesUnknownNames) {
   OptionSpec tolerance = Spec(OptionType::kNumber);
   tolerance.name = "tolerance", tolerance.default_value = 1e-9, tolerance.min = 0.0;
