@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "apps/commands.h"
+#include "geometry/text_input.h"
 #include "problems/run/registry.h"
 
 namespace gproj {
@@ -25,6 +26,8 @@ std::string HelpOf(const OptionSpec& spec) {
   std::string help = spec.doc;
   if (!spec.unit.empty()) help += " [" + spec.unit + "]";
   if (!spec.RangeText().empty()) help += " (" + spec.RangeText() + ")";
+  if (spec.type == OptionType::kBool && spec.default_value.is_boolean())
+    help += spec.default_value.get<bool>() ? " (default: on)" : " (default: off)";
   return help;
 }
 
@@ -73,6 +76,10 @@ RunInputs ReadInputs(const ProblemSpec& spec, const ProblemArgs& args) {
     read.sources[input.name] = path;
     if (input.kind == InputKind::kVertexIds) {
       read.vertex_ids[input.name] = ReadVertexIds(path, num_vertices);
+      continue;
+    }
+    if (input.kind == InputKind::kCurve) {
+      read.curves[input.name] = ReadPoints(path, 2);
       continue;
     }
     read.meshes[input.name] = ReadMesh(path, MeshRequirements{input.kind == InputKind::kQuadMesh});
@@ -162,7 +169,10 @@ void RegisterProblemCommand(CLI::App* app, const ProblemSpec& spec, int* exit_co
   for (const InputSpec& input : spec.inputs) {
     std::string& path = args->paths[input.name];
     if (input.required)
-      cmd->add_option(input.name, path, input.doc + " (.obj, .off or .ply)")
+      cmd->add_option(
+             input.name, path,
+             input.doc + (input.kind == InputKind::kCurve ? std::string(" (text: x y z per line)")
+                                                          : std::string(" (.obj, .off or .ply)")))
           ->required()
           ->type_name("FILE");
     else if (input.kind == InputKind::kVertexIds)
@@ -215,6 +225,7 @@ void RegisterProblemCommand(CLI::App* app, const ProblemSpec& spec, int* exit_co
     CLI::Option* cli =
         cmd->add_option(Flag(option.name), args->texts[option.name], HelpOf(option))->check(check);
     if (!option.default_value.is_null()) cli->default_str(OptionText(option.default_value));
+    if (option.required) cli->required();
     cli->type_name(option.type == OptionType::kInt ? "INT" : "NUMBER");
     if (!option.placeholder.empty()) cli->type_name(option.placeholder);
     if (!option.choices.empty()) {

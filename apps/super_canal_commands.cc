@@ -73,8 +73,6 @@ int WriteAndConclude(const std::string& command, const RunReport& report, const 
 
 void RegisterSuperCanalCommands(CLI::App* app, int* exit_code) {
   RegisterCanalCommand(app, exit_code);
-  RegisterBeamsCommand(app, exit_code);
-  RegisterMRevolutionCommand(app, exit_code);
 }
 
 }  // namespace gproj

@@ -16,8 +16,6 @@
 namespace gproj {
 
 void RegisterCanalCommand(CLI::App* app, int* exit_code);
-void RegisterBeamsCommand(CLI::App* app, int* exit_code);
-void RegisterMRevolutionCommand(CLI::App* app, int* exit_code);
 
 // x, y, z from a comma-separated option; throws InputError naming `option` unless the values
 // are three finite numbers.

@@ -78,17 +78,36 @@ PolyMesh MeshFromPython(const InputSpec& input, const py::handle& value) {
   return MeshFromArrays(pair[0], pair[1], input.kind == InputKind::kQuadMesh);
 }
 
+// A curve: an (n, 3) array of at least two points, none repeating the one before.
+std::vector<Eigen::Vector3d> CurveFromPython(const std::string& name, const py::handle& value) {
+  const std::vector<Eigen::Vector3d> points = PointsFromArray(value, name);
+  if (points.size() < 2)
+    throw InputError(name + ": a curve needs at least 2 points, got " +
+                     std::to_string(points.size()));
+  for (size_t i = 1; i < points.size(); ++i)
+    if (points[i] == points[i - 1])
+      throw InputError(name + ": point " + std::to_string(i) + " repeats the one before");
+  return points;
+}
+
 py::object Call(const ProblemSpec& spec, const py::args& args, const py::kwargs& kwargs) {
   RunInputs inputs;
   size_t next = 0;
   int num_vertices = -1;
   for (const InputSpec& input : spec.inputs) {
     if (!input.required) continue;
+    inputs.sources[input.name] = input.name;
+    if (input.kind == InputKind::kCurve) {
+      if (args.size() < next + 1)
+        TypeError(spec.name + "() needs the (n, 3) array of its " + input.name);
+      inputs.curves[input.name] = CurveFromPython(input.name, args[next]);
+      next += 1;
+      continue;
+    }
     if (args.size() < next + 2)
       TypeError(spec.name + "() needs the arrays V and F of its " + input.name);
     inputs.meshes[input.name] =
         MeshFromArrays(args[next], args[next + 1], input.kind == InputKind::kQuadMesh);
-    inputs.sources[input.name] = input.name;
     if (num_vertices < 0) num_vertices = static_cast<int>(inputs.meshes[input.name].n_vertices());
     next += 2;
   }
@@ -123,6 +142,8 @@ py::object Call(const ProblemSpec& spec, const py::args& args, const py::kwargs&
       if (value.is_none()) continue;
       if (input->kind == InputKind::kVertexIds)
         inputs.vertex_ids[name] = VertexIdsFromPython(name, value, num_vertices);
+      else if (input->kind == InputKind::kCurve)
+        inputs.curves[name] = CurveFromPython(name, value);
       else
         inputs.meshes[name] = MeshFromPython(*input, value);
       inputs.sources[name] = name;
@@ -193,7 +214,11 @@ std::string DocOf(const ProblemSpec& spec) {
   std::string signature = spec.name + "(";
   std::string arguments;
   for (const InputSpec& input : spec.inputs) {
-    if (input.required) {
+    if (input.required && input.kind == InputKind::kCurve) {
+      signature += input.name + ", ";
+      arguments +=
+          "    " + input.name + ": (n, 3) float64 points, at least 2. " + input.doc + ".\n";
+    } else if (input.required) {
       signature += "V, F, ";
       arguments += "    V, F: the " + input.name +
                    ": (n, 3) float64 vertex positions and (m, k) "
@@ -208,10 +233,19 @@ std::string DocOf(const ProblemSpec& spec) {
     arguments += "    " + input.name + ": " +
                  (input.kind == InputKind::kVertexIds
                       ? "None, a sequence of 0-based vertex ids or a boolean mask. "
-                      : "None or a mesh (V, F). ") +
+                  : input.kind == InputKind::kCurve ? "None or an (n, 3) array of points. "
+                                                    : "None or a mesh (V, F). ") +
                  input.doc + ".\n";
   }
   for (const OptionSpec& option : spec.options) {
+    if (option.required) {
+      signature += ", " + option.name;
+      arguments += "    " + option.name + " (" + OptionTypeName(option.type) +
+                   (option.unit.empty() ? "" : ", " + option.unit) +
+                   (option.RangeText().empty() ? "" : ", " + option.RangeText()) +
+                   ", required): " + option.doc + ".\n";
+      continue;
+    }
     const std::string shown =
         option.default_value.is_null()      ? "None"
         : option.default_value.is_boolean() ? (option.default_value.get<bool>() ? "True" : "False")

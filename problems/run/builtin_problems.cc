@@ -13,6 +13,8 @@ const Registry& Registry::Builtin() {
     r.Add(InvertProblem());
     r.Add(CyclidicProblem());
     r.Add(CombescureProblem());
+    r.Add(BeamsProblem());
+    r.Add(MRevolutionProblem());
     return r;
   }();
   return registry;

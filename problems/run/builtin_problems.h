@@ -6,13 +6,15 @@
 
 namespace gproj {
 
-ProblemSpec PlanarizeProblem();  // problems/planarize_problem.cc
-ProblemSpec ANetProblem();       // problems/anet_problem.cc
-ProblemSpec HNetProblem();       // problems/hnet_problem.cc
-ProblemSpec FieldProblem();      // problems/field_problem.cc
-ProblemSpec RemeshProblem();     // problems/remesh_problem.cc
-ProblemSpec InvertProblem();     // problems/invert_problem.cc
-ProblemSpec CyclidicProblem();   // problems/cyclidic_problem.cc
-ProblemSpec CombescureProblem(); // problems/combescure_problem.cc
+ProblemSpec PlanarizeProblem();    // problems/planarize_problem.cc
+ProblemSpec ANetProblem();         // problems/anet_problem.cc
+ProblemSpec HNetProblem();         // problems/hnet_problem.cc
+ProblemSpec FieldProblem();        // problems/field_problem.cc
+ProblemSpec RemeshProblem();       // problems/remesh_problem.cc
+ProblemSpec InvertProblem();       // problems/invert_problem.cc
+ProblemSpec CyclidicProblem();     // problems/cyclidic_problem.cc
+ProblemSpec CombescureProblem();   // problems/combescure_problem.cc
+ProblemSpec BeamsProblem();        // problems/beams_problem.cc
+ProblemSpec MRevolutionProblem();  // problems/mrevolution_problem.cc
 
 }  // namespace gproj

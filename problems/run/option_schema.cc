@@ -237,6 +237,7 @@ nlohmann::json OptionSpecJson(const OptionSpec& spec) {
   if (spec.type == OptionType::kNumbers || spec.type == OptionType::kPoints)
     j["count"] = spec.count;
   if (!spec.negation.empty()) j["negation"] = spec.negation;
+  if (spec.required) j["required"] = true;
   return j;
 }
 
@@ -263,6 +264,8 @@ nlohmann::json CompleteOptions(const std::vector<OptionSpec>& specs, const nlohm
     const nlohmann::json* value = &spec.default_value;
     if (given.is_object() && given.contains(spec.name) && !given[spec.name].is_null())
       value = &given[spec.name];
+    if (value->is_null() && spec.required)
+      throw OptionError(spec.name, "this option is required", true);
     if (!value->is_null()) out[spec.name] = CheckOptionValue(spec, *value);
   }
   return out;

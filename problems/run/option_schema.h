@@ -42,6 +42,7 @@ struct OptionSpec {
   std::string negation;     // kBool: the identifier of the switch that turns it off ("plain_steps")
   std::string group;        // where the option belongs in help pages, e.g. "solver", "panels"
   std::string placeholder;  // the value's name in help, e.g. "MIN,MAX"
+  bool required = false;    // no default: every run must give it
 
   // The rule of the range ("> 0", "in [0, 59.9]"); empty without one.
   std::string RangeText() const;
@@ -116,6 +117,10 @@ class OptionSchema {
     }
     Builder& Negation(std::string negation) {
       spec_->negation = std::move(negation);
+      return *this;
+    }
+    Builder& Required() {
+      spec_->required = true;
       return *this;
     }
     Builder& Count(int count, std::string placeholder) {

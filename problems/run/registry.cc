@@ -42,6 +42,8 @@ const char* InputKindName(InputKind kind) {
       return "mesh";
     case InputKind::kVertexIds:
       return "vertex_ids";
+    case InputKind::kCurve:
+      return "curve";
   }
   return "?";
 }
@@ -95,6 +97,16 @@ const PolyMesh* RunInputs::OptionalMesh(const std::string& name) const {
 std::vector<int> RunInputs::VertexIds(const std::string& name) const {
   const auto it = vertex_ids.find(name);
   return it == vertex_ids.end() ? std::vector<int>() : it->second;
+}
+
+const std::vector<Eigen::Vector3d>& RunInputs::Curve(const std::string& name) const {
+  const auto it = curves.find(name);
+  if (it == curves.end()) throw InputError("the input " + name + " is required");
+  return it->second;
+}
+
+bool RunInputs::Has(const std::string& name) const {
+  return meshes.count(name) || vertex_ids.count(name) || curves.count(name);
 }
 
 std::string RunInputs::Source(const std::string& name) const {
@@ -189,9 +201,8 @@ RunResult RunProblem(const ProblemSpec& spec, const RunInputs& inputs,
                      const nlohmann::json& options, const RunContext& context) {
   const nlohmann::json complete = CompleteOptions(spec.options, options);
   for (const InputSpec& input : spec.inputs) {
-    const bool given = input.kind == InputKind::kVertexIds ? inputs.vertex_ids.count(input.name)
-                                                           : inputs.meshes.count(input.name);
-    if (input.required && !given) throw InputError("the input " + input.name + " is required");
+    if (input.required && !inputs.Has(input.name))
+      throw InputError("the input " + input.name + " is required");
   }
   RunResult result = spec.run(inputs, complete, context);
   FailOnNonFiniteMeasures(&result.report);
@@ -217,6 +228,7 @@ std::string FlagOf(const std::string& name) {
 }
 
 std::string DefaultText(const OptionSpec& option) {
+  if (option.required) return "required";
   if (option.default_value.is_null()) return "none";
   if (option.default_value.is_boolean()) return option.default_value.get<bool>() ? "on" : "off";
   return "`" + OptionText(option.default_value) + "`";

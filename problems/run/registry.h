@@ -32,8 +32,10 @@ enum class InputKind {
   kQuadMesh,   // a polygon mesh whose faces are all quads
   kMesh,       // any polygon mesh
   kVertexIds,  // 0-based vertex ids of the first mesh input
+  kCurve,      // a polyline: at least two points, none repeating the one before (a text file of
+               // x y z lines; an (n, 3) array in Python)
 };
-const char* InputKindName(InputKind kind);  // "quad_mesh", "mesh", "vertex_ids"
+const char* InputKindName(InputKind kind);  // "quad_mesh", "mesh", "vertex_ids", "curve"
 
 struct InputSpec {
   std::string name;  // identifier, e.g. "mesh", "reference", "fixed"
@@ -68,12 +70,15 @@ struct OutputSpec {
 struct RunInputs {
   std::map<std::string, PolyMesh> meshes;
   std::map<std::string, std::vector<int>> vertex_ids;
+  std::map<std::string, std::vector<Eigen::Vector3d>> curves;
   // Where each input came from ("in.obj", "V"), for messages.
   std::map<std::string, std::string> sources;
 
   const PolyMesh& Mesh(const std::string& name) const;          // a required mesh input
   const PolyMesh* OptionalMesh(const std::string& name) const;  // null when not given
   std::vector<int> VertexIds(const std::string& name) const;    // empty when not given
+  const std::vector<Eigen::Vector3d>& Curve(const std::string& name) const;  // a required curve
+  bool Has(const std::string& name) const;  // whether the input was given
   std::string Source(const std::string& name) const;
 };
 

@@ -31,6 +31,9 @@ def test_every_problem_is_a_function_whose_doc_gives_every_option(problem):
     signature = function.__doc__.splitlines()[0]
     for option in spec["options"]:
         default = option["default"]
+        if option.get("required"):
+            assert f", {option['name']}," in signature, option["name"]
+            continue
         shown = "None" if default is None else python_literal(default)
         assert f"{option['name']}={shown}" in signature, option["name"]
         assert f"    {option['name']} ({option['type']}" in function.__doc__
@@ -94,3 +97,44 @@ def test_remesh_is_the_command_lines(cli):
     # 004 Theorem 6: the flat point of the monkey saddle becomes one vertex of valence 6
     assert report["inner_valences"].get("6") == 1
     assert np.asarray(Fq).shape[1] == 4
+
+
+DATA = pathlib.Path(__file__).resolve().parents[2] / "examples" / "data"
+
+
+def test_mrevolution_is_the_command_lines(cli):
+    curve = np.loadtxt(DATA / "m_revolution_curve.txt")
+    p2, p3 = [-0.6840402866513374, 1.8793852415718169, 0], [1, 1.7320508075688772, 0]
+    cli.run("mrevolution", DATA / "m_revolution_curve.txt", "--p2=" + ",".join(map(repr, p2)),
+            "--p3", ",".join(map(repr, p3)), "-o", cli.path("m.obj"), "--report",
+            cli.path("r.json"))
+    result, report = gproj.mrevolution(curve, p2=p2, p3=p3, outputs=["revolution"])
+    V, F = result["output"]
+    Vc, Fc = gproj.read_mesh(cli.path("m.obj"))
+    assert np.max(np.abs(V - Vc)) <= 1e-12 and np.array_equal(np.asarray(F), np.asarray(Fc))
+    assert report["final"]["max_concyclicity"] < 1e-9  # a circular mesh
+    assert report["final"]["curve_roundtrip"] < 1e-9  # through the curve's own points
+    assert "revolution" in result
+    with pytest.raises(TypeError, match="p3: this option is required"):
+        gproj.mrevolution(curve, p2=p2)
+    with pytest.raises(ValueError, match="curve: a curve needs at least 2 points"):
+        gproj.mrevolution(curve[:1], p2=p2, p3=p3)
+    with pytest.raises(ValueError, match=r"curve must be an \(n, 3\) array of floats, got shape \(3, 21\)"):
+        gproj.mrevolution(curve.T, p2=p2, p3=p3)  # (3, n): refused, not read in the wrong order
+
+
+def test_beams_is_the_command_lines(cli):
+    cli.run("invert", DATA / "revolution_13x17.obj", "--centre", "2,-1,3", "-o",
+            cli.path("circular.obj"))
+    V, F = gproj.read_mesh(cli.path("circular.obj"))
+    cli.run("beams", cli.path("circular.obj"), "--height", 0.05, "-o", cli.path("b.obj"),
+            "--report", cli.path("r.json"))
+    result, report = gproj.beams(V, F, height=0.05, outputs=["offset", "axes"])
+    Vb, Fb = result["output"]
+    Vc, Fc = gproj.read_mesh(cli.path("b.obj"))
+    assert np.max(np.abs(Vb - Vc)) <= 1e-12
+    assert report["final"] == pytest.approx(cli.read_report("r.json")["final"], rel=1e-12)
+    assert report["final"]["max_beam_planarity"] < 1e-10
+    Vo, Fo = result["offset"]
+    assert Vo.shape == V.shape  # the parallel offset, one vertex per node
+    assert result["axes"].count("\nl ") == len(V)
