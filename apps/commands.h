@@ -21,7 +21,5 @@ void RegisterMarionetteCommand(CLI::App* app, int* exit_code);
 // Registers `gproj combescure`, `gproj invert`, `gproj canal`, `gproj beams` and
 // `gproj mrevolution`.
 void RegisterSuperCanalCommands(CLI::App* app, int* exit_code);
-// Registers `gproj weingarten`.
-void RegisterWeingartenCommand(CLI::App* app, int* exit_code);
 
 }  // namespace gproj

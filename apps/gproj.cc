@@ -25,7 +25,6 @@ int main(int argc, char** argv) {
   gproj::RegisterGridCommand(&app, &exit_code);
   gproj::RegisterMarionetteCommand(&app, &exit_code);
   gproj::RegisterSuperCanalCommands(&app, &exit_code);
-  gproj::RegisterWeingartenCommand(&app, &exit_code);
   gproj::RefuseEmptyValues(&app);
   // An unknown subcommand is refused before any --help after it could print the main help.
   std::string commands;

@@ -82,6 +82,10 @@ RunInputs ReadInputs(const ProblemSpec& spec, const ProblemArgs& args) {
       read.curves[input.name] = ReadPoints(path, 2);
       continue;
     }
+    if (input.kind == InputKind::kBSpline) {
+      read.surfaces[input.name] = ReadBSplineJson(path);
+      continue;
+    }
     read.meshes[input.name] = ReadMesh(path, MeshRequirements{input.kind == InputKind::kQuadMesh});
     if (num_vertices < 0) num_vertices = static_cast<int>(read.meshes[input.name].n_vertices());
   }
@@ -90,13 +94,17 @@ RunInputs ReadInputs(const ProblemSpec& spec, const ProblemArgs& args) {
 
 int RunProblemCommand(const ProblemSpec& spec, const ProblemArgs& args) {
   const std::string name = "gproj " + spec.name;
-  const IterationLog log(spec.log_measures);
+  auto log = std::make_unique<IterationLog>(spec.log_measures);
   bool logged = false;
   RunContext context;
   context.on_record = [&](const RunRecord& record) {
-    if (!logged) log.PrintHeader(), logged = true;
-    log.Print(record);
+    if (!logged) log->PrintHeader(), logged = true;
+    log->Print(record);
     return true;
+  };
+  context.on_columns = [&](const std::vector<std::string>& columns) {
+    log = std::make_unique<IterationLog>(columns);
+    logged = false;
   };
   context.on_message = [&name](const RunMessage& m) {
     if (m.kind == RunMessage::Kind::kWarning) {
@@ -157,6 +165,96 @@ int RunProblemCommand(const ProblemSpec& spec, const ProblemArgs& args) {
   return code;
 }
 
+// The inputs as positional paths (required) or --NAME FILE, the outputs as -o/--output and
+// --NAME FILE, and --report.
+void AddPaths(CLI::App* cmd, const ProblemSpec& spec, ProblemArgs* args) {
+  for (const InputSpec& input : spec.inputs) {
+    const std::string format = input.kind == InputKind::kCurve     ? " (text: x y z per line)"
+                               : input.kind == InputKind::kBSpline ? " (.json)"
+                               : input.kind == InputKind::kVertexIds
+                                   ? ": a text file of ids separated by spaces or newlines, '#' "
+                                     "comments"
+                                   : " (.obj, .off or .ply)";
+    CLI::Option* option = cmd->add_option(input.required ? input.name : Flag(input.name),
+                                          args->paths[input.name], input.doc + format);
+    option->type_name("FILE");
+    if (input.required) option->required();
+  }
+  for (const OutputSpec& output : spec.outputs) {
+    const std::string extension =
+        output.kind == OutputKind::kMesh ? ".obj, .off or .ply" : OutputExtension(output.kind);
+    CLI::Option* option = cmd->add_option(
+        output.name == "output" ? "-o,--output" : Flag(output.name), args->paths[output.name],
+        "Write " + output.doc + (extension.empty() ? "" : " (" + extension + ")") +
+            "; written atomically");
+    option->type_name("FILE");
+    if (output.required) option->required();
+  }
+  cmd->add_option("--report", args->paths["report"],
+                  "Write a JSON report: converged, iterations, seconds, variables, per-iteration "
+                  "history, the initial and final measures and the options")
+      ->type_name("FILE");
+}
+
+// A list option: its words (--samples 12 9, or 12,9) joined by commas and checked as one value.
+CLI::Option* AddListOption(CLI::App* cmd, const OptionSpec& option, std::string* text) {
+  const int words = option.count * (option.type == OptionType::kPoints ? 3 : 1);
+  CLI::Option* cli = cmd->add_option_function<std::vector<std::string>>(
+      Flag(option.name),
+      [option, text](const std::vector<std::string>& given) {
+        text->clear();
+        for (const std::string& w : given) *text += (text->empty() ? "" : ",") + w;
+        try {
+          ParseOptionText(option, *text);
+        } catch (const OptionError& e) {
+          throw CLI::ValidationError(Flag(option.name), e.rule());
+        }
+      },
+      HelpOf(option));
+  return cli->expected(1, words > 0 ? words : 1);
+}
+
+// One option of the schema: a switch (with its negation), a list, or a value checked by
+// ParseOptionText as it is parsed; the schema's default shown.
+void AddOption(CLI::App* cmd, const OptionSpec& option, ProblemArgs* args) {
+  if (option.type == OptionType::kBool) {
+    bool& value = args->switches[option.name];
+    value = option.default_value.is_boolean() && option.default_value.get<bool>();
+    args->given[option.name] = cmd->add_flag(
+        Flag(option.name) + (option.negation.empty() ? "" : ",!" + Flag(option.negation)), value,
+        HelpOf(option));
+    return;
+  }
+  std::string& text = args->texts[option.name];
+  CLI::Option* cli = nullptr;
+  if (option.type == OptionType::kNumbers || option.type == OptionType::kInts ||
+      option.type == OptionType::kPoints) {
+    cli = AddListOption(cmd, option, &text);
+  } else {
+    const CLI::Validator check(
+        [option](std::string& value) {
+          try {
+            ParseOptionText(option, value);
+            return std::string();
+          } catch (const OptionError& e) {
+            return e.rule();
+          }
+        },
+        "");
+    cli = cmd->add_option(Flag(option.name), text, HelpOf(option))->check(check);
+  }
+  if (!option.default_value.is_null()) cli->default_str(OptionText(option.default_value));
+  if (option.required) cli->required();
+  cli->type_name(option.type == OptionType::kInt ? "INT" : "NUMBER");
+  if (!option.placeholder.empty()) cli->type_name(option.placeholder);
+  if (!option.choices.empty()) {
+    std::string choices;
+    for (const std::string& c : option.choices) choices += (choices.empty() ? "" : "|") + c;
+    cli->type_name(choices);
+  }
+  args->given[option.name] = cli;
+}
+
 }  // namespace
 
 void RegisterProblemCommand(CLI::App* app, const ProblemSpec& spec, int* exit_code) {
@@ -166,75 +264,8 @@ void RegisterProblemCommand(CLI::App* app, const ProblemSpec& spec, int* exit_co
                      " Exit codes: 0 converged, 1 bad input or option (nothing written), 3 "
                      "tolerance not reached (result written), 4 numerical failure (nothing "
                      "written).");
-  for (const InputSpec& input : spec.inputs) {
-    std::string& path = args->paths[input.name];
-    if (input.required)
-      cmd->add_option(
-             input.name, path,
-             input.doc + (input.kind == InputKind::kCurve ? std::string(" (text: x y z per line)")
-                                                          : std::string(" (.obj, .off or .ply)")))
-          ->required()
-          ->type_name("FILE");
-    else if (input.kind == InputKind::kVertexIds)
-      cmd->add_option(Flag(input.name), path,
-                      input.doc +
-                          ": a text file of ids separated by spaces or newlines, '#' "
-                          "comments")
-          ->type_name("FILE");
-    else
-      cmd->add_option(Flag(input.name), path, input.doc + " (.obj, .off or .ply)")
-          ->type_name("FILE");
-  }
-  for (const OutputSpec& output : spec.outputs) {
-    const std::string flag = output.name == "output" ? "-o,--output" : Flag(output.name);
-    CLI::Option* option =
-        cmd->add_option(flag, args->paths[output.name],
-                        "Write " + output.doc +
-                            (output.kind == OutputKind::kMesh ? std::string(" (.obj, .off or .ply)")
-                             : *OutputExtension(output.kind)
-                                 ? " (" + std::string(OutputExtension(output.kind)) + ")"
-                                 : std::string()) +
-                            "; written atomically");
-    option->type_name("FILE");
-    if (output.required) option->required();
-  }
-  cmd->add_option("--report", args->paths["report"],
-                  "Write a JSON report: converged, iterations, seconds, variables, per-iteration "
-                  "history, the initial and final measures and the options")
-      ->type_name("FILE");
-  for (const OptionSpec& option : spec.options) {
-    if (option.type == OptionType::kBool) {
-      const std::string flags =
-          Flag(option.name) + (option.negation.empty() ? "" : ",!" + Flag(option.negation));
-      bool& value = args->switches[option.name];
-      value = option.default_value.is_boolean() && option.default_value.get<bool>();
-      args->given[option.name] = cmd->add_flag(flags, value, HelpOf(option));
-      continue;
-    }
-    const OptionSpec spec_copy = option;
-    CLI::Validator check(
-        [spec_copy](std::string& text) {
-          try {
-            ParseOptionText(spec_copy, text);
-            return std::string();
-          } catch (const OptionError& e) {
-            return e.rule();
-          }
-        },
-        "");
-    CLI::Option* cli =
-        cmd->add_option(Flag(option.name), args->texts[option.name], HelpOf(option))->check(check);
-    if (!option.default_value.is_null()) cli->default_str(OptionText(option.default_value));
-    if (option.required) cli->required();
-    cli->type_name(option.type == OptionType::kInt ? "INT" : "NUMBER");
-    if (!option.placeholder.empty()) cli->type_name(option.placeholder);
-    if (!option.choices.empty()) {
-      std::string choices;
-      for (const std::string& c : option.choices) choices += (choices.empty() ? "" : "|") + c;
-      cli->type_name(choices);
-    }
-    args->given[option.name] = cli;
-  }
+  AddPaths(cmd, spec, args.get());
+  for (const OptionSpec& option : spec.options) AddOption(cmd, option, args.get());
   cmd->callback([&spec, args, exit_code]() { *exit_code = RunProblemCommand(spec, *args); });
 }
 

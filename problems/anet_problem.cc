@@ -79,7 +79,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
 
 }  // namespace
 
-ProblemSpec ANetProblem() {
+ProblemSpec ANetSpec() {
   ProblemSpec spec;
   spec.name = "anet";
   spec.summary =

@@ -132,7 +132,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
 
 }  // namespace
 
-ProblemSpec BeamsProblem() {
+ProblemSpec BeamsSpec() {
   ProblemSpec spec;
   spec.name = "beams";
   spec.summary =

@@ -121,7 +121,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
 
 }  // namespace
 
-ProblemSpec CombescureProblem() {
+ProblemSpec CombescureSpec() {
   ProblemSpec spec;
   spec.name = "combescure";
   spec.summary =

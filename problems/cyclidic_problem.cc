@@ -107,7 +107,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
 
 }  // namespace
 
-ProblemSpec CyclidicProblem() {
+ProblemSpec CyclidicSpec() {
   ProblemSpec spec;
   spec.name = "cyclidic";
   spec.summary =

@@ -184,7 +184,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
 
 }  // namespace
 
-ProblemSpec FieldProblem() {
+ProblemSpec FieldSpec() {
   ProblemSpec spec;
   spec.name = "field";
   spec.summary =

@@ -140,7 +140,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
 
 }  // namespace
 
-ProblemSpec HNetProblem() {
+ProblemSpec HNetSpec() {
   ProblemSpec spec;
   spec.name = "hnet";
   spec.summary =

@@ -122,7 +122,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
 
 }  // namespace
 
-ProblemSpec InvertProblem() {
+ProblemSpec InvertSpec() {
   ProblemSpec spec;
   spec.name = "invert";
   spec.summary =

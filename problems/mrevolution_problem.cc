@@ -127,7 +127,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
 
 }  // namespace
 
-ProblemSpec MRevolutionProblem() {
+ProblemSpec MRevolutionSpec() {
   ProblemSpec spec;
   spec.name = "mrevolution";
   spec.summary =

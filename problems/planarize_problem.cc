@@ -131,7 +131,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
 
 }  // namespace
 
-ProblemSpec PlanarizeProblem() {
+ProblemSpec PlanarizeSpec() {
   ProblemSpec spec;
   spec.name = "planarize";
   spec.summary =

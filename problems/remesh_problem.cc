@@ -199,7 +199,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
 
 }  // namespace
 
-ProblemSpec RemeshProblem() {
+ProblemSpec RemeshSpec() {
   ProblemSpec spec;
   spec.name = "remesh";
   spec.summary =

@@ -341,10 +341,11 @@ WeingartenRun RunWeingarten(
     const RunCallback& on_iteration = nullptr,
     const std::function<void(int, const WeingartenProblem&)>& on_level = nullptr);
 
-// The run's report (see README, Weingarten surfaces): the shared schema, every history record
-// with its level, and the keys steps, target, tolerance, samples, levels, worst_sample,
-// linear_relation and, with molds, the clustering.
-nlohmann::json WeingartenReportJson(const WeingartenOptions& options, const WeingartenRun& run);
+// The run's own report keys (see README, Weingarten surfaces): steps, target, tolerance,
+// samples, levels, worst_sample, linear_relation, dense_check, min_normal_cosine,
+// helical_deviation and, with molds, the clustering. Every history record also gets its level
+// (WeingartenRun::history_level).
+nlohmann::json WeingartenReportFacts(const WeingartenOptions& options, const WeingartenRun& run);
 // What a level solves and where it starts (one line each), for logs.
 std::string DescribeWeingartenLevel(int level, const WeingartenProblem& problem);
 // The result in a few lines: misalignment before and after, deviation, relation, molds.

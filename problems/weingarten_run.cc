@@ -144,7 +144,7 @@ WeingartenRun RunWeingarten(const BSplineSurface& input, const WeingartenOptions
   return run;
 }
 
-nlohmann::json WeingartenReportJson(const WeingartenOptions& options, const WeingartenRun& run) {
+nlohmann::json WeingartenReportFacts(const WeingartenOptions& options, const WeingartenRun& run) {
   nlohmann::json levels = nlohmann::json::array();
   for (const WeingartenLevel& l : run.levels)
     levels.push_back({{"level", l.level},
@@ -191,10 +191,7 @@ nlohmann::json WeingartenReportJson(const WeingartenOptions& options, const Wein
                       {"cells_per_axis", run.molds->cells_per_axis},
                       {"cluster_sizes", run.molds->cluster_size},
                       {"before_cells_per_axis", run.molds_before->cells_per_axis}};
-  nlohmann::json report = ReportJson("weingarten", run.report, extra);
-  for (size_t i = 0; i < run.history_level.size(); ++i)
-    report["history"][i]["level"] = run.history_level[i];
-  return report;
+  return extra;
 }
 
 std::string DescribeWeingartenLevel(int level, const WeingartenProblem& problem) {

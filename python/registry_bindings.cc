@@ -90,88 +90,115 @@ std::vector<Eigen::Vector3d> CurveFromPython(const std::string& name, const py::
   return points;
 }
 
-py::object Call(const ProblemSpec& spec, const py::args& args, const py::kwargs& kwargs) {
+// A B-spline surface: a dict with the keys of its JSON (SPEC §4); arrays are accepted.
+BSplineSurface BSplineFromPython(const std::string& name, const py::handle& value) {
+  if (!py::isinstance<py::dict>(value))
+    TypeError(name +
+              ": expected a dict (the B-spline's JSON: degree, knots_u, knots_v, "
+              "control_points), not " +
+              TypeNameOf(value));
+  return ParseBSplineJson(PythonToJson(value).dump(), name);
+}
+
+// The arguments of a call, converted.
+struct CallArguments {
   RunInputs inputs;
+  nlohmann::json options = nlohmann::json::object();
+  py::object callback = py::none();
+  std::set<std::string> outputs;  // the required ones and those asked for
+};
+
+// The required inputs from the positional arguments: (V, F) per mesh, one object per curve or
+// B-spline. Returns the vertex count of the first mesh (-1: none).
+int ReadPositional(const ProblemSpec& spec, const py::args& args, RunInputs* inputs) {
   size_t next = 0;
   int num_vertices = -1;
   for (const InputSpec& input : spec.inputs) {
     if (!input.required) continue;
-    inputs.sources[input.name] = input.name;
-    if (input.kind == InputKind::kCurve) {
+    inputs->sources[input.name] = input.name;
+    if (input.kind == InputKind::kCurve || input.kind == InputKind::kBSpline) {
       if (args.size() < next + 1)
-        TypeError(spec.name + "() needs the (n, 3) array of its " + input.name);
-      inputs.curves[input.name] = CurveFromPython(input.name, args[next]);
+        TypeError(spec.name + "() needs its " + input.name +
+                  (input.kind == InputKind::kCurve ? " (an (n, 3) array)" : " (a dict)"));
+      if (input.kind == InputKind::kCurve)
+        inputs->curves[input.name] = CurveFromPython(input.name, args[next]);
+      else
+        inputs->surfaces[input.name] = BSplineFromPython(input.name, args[next]);
       next += 1;
       continue;
     }
     if (args.size() < next + 2)
       TypeError(spec.name + "() needs the arrays V and F of its " + input.name);
-    inputs.meshes[input.name] =
+    inputs->meshes[input.name] =
         MeshFromArrays(args[next], args[next + 1], input.kind == InputKind::kQuadMesh);
-    if (num_vertices < 0) num_vertices = static_cast<int>(inputs.meshes[input.name].n_vertices());
+    if (num_vertices < 0) num_vertices = static_cast<int>(inputs->meshes[input.name].n_vertices());
     next += 2;
   }
   if (args.size() > next)
     TypeError(spec.name + "() takes " + std::to_string(next) + " positional arguments but " +
               std::to_string(args.size()) + " were given");
-  py::object callback = py::none();
-  std::set<std::string> outputs;
-  for (const OutputSpec& output : spec.outputs)
-    if (output.required) outputs.insert(output.name);
-  nlohmann::json options = nlohmann::json::object();
+  return num_vertices;
+}
+
+// outputs=[...]: names of the spec's outputs.
+void ReadOutputNames(const ProblemSpec& spec, const py::handle& value,
+                     std::set<std::string>* outputs) {
+  if (py::isinstance<py::str>(value) || !py::hasattr(value, "__iter__"))
+    TypeError("outputs: expected a sequence of output names, not " + TypeNameOf(value));
+  for (const py::handle item : value) {
+    const std::string output = py::str(item);
+    const auto known = std::find_if(spec.outputs.begin(), spec.outputs.end(),
+                                    [&](const OutputSpec& o) { return o.name == output; });
+    if (known == spec.outputs.end()) {
+      std::string names;
+      for (const OutputSpec& o : spec.outputs) names += (names.empty() ? "" : ", ") + o.name;
+      throw InputError("outputs: " + spec.name + " has no output '" + output + "' (" + names + ")");
+    }
+    outputs->insert(output);
+  }
+  bool keeps = false;
+  for (const OutputSpec& o : spec.outputs) keeps = keeps || o.same_connectivity;
+  if (keeps && outputs->size() > 1)
+    throw InputError("outputs: " + spec.name +
+                     "() returns its result's vertices; its other outputs are made by the command "
+                     "line (--picture, ...)");
+}
+
+// The keyword arguments: callback, outputs, optional inputs and the options (as JSON, checked
+// by the run protocol).
+void ReadKeywords(const ProblemSpec& spec, const py::kwargs& kwargs, int num_vertices,
+                  CallArguments* call) {
   for (const auto& [key, value] : kwargs) {
     const std::string name = py::str(key);
     if (name == "callback") {
-      callback = py::reinterpret_borrow<py::object>(value);
+      call->callback = py::reinterpret_borrow<py::object>(value);
     } else if (name == "outputs") {
-      if (py::isinstance<py::str>(value) || !py::hasattr(value, "__iter__"))
-        TypeError("outputs: expected a sequence of output names, not " + TypeNameOf(value));
-      for (const py::handle item : value) {
-        const std::string output = py::str(item);
-        const auto known = std::find_if(spec.outputs.begin(), spec.outputs.end(),
-                                        [&](const OutputSpec& o) { return o.name == output; });
-        if (known == spec.outputs.end()) {
-          std::string names;
-          for (const OutputSpec& o : spec.outputs) names += (names.empty() ? "" : ", ") + o.name;
-          throw InputError("outputs: " + spec.name + " has no output '" + output + "' (" + names +
-                           ")");
-        }
-        outputs.insert(output);
-      }
+      ReadOutputNames(spec, value, &call->outputs);
     } else if (const InputSpec* input = spec.FindInput(name)) {
       if (value.is_none()) continue;
       if (input->kind == InputKind::kVertexIds)
-        inputs.vertex_ids[name] = VertexIdsFromPython(name, value, num_vertices);
+        call->inputs.vertex_ids[name] = VertexIdsFromPython(name, value, num_vertices);
       else if (input->kind == InputKind::kCurve)
-        inputs.curves[name] = CurveFromPython(name, value);
+        call->inputs.curves[name] = CurveFromPython(name, value);
+      else if (input->kind == InputKind::kBSpline)
+        call->inputs.surfaces[name] = BSplineFromPython(name, value);
       else
-        inputs.meshes[name] = MeshFromPython(*input, value);
-      inputs.sources[name] = name;
+        call->inputs.meshes[name] = MeshFromPython(*input, value);
+      call->inputs.sources[name] = name;
     } else {
       try {
-        options[name] = PythonToJson(value);
+        call->options[name] = PythonToJson(value);
       } catch (const InputError& e) {
         TypeError(name + ": " + e.what());
       }
     }
   }
-  bool keeps = false;
-  for (const OutputSpec& output : spec.outputs) keeps = keeps || output.same_connectivity;
-  if (keeps && outputs.size() > 1)
-    throw InputError("outputs: " + spec.name +
-                     "() returns its result's vertices; its other outputs are made by the command "
-                     "line (--picture, ...)");
-  RunBridge bridge(callback);
-  RunContext context;
-  context.on_record = bridge.callback();
-  context.outputs = outputs;
-  const RunResult result = bridge.Call([&] { return RunProblem(spec, inputs, options, context); });
-  const py::module_ warnings = py::module_::import("warnings");
-  for (const RunMessage& message : result.messages)
-    if (message.kind == RunMessage::Kind::kWarning)
-      warnings.attr("warn")(spec.name + ": " + SpellOptions(message.text, false),
-                            py::module_::import("builtins").attr("UserWarning"), 2);
-  const py::object report = JsonToPython(RunResultJson(spec, result, options, nullptr, nullptr));
+}
+
+// (V_out, report) for a result that keeps the input's connectivity, else (result, report) with
+// the meshes as (V, F), JSON texts as dicts, other texts as str and the arrays as numpy arrays.
+py::tuple ResultToPython(const ProblemSpec& spec, const RunResult& result,
+                         const py::object& report) {
   for (const OutputSpec& output : spec.outputs)
     if (output.kind == OutputKind::kMesh && output.same_connectivity) {
       const auto mesh = result.meshes.find(output.name);
@@ -201,6 +228,27 @@ py::object Call(const ProblemSpec& spec, const py::args& args, const py::kwargs&
   return py::make_tuple(out, report);
 }
 
+py::object Call(const ProblemSpec& spec, const py::args& args, const py::kwargs& kwargs) {
+  CallArguments call;
+  const int num_vertices = ReadPositional(spec, args, &call.inputs);
+  for (const OutputSpec& output : spec.outputs)
+    if (output.required) call.outputs.insert(output.name);
+  ReadKeywords(spec, kwargs, num_vertices, &call);
+  RunBridge bridge(call.callback);
+  RunContext context;
+  context.on_record = bridge.callback();
+  context.outputs = call.outputs;
+  const RunResult result =
+      bridge.Call([&] { return RunProblem(spec, call.inputs, call.options, context); });
+  const py::module_ warnings = py::module_::import("warnings");
+  for (const RunMessage& message : result.messages)
+    if (message.kind == RunMessage::Kind::kWarning)
+      warnings.attr("warn")(spec.name + ": " + SpellOptions(message.text, false),
+                            py::module_::import("builtins").attr("UserWarning"), 2);
+  return ResultToPython(spec, result,
+                        JsonToPython(RunResultJson(spec, result, call.options, nullptr, nullptr)));
+}
+
 // "picture, face_values" (or "none").
 std::string OptionalOutputs(const ProblemSpec& spec) {
   std::string names;
@@ -209,82 +257,95 @@ std::string OptionalOutputs(const ProblemSpec& spec) {
   return names.empty() ? "none" : names;
 }
 
-// "planarize(V, F, *, solver='gp', ...) -> (V_out, report)" and one entry per argument.
-std::string DocOf(const ProblemSpec& spec) {
-  std::string signature = spec.name + "(";
-  std::string arguments;
+// The positional part of the signature ("V, F, ") and the inputs' entries.
+void DescribeInputs(const ProblemSpec& spec, std::string* signature, std::string* arguments) {
   for (const InputSpec& input : spec.inputs) {
-    if (input.required && input.kind == InputKind::kCurve) {
-      signature += input.name + ", ";
-      arguments +=
+    if (!input.required) continue;
+    if (input.kind == InputKind::kCurve) {
+      *signature += input.name + ", ";
+      *arguments +=
           "    " + input.name + ": (n, 3) float64 points, at least 2. " + input.doc + ".\n";
-    } else if (input.required) {
-      signature += "V, F, ";
-      arguments += "    V, F: the " + input.name +
-                   ": (n, 3) float64 vertex positions and (m, k) "
-                   "integer faces (0-based; a list of faces for mixed sizes). " +
-                   input.doc + ".\n";
+    } else if (input.kind == InputKind::kBSpline) {
+      *signature += input.name + ", ";
+      *arguments += "    " + input.name +
+                    ": a dict, the B-spline's JSON (degree, knots_u, knots_v, control_points; "
+                    "numpy arrays accepted). " +
+                    input.doc + ".\n";
+    } else {
+      *signature += "V, F, ";
+      *arguments += "    V, F: the " + input.name +
+                    ": (n, 3) float64 vertex positions and (m, k) integer faces (0-based; a list "
+                    "of faces for mixed sizes). " +
+                    input.doc + ".\n";
     }
   }
-  signature += "*";
+  *signature += "*";
   for (const InputSpec& input : spec.inputs) {
     if (input.required) continue;
-    signature += ", " + input.name + "=None";
-    arguments += "    " + input.name + ": " +
-                 (input.kind == InputKind::kVertexIds
-                      ? "None, a sequence of 0-based vertex ids or a boolean mask. "
-                  : input.kind == InputKind::kCurve ? "None or an (n, 3) array of points. "
-                                                    : "None or a mesh (V, F). ") +
-                 input.doc + ".\n";
+    *signature += ", " + input.name + "=None";
+    *arguments += "    " + input.name + ": " +
+                  (input.kind == InputKind::kVertexIds
+                       ? "None, a sequence of 0-based vertex ids or a boolean mask. "
+                   : input.kind == InputKind::kCurve ? "None or an (n, 3) array of points. "
+                                                     : "None or a mesh (V, F). ") +
+                  input.doc + ".\n";
   }
+}
+
+// The options' part of the signature (", tolerance=1e-09") and their entries.
+void DescribeOptions(const ProblemSpec& spec, std::string* signature, std::string* arguments) {
   for (const OptionSpec& option : spec.options) {
-    if (option.required) {
-      signature += ", " + option.name;
-      arguments += "    " + option.name + " (" + OptionTypeName(option.type) +
-                   (option.unit.empty() ? "" : ", " + option.unit) +
-                   (option.RangeText().empty() ? "" : ", " + option.RangeText()) +
-                   ", required): " + option.doc + ".\n";
-      continue;
-    }
-    const std::string shown =
-        option.default_value.is_null()      ? "None"
-        : option.default_value.is_boolean() ? (option.default_value.get<bool>() ? "True" : "False")
-        : option.default_value.is_string()  ? "'" + option.default_value.get<std::string>() + "'"
-                                            : OptionText(option.default_value);
-    signature += ", " + option.name + "=" + shown;
-    arguments += "    " + option.name + " (" + OptionTypeName(option.type) +
-                 (option.unit.empty() ? "" : ", " + option.unit) +
-                 (option.RangeText().empty() ? "" : ", " + option.RangeText()) +
-                 "): " + option.doc + ".\n";
+    const nlohmann::json& d = option.default_value;
+    const std::string shown = d.is_null()      ? "None"
+                              : d.is_boolean() ? (d.get<bool>() ? "True" : "False")
+                              : d.is_string()  ? "'" + d.get<std::string>() + "'"
+                                               : OptionText(d);
+    *signature += ", " + option.name + (option.required ? "" : "=" + shown);
+    *arguments += "    " + option.name + " (" + OptionTypeName(option.type) +
+                  (option.unit.empty() ? "" : ", " + option.unit) +
+                  (option.RangeText().empty() ? "" : ", " + option.RangeText()) +
+                  (option.required ? ", required" : "") + "): " + option.doc + ".\n";
   }
-  signature += ", outputs=(), callback=None)";
+}
+
+// What a call returns, for the docstring.
+std::string DescribeReturns(const ProblemSpec& spec, bool keeps) {
+  if (keeps) return "Returns the result vertices (None when the run failed) and the report dict";
+  std::string returns =
+      "Returns a dict of the results (None when the run failed) and the report dict; the "
+      "results:\n";
+  for (const OutputSpec& output : spec.outputs)
+    if (output.required)
+      returns += "    " + output.name + ": " + output.doc +
+                 (output.kind == OutputKind::kMesh   ? " as (V, F)"
+                  : output.kind == OutputKind::kJson ? " as a dict"
+                                                     : " as text") +
+                 ".\n";
+  for (const ArraySpec& array : spec.arrays)
+    returns += "    " + array.name + ": float64 array, " + array.doc + ".\n";
+  return returns + "And the report";
+}
+
+// "planarize(V, F, *, solver='gp', ...) -> (V_out, report)" and one entry per argument.
+std::string DocOf(const ProblemSpec& spec) {
+  std::string signature = spec.name + "(", arguments;
+  DescribeInputs(spec, &signature, &arguments);
+  DescribeOptions(spec, &signature, &arguments);
   bool keeps = false;
   for (const OutputSpec& output : spec.outputs) keeps = keeps || output.same_connectivity;
-  signature += keeps ? " -> (V_out, report)" : " -> (result, report)";
-  std::string returns =
-      keeps ? "Returns the result vertices (None when the run failed) and the report dict"
-            : "Returns a dict of the results (None when the run failed) and the report dict";
-  if (!keeps) {
-    returns += "; the results:\n";
-    for (const OutputSpec& output : spec.outputs)
-      if (output.required)
-        returns += "    " + output.name + ": " + output.doc +
-                   (output.kind == OutputKind::kMesh ? " as (V, F)" : " as text") + ".\n";
-    for (const ArraySpec& array : spec.arrays)
-      returns += "    " + array.name + ": float64 array, " + array.doc + ".\n";
-    returns += "And the report";
-  }
+  signature += std::string(", outputs=(), callback=None)") +
+               (keeps ? " -> (V_out, report)" : " -> (result, report)");
   return signature + "\n\n" + spec.summary + "\n\n" + arguments +
          "    outputs: names of optional outputs to make as well (" + OptionalOutputs(spec) +
          "); each comes back in the result dict under its name.\n"
          "    callback: None or callback(record: dict) called at the start and after every "
          "iteration with the keys of report[\"history\"] entries; returning False stops the run. "
          "Ctrl-C stops the run and raises KeyboardInterrupt.\n\n" +
-         returns +
+         DescribeReturns(spec, keeps) +
          " (the keys of the command line's --report; \"input\" and \"output\" are None). "
-         "Raises ValueError for "
-         "bad arrays or option values and TypeError for arguments of the wrong type, naming the "
-         "argument; warns (UserWarning) when the result is far from the input.\n";
+         "Raises ValueError for bad arrays or option values and TypeError for arguments of the "
+         "wrong type, naming the argument; warns (UserWarning) when the result is far from the "
+         "input.\n";
 }
 
 }  // namespace

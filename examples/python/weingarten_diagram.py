@@ -45,6 +45,7 @@ def main():
     if result is None:
         print(f"the run failed: {report['termination']}", file=sys.stderr)
         return 1
+    result = result["output"]  # the optimised B-spline, a dict like its JSON
     print(f"misalignment {report['initial']['misalignment']:.3e} -> "
           f"{report['final']['misalignment']:.3e}, max deviation "
           f"{report['final']['max_deviation']:.3e} ({report['seconds']:.1f} s)")

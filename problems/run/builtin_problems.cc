@@ -5,16 +5,17 @@ namespace gproj {
 const Registry& Registry::Builtin() {
   static const Registry registry = [] {
     Registry r;
-    r.Add(PlanarizeProblem());
-    r.Add(ANetProblem());
-    r.Add(HNetProblem());
-    r.Add(FieldProblem());
-    r.Add(RemeshProblem());
-    r.Add(InvertProblem());
-    r.Add(CyclidicProblem());
-    r.Add(CombescureProblem());
-    r.Add(BeamsProblem());
-    r.Add(MRevolutionProblem());
+    r.Add(PlanarizeSpec());
+    r.Add(ANetSpec());
+    r.Add(HNetSpec());
+    r.Add(FieldSpec());
+    r.Add(RemeshSpec());
+    r.Add(InvertSpec());
+    r.Add(CyclidicSpec());
+    r.Add(CombescureSpec());
+    r.Add(BeamsSpec());
+    r.Add(MRevolutionSpec());
+    r.Add(WeingartenSpec());
     return r;
   }();
   return registry;

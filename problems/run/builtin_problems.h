@@ -6,15 +6,16 @@
 
 namespace gproj {
 
-ProblemSpec PlanarizeProblem();    // problems/planarize_problem.cc
-ProblemSpec ANetProblem();         // problems/anet_problem.cc
-ProblemSpec HNetProblem();         // problems/hnet_problem.cc
-ProblemSpec FieldProblem();        // problems/field_problem.cc
-ProblemSpec RemeshProblem();       // problems/remesh_problem.cc
-ProblemSpec InvertProblem();       // problems/invert_problem.cc
-ProblemSpec CyclidicProblem();     // problems/cyclidic_problem.cc
-ProblemSpec CombescureProblem();   // problems/combescure_problem.cc
-ProblemSpec BeamsProblem();        // problems/beams_problem.cc
-ProblemSpec MRevolutionProblem();  // problems/mrevolution_problem.cc
+ProblemSpec PlanarizeSpec();    // problems/planarize_problem.cc
+ProblemSpec ANetSpec();         // problems/anet_problem.cc
+ProblemSpec HNetSpec();         // problems/hnet_problem.cc
+ProblemSpec FieldSpec();        // problems/field_problem.cc
+ProblemSpec RemeshSpec();       // problems/remesh_problem.cc
+ProblemSpec InvertSpec();       // problems/invert_problem.cc
+ProblemSpec CyclidicSpec();     // problems/cyclidic_problem.cc
+ProblemSpec CombescureSpec();   // problems/combescure_problem.cc
+ProblemSpec BeamsSpec();        // problems/beams_problem.cc
+ProblemSpec MRevolutionSpec();  // problems/mrevolution_problem.cc
+ProblemSpec WeingartenSpec();   // problems/weingarten_problem.cc
 
 }  // namespace gproj

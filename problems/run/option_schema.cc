@@ -87,6 +87,8 @@ const char* OptionTypeName(OptionType type) {
       return "numbers";
     case OptionType::kPoints:
       return "points";
+    case OptionType::kInts:
+      return "ints";
   }
   return "?";
 }
@@ -127,15 +129,23 @@ nlohmann::json CheckOptionValue(const OptionSpec& spec, const nlohmann::json& va
         throw OptionError(spec.name, "'" + text + "' is not one of " + list);
       return value;
     }
+    case OptionType::kInts:
     case OptionType::kNumbers: {
+      const bool integers = spec.type == OptionType::kInts;
       if (!value.is_array())
-        throw OptionError(spec.name, Shown(value) + " is not a list of numbers", true);
+        throw OptionError(spec.name,
+                          Shown(value) + " is not a list of " + (integers ? "integers" : "numbers"),
+                          true);
       if (spec.count > 0 && static_cast<int>(value.size()) != spec.count)
         throw OptionError(spec.name, "expects " + std::to_string(spec.count) + " numbers (" +
                                          spec.placeholder + "), not " +
                                          std::to_string(value.size()));
       nlohmann::json out = nlohmann::json::array();
-      for (const nlohmann::json& v : value) out.push_back(CheckNumber(spec, v, false));
+      for (const nlohmann::json& v : value) {
+        const double number = CheckNumber(spec, v, integers);
+        out.push_back(integers ? nlohmann::json(static_cast<long long>(number))
+                               : nlohmann::json(number));
+      }
       return out;
     }
     case OptionType::kPoints: {
@@ -177,13 +187,15 @@ nlohmann::json ParseOptionText(const OptionSpec& spec, const std::string& text) 
     case OptionType::kChoice:
       if (text.empty()) throw OptionError(spec.name, "an empty value is not allowed");
       return CheckOptionValue(spec, text);
+    case OptionType::kInts:
     case OptionType::kNumbers: {
       if (text.empty()) throw OptionError(spec.name, "an empty value is not allowed");
       nlohmann::json values = nlohmann::json::array();
       size_t start = 0;
       while (true) {
         const size_t comma = text.find(',', start);
-        values.push_back(NumberFromText(spec, text.substr(start, comma - start), false));
+        values.push_back(NumberFromText(spec, text.substr(start, comma - start),
+                                        spec.type == OptionType::kInts));
         if (comma == std::string::npos) break;
         start = comma + 1;
       }
@@ -234,7 +246,8 @@ nlohmann::json OptionSpecJson(const OptionSpec& spec) {
     j["maximum_exclusive"] = spec.max_exclusive;
   }
   if (!spec.choices.empty()) j["choices"] = spec.choices;
-  if (spec.type == OptionType::kNumbers || spec.type == OptionType::kPoints)
+  if (spec.type == OptionType::kNumbers || spec.type == OptionType::kPoints ||
+      spec.type == OptionType::kInts)
     j["count"] = spec.count;
   if (!spec.negation.empty()) j["negation"] = spec.negation;
   if (spec.required) j["required"] = true;

@@ -23,8 +23,9 @@ enum class OptionType {
   kNumbers,  // a list of `count` finite numbers (0: any length), "a,b,..." on the command line
   kPoints,   // a list of `count` points [x, y, z] (0: any number), "x,y,z,x,y,z,..." on the
              // command line; in Python an (n, 3) array
+  kInts,     // a list of `count` integers (0: any length), "a,b,..." on the command line
 };
-// "bool", "int", "number", "choice", "numbers", "points"
+// "bool", "int", "number", "choice", "numbers", "points", "ints"
 const char* OptionTypeName(OptionType type);
 
 struct OptionSpec {
@@ -38,7 +39,7 @@ struct OptionSpec {
   double max = std::numeric_limits<double>::infinity();
   bool min_exclusive = false, max_exclusive = false;
   std::vector<std::string> choices;  // kChoice
-  int count = 0;                     // kNumbers, kPoints
+  int count = 0;                     // kNumbers, kPoints, kInts
   std::string negation;     // kBool: the identifier of the switch that turns it off ("plain_steps")
   std::string group;        // where the option belongs in help pages, e.g. "solver", "panels"
   std::string placeholder;  // the value's name in help, e.g. "MIN,MAX"

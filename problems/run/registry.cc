@@ -44,6 +44,8 @@ const char* InputKindName(InputKind kind) {
       return "vertex_ids";
     case InputKind::kCurve:
       return "curve";
+    case InputKind::kBSpline:
+      return "bspline";
   }
   return "?";
 }
@@ -105,8 +107,14 @@ const std::vector<Eigen::Vector3d>& RunInputs::Curve(const std::string& name) co
   return it->second;
 }
 
+const BSplineSurface& RunInputs::Surface(const std::string& name) const {
+  const auto it = surfaces.find(name);
+  if (it == surfaces.end()) throw InputError("the input " + name + " is required");
+  return it->second;
+}
+
 bool RunInputs::Has(const std::string& name) const {
-  return meshes.count(name) || vertex_ids.count(name) || curves.count(name);
+  return meshes.count(name) || vertex_ids.count(name) || curves.count(name) || surfaces.count(name);
 }
 
 std::string RunInputs::Source(const std::string& name) const {
@@ -216,7 +224,10 @@ nlohmann::json RunResultJson(const ProblemSpec& spec, const RunResult& result,
   extra["options"] = CompleteOptions(spec.options, options);
   extra["input"] = input;
   extra["output"] = output;
-  return ReportJson(spec.name, result.report, extra);
+  nlohmann::json report = ReportJson(spec.name, result.report, extra);
+  for (size_t i = 0; i < result.history_facts.size() && i < report["history"].size(); ++i)
+    report["history"][i].update(result.history_facts[i]);
+  return report;
 }
 
 namespace {

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/bspline_surface.h"
 #include "geometry/mesh_io.h"
 #include "problems/guided_problem.h"
 #include "problems/run/option_schema.h"
@@ -34,6 +35,7 @@ enum class InputKind {
   kVertexIds,  // 0-based vertex ids of the first mesh input
   kCurve,      // a polyline: at least two points, none repeating the one before (a text file of
                // x y z lines; an (n, 3) array in Python)
+  kBSpline,    // a tensor-product B-spline surface (the JSON of SPEC §4; a dict in Python)
 };
 const char* InputKindName(InputKind kind);  // "quad_mesh", "mesh", "vertex_ids", "curve"
 
@@ -71,6 +73,7 @@ struct RunInputs {
   std::map<std::string, PolyMesh> meshes;
   std::map<std::string, std::vector<int>> vertex_ids;
   std::map<std::string, std::vector<Eigen::Vector3d>> curves;
+  std::map<std::string, BSplineSurface> surfaces;
   // Where each input came from ("in.obj", "V"), for messages.
   std::map<std::string, std::string> sources;
 
@@ -78,6 +81,7 @@ struct RunInputs {
   const PolyMesh* OptionalMesh(const std::string& name) const;  // null when not given
   std::vector<int> VertexIds(const std::string& name) const;    // empty when not given
   const std::vector<Eigen::Vector3d>& Curve(const std::string& name) const;  // a required curve
+  const BSplineSurface& Surface(const std::string& name) const;              // a required B-spline
   bool Has(const std::string& name) const;  // whether the input was given
   std::string Source(const std::string& name) const;
 };
@@ -95,11 +99,17 @@ struct RunMessage {
 struct RunContext {
   RunCallback on_record;                              // null: no progress; false stops the run
   std::function<void(const RunMessage&)> on_message;  // null: messages only in the result
-  std::set<std::string> outputs;                      // names of the outputs asked for
+  // The live log's columns from here on (a stage of the run that measures other things); null:
+  // the spec's log_measures throughout.
+  std::function<void(const std::vector<std::string>&)> on_columns;
+  std::set<std::string> outputs;  // names of the outputs asked for
 
   bool Wants(const std::string& output) const { return outputs.count(output) > 0; }
   bool Record(const RunRecord& record) const { return !on_record || on_record(record); }
   void Headline(const std::string& text) const;
+  void Columns(const std::vector<std::string>& columns) const {
+    if (on_columns) on_columns(columns);
+  }
   void Info(const std::string& text) const;
 };
 
@@ -111,6 +121,9 @@ struct RunResult {
   // Named numeric results (#rows × #columns, documented by the problem), e.g. the directions of
   // a field (#V × 3): numpy arrays in Python.
   std::map<std::string, Eigen::MatrixXd> arrays;
+  // Keys added to the report's history entries, one object per record (empty: none), e.g. the
+  // level of a multiresolution run.
+  std::vector<nlohmann::json> history_facts;
   // Shown after the run, before its conclusion: kInfo lines (the final measures), kWarning
   // (far from the asked net, ...).
   std::vector<RunMessage> messages;

@@ -129,9 +129,11 @@ def test_weingarten_equals_the_command_line(cli):
     expected = cli.read_report("r.json")
     assert_reports_equal(report, expected)
     with open(cli.path("w.json")) as f:
-        assert_reports_equal(result, json.load(f))
-    with pytest.raises(ValueError, match="preset"):
+        assert_reports_equal(result["output"], json.load(f))
+    with pytest.raises(ValueError, match="preset: 'fig99' is not one of fig1, "):
         gproj.weingarten(surface, preset="fig99")
+    with pytest.raises(TypeError, match="surface: expected a dict"):
+        gproj.weingarten([surface])
     with pytest.raises(ValueError):
         gproj.weingarten({"degree": [3, 3]})
 

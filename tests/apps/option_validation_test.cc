@@ -118,9 +118,9 @@ TEST_F(OptionValidationTest, OutputsMustBeDistinctFilesAndNotInputs) {
       {"planarize " + input + " -o " + input, "--output", "is the input file"},
       {"anet " + input + " -o " + Path("a.obj") + " --reference " + Path("a.obj"), "--output",
        "is the --reference file"},
-      {"weingarten " + Data("freeform_10x10.json") + " -o " + Path("w.json") + " --diagram " +
+      {"weingarten " + Data("freeform_10x10.json") + " -o " + Path("w.json") + " --curvature " +
            Path("w.json"),
-       "--diagram", "--output and --diagram are the same file"},
+       "--curvature", "--output and --curvature are the same file"},
       {"canal " + Data("canal_curve.txt") + " --first-point -0.5,0.5,2 --length 2 -o " +
            Path("c.obj") + " --strip " + Path("c.obj"),
        "--strip", "--output and --strip are the same file"},
