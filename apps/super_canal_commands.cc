@@ -6,6 +6,7 @@
 
 #include "apps/commands.h"
 #include "geometry/svg_render.h"
+#include "problems/circular_mesh.h"
 
 namespace gproj {
 
@@ -28,10 +29,7 @@ void MeshOutputs::Check(const std::vector<std::pair<std::string, std::string>>& 
 }
 
 void PrintMeasures(const char* label, const NamedValues& measures) {
-  std::printf(
-      "%s: max planarity %.3e, max concyclicity %.3e (diagonal distance and distance to "
-      "the fitted circle, per mean edge)\n",
-      label, ValueOf(measures, "max_planarity"), ValueOf(measures, "max_concyclicity"));
+  std::printf("%s\n", CircularMeasuresLine(label, measures).c_str());
 }
 
 int WriteAndConclude(const std::string& command, const RunReport& report, const PolyMesh& mesh,

@@ -90,12 +90,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
                 options.height);
   context.Headline(line);
   const NamedValues input_measures = MeasureCircularMesh(mesh);
-  std::snprintf(line, sizeof(line),
-                "input: max planarity %.3e, max concyclicity %.3e (diagonal distance and "
-                "distance to the fitted circle, per mean edge)",
-                ValueOf(input_measures, "max_planarity"),
-                ValueOf(input_measures, "max_concyclicity"));
-  context.Info(line);
+  context.Info(CircularMeasuresLine("input", input_measures));
   const auto start = std::chrono::steady_clock::now();
   const BeamLayout layout = TorsionFreeBeams(mesh, options);
   const double seconds =

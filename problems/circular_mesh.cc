@@ -1,5 +1,7 @@
 #include "problems/circular_mesh.h"
 
+#include <cstdio>
+
 #include "geometry/circle.h"
 #include "problems/pq_planarization.h"
 
@@ -44,6 +46,16 @@ nlohmann::json MRevolutionJson(const MRevolutionChoice& choice, double t, int ro
           {"root", root},
           {"image_side_angle", choice.image.side_angle},
           {"image_diagonals", choice.image.diagonals}};
+}
+
+std::string CircularMeasuresLine(const std::string& label, const NamedValues& measures) {
+  char line[256];
+  std::snprintf(line, sizeof(line),
+                "%s: max planarity %.3e, max concyclicity %.3e (diagonal distance and distance to "
+                "the fitted circle, per mean edge)",
+                label.c_str(), ValueOf(measures, "max_planarity"),
+                ValueOf(measures, "max_concyclicity"));
+  return line;
 }
 
 }  // namespace gproj

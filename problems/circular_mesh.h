@@ -24,6 +24,9 @@ NamedValues MeasureCircularMesh(const PolyMesh& mesh);
 // crossed quads (<hint>)".
 std::string CrossedQuadsFault(const NamedValues& measures, const std::string& hint);
 
+// "<label>: max planarity …, max concyclicity … (…)" from MeasureCircularMesh's values, for logs.
+std::string CircularMeasuresLine(const std::string& label, const NamedValues& measures);
+
 RunReport ConstructionReport(const std::string& solver, const NamedValues& initial,
                              const NamedValues& final, bool converged, double seconds);
 

@@ -3,6 +3,7 @@
 
 #include "geometry/quad_grid.h"
 #include "geometry/svg_render.h"
+#include "problems/circular_mesh.h"
 #include "problems/combescure.h"
 #include "problems/run/builtin_problems.h"
 
@@ -55,15 +56,6 @@ const OptionSchema<CombescureSettings>& Schema() {
   return schema;
 }
 
-std::string MeasuresLine(const char* label, const NamedValues& measures) {
-  char line[256];
-  std::snprintf(line, sizeof(line),
-                "%s: max planarity %.3e, max concyclicity %.3e (diagonal distance and distance to "
-                "the fitted circle, per mean edge)",
-                label, ValueOf(measures, "max_planarity"), ValueOf(measures, "max_concyclicity"));
-  return line;
-}
-
 RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunContext& context) {
   const CombescureSettings settings = Schema().Apply(values);
   const PolyMesh& reference = inputs.Mesh("mesh");
@@ -83,7 +75,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
                    (method == "gp"      ? "guided projection with edge-parallelism rows"
                     : method == "ceres" ? "Levenberg-Marquardt on the edge-parallelism rows"
                                         : "propagation (000 eq. 4)"));
-  context.Info(MeasuresLine("reference", combescure.Measure()));
+  context.Info(CircularMeasuresLine("reference", combescure.Measure()));
   const RunCallback record = [&context](const RunRecord& r) { return context.Record(r); };
   RunResult result;
   result.report = method == "gp"      ? combescure.Run(record)
@@ -100,7 +92,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   std::snprintf(line, sizeof(line), "solved in %.4f s; max edge-parallelism angle %.3e rad",
                 result.report.seconds, angle);
   result.Info(line);
-  result.Info(MeasuresLine("result", result.report.final));
+  result.Info(CircularMeasuresLine("result", result.report.final));
   const double min_ratio = ValueOf(result.report.final, "min_edge_length_ratio");
   if (min_ratio <= 0.0) {
     std::snprintf(line, sizeof(line),

@@ -547,9 +547,15 @@ bool HNet::RunANetStep(const PolyMesh& reference, const IterationCallback& on_it
   report.solver = "gp";
   if (MeasureStarPlanarity(mesh_, mesh_).max_star_planarity <= options_.anet.tolerance) return true;
   ANet anet(mesh_, &reference, options_.anet);
+  bool stopped = false;  // the callback asked to stop: the whole run stops, without rounds
+  const RunCallback tracked = [&on_iteration, &stopped](const RunRecord& r) {
+    const bool go = !on_iteration || on_iteration(r);
+    stopped = stopped || !go;
+    return go;
+  };
   const RunReport step = options_.use_ceres
-                             ? anet.RunCeres(options_.anet.solver.max_iterations, on_iteration)
-                             : anet.Run(on_iteration);
+                             ? anet.RunCeres(options_.anet.solver.max_iterations, tracked)
+                             : anet.Run(tracked);
   report.history = step.history;
   report.iterations = step.iterations;
   report.summary = step.summary;
@@ -560,6 +566,10 @@ bool HNet::RunANetStep(const PolyMesh& reference, const IterationCallback& on_it
     return false;
   }
   mesh_ = anet.Result();
+  if (stopped) {
+    report.termination = "USER_ABORT: stopped by the callback in the A-net step";
+    return false;
+  }
   return true;
 }
 

@@ -48,15 +48,6 @@ const OptionSchema<InvertSettings>& Schema() {
   return schema;
 }
 
-std::string MeasuresLine(const char* label, const NamedValues& measures) {
-  char line[256];
-  std::snprintf(line, sizeof(line),
-                "%s: max planarity %.3e, max concyclicity %.3e (diagonal distance and distance to "
-                "the fitted circle, per mean edge)",
-                label, ValueOf(measures, "max_planarity"), ValueOf(measures, "max_concyclicity"));
-  return line;
-}
-
 // The centre of the M-revolution asked for (000 §5.1), logged; its report in *report.
 Eigen::Vector3d MRevolutionCentre(const InvertSettings& s, const RunContext& context,
                                   nlohmann::json* report) {
@@ -109,8 +100,8 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   result.tolerance_measure = "max_concyclicity";
   if (result.report.failed) return result;
-  result.Info(MeasuresLine("input", result.report.initial));
-  result.Info(MeasuresLine("inverted", result.report.final));
+  result.Info(CircularMeasuresLine("input", result.report.initial));
+  result.Info(CircularMeasuresLine("inverted", result.report.final));
   result.meshes["output"] = out;
   if (context.Wants("picture")) {
     SvgOptions svg;

@@ -49,15 +49,6 @@ const OptionSchema<MRevolutionSettings>& Schema() {
   return schema;
 }
 
-std::string MeasuresLine(const char* label, const NamedValues& measures) {
-  char line[256];
-  std::snprintf(line, sizeof(line),
-                "%s: max planarity %.3e, max concyclicity %.3e (diagonal distance and distance to "
-                "the fitted circle, per mean edge)",
-                label, ValueOf(measures, "max_planarity"), ValueOf(measures, "max_concyclicity"));
-  return line;
-}
-
 Eigen::Vector3d Point(const std::vector<double>& p) { return {p[0], p[1], p[2]}; }
 
 // The log's lines and the report's facts.
@@ -71,8 +62,8 @@ void Describe(const MRevolutionSurface& surface, const MRevolutionOptions& optio
                 c.x(), c.y(), c.z(), surface.ratio, surface.choice.image.side_angle,
                 surface.choice.image.diagonals[0], surface.choice.image.diagonals[1]);
   result->Info(line);
-  result->Info(MeasuresLine("surface of revolution", result->report.initial));
-  result->Info(MeasuresLine("M-revolution surface", result->report.final));
+  result->Info(CircularMeasuresLine("surface of revolution", result->report.initial));
+  result->Info(CircularMeasuresLine("M-revolution surface", result->report.final));
   std::snprintf(line, sizeof(line),
                 "f^-1(f(curve)) against the curve %.1e, far meridian against P2, P3 %.1e, arches "
                 "off their planes %.1e (curve extents)",

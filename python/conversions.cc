@@ -192,7 +192,18 @@ nlohmann::json PythonToJson(const py::handle& value) {
   // numpy arrays and scalars as Python lists and numbers.
   if (py::hasattr(value, "tolist")) return PythonToJson(value.attr("tolist")());
   if (PyBool_Check(value.ptr())) return value.cast<bool>();
-  if (PyLong_Check(value.ptr())) return value.cast<long long>();
+  if (PyLong_Check(value.ptr())) {
+    int overflow = 0;
+    const long long n = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+    if (overflow == 0) return n;
+    // Beyond 64 bits: as a number (infinite beyond a double), which the option checks refuse.
+    const double d = PyLong_AsDouble(value.ptr());
+    if (d == -1.0 && PyErr_Occurred()) {
+      PyErr_Clear();
+      return overflow * HUGE_VAL;
+    }
+    return d;
+  }
   if (PyFloat_Check(value.ptr())) return value.cast<double>();
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
   if (py::isinstance<py::dict>(value)) {

@@ -197,7 +197,7 @@ class Minimizer {
     if (cb == CallbackResult::kAbort)
       return !Finish(TerminationType::kUserAbort, "stopped by callback");
     if (cb == CallbackResult::kConverged)
-      return !Finish(TerminationType::kConvergence, "the callback's tolerance was met");
+      return !Finish(TerminationType::kConvergence, "the problem's tolerance was met");
     if (options_.residual_tolerance > 0.0 && record_.max_constraint <= options_.residual_tolerance)
       return !Finish(TerminationType::kConvergence, "residual tolerance met");
     if (k > 0 && options_.step_tolerance > 0.0 && record_.step_norm <= options_.step_tolerance)

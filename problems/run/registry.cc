@@ -22,18 +22,6 @@ bool IsIdentifier(const std::string& name) {
 
 }  // namespace
 
-const char* RunMethodName(RunMethod method) {
-  switch (method) {
-    case RunMethod::kGuidedProjection:
-      return "gp";
-    case RunMethod::kCeres:
-      return "ceres";
-    case RunMethod::kDirect:
-      return "direct";
-  }
-  return "?";
-}
-
 const char* InputKindName(InputKind kind) {
   switch (kind) {
     case InputKind::kQuadMesh:

@@ -24,11 +24,6 @@
 
 namespace gproj {
 
-// How a run solves: guided projection, Ceres' Levenberg–Marquardt on the same rows, or a direct
-// construction (closed form, linear system, propagation).
-enum class RunMethod { kGuidedProjection, kCeres, kDirect };
-const char* RunMethodName(RunMethod method);  // "gp", "ceres", "direct"
-
 enum class InputKind {
   kQuadMesh,   // a polygon mesh whose faces are all quads
   kMesh,       // any polygon mesh
@@ -37,7 +32,8 @@ enum class InputKind {
                // x y z lines; an (n, 3) array in Python)
   kBSpline,    // a tensor-product B-spline surface (the JSON of SPEC §4; a dict in Python)
 };
-const char* InputKindName(InputKind kind);  // "quad_mesh", "mesh", "vertex_ids", "curve"
+// "quad_mesh", "mesh", "vertex_ids", "curve", "bspline"
+const char* InputKindName(InputKind kind);
 
 struct InputSpec {
   std::string name;  // identifier, e.g. "mesh", "reference", "fixed"

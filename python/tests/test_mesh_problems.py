@@ -143,6 +143,9 @@ def test_bad_options_raise_errors_naming_the_keyword():
             ({"epsilon": 0.0}, ValueError, "epsilon: 0 is not > 0"),
             ({"tolerance": "small"}, TypeError, "tolerance: small is not a number"),
             ({"max_iterations": 2.5}, ValueError, "max_iterations: 2.5 is not an integer"),
+            ({"max_iterations": 10**30}, ValueError,
+             r"max_iterations: 1e\+30 is not in \[0, 100000\]"),
+            ({"fixed": {1.5}}, TypeError, "fixed: expected .*an entry is float"),
             ({"circular": 1}, TypeError, "circular: 1 is not true or false"),
             ({"edge_length": 0.2}, TypeError, "edge_length: 0.2 is not a list of numbers"),
             ({"edge_length": (0.1, 0.2, 0.3)}, ValueError, r"edge_length: expects 2 numbers"),
@@ -217,3 +220,19 @@ def test_hnet_surface_equals_the_command_lines_surface_mesh(cli):
         gproj.hnet(V, F, samples=-1)
     with pytest.raises(ValueError, match="outputs: hnet has no output 'surface'"):
         gproj.hnet(V, F, outputs=["surface"])
+
+
+def test_hnet_callback_returning_false_stops_the_whole_run():
+    V, F = gproj.grid(nu=7, nv=7, surface="hypar", noise=0.05)
+    records = []
+
+    def callback(record):
+        records.append(record)
+        return len(records) < 2
+
+    result, report = gproj.hnet(V, F, callback=callback)
+    assert len(records) == 2
+    assert report["termination"].startswith("USER_ABORT")
+    assert not report["converged"] and not report["failed"]
+    assert report["rounds"] == [] and "output" not in result
+
