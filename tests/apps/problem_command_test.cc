@@ -114,7 +114,8 @@ TEST_F(ProblemCommandTest, OptionErrorsNameTheFlag) {
 TEST_F(ProblemCommandTest, RunErrorsNameOptionsAsFlags) {
   const CommandRun r = Gproj("invert " + Data("revolution_13x17.obj") + " -o " + Path("out.obj"));
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_EQ(r.err, "gproj invert: give --centre (x, y, z) or --m-revolution (4 concyclic points)\n");
+  EXPECT_EQ(r.err,
+            "gproj invert: give --centre (x, y, z) or --m-revolution (4 concyclic points)\n");
   EXPECT_FALSE(Exists("out.obj"));
 }
 
