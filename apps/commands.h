@@ -14,12 +14,5 @@ namespace gproj {
 void RegisterProblemCommand(CLI::App* app, const ProblemSpec& spec, int* exit_code);
 // Registers `gproj schema` (the registry as JSON).
 void RegisterSchemaCommand(CLI::App* app, int* exit_code);
-// Registers `gproj grid` (noisy test grids).
-void RegisterGridCommand(CLI::App* app, int* exit_code);
-// Registers `gproj marionette`.
-void RegisterMarionetteCommand(CLI::App* app, int* exit_code);
-// Registers `gproj combescure`, `gproj invert`, `gproj canal`, `gproj beams` and
-// `gproj mrevolution`.
-void RegisterSuperCanalCommands(CLI::App* app, int* exit_code);
 
 }  // namespace gproj

@@ -50,8 +50,10 @@ nlohmann::json GivenOptions(const ProblemSpec& spec, const ProblemArgs& args) {
   return given;
 }
 
+// How messages name an input: "input" for the required one, the name of an optional
+// positional one ("plan"), else its flag.
 std::string InputOption(const InputSpec& input) {
-  return input.required ? "input" : Flag(input.name);
+  return input.required ? "input" : input.positional ? input.name : Flag(input.name);
 }
 
 // Output paths checked before the work starts, then the inputs read.
@@ -86,10 +88,47 @@ RunInputs ReadInputs(const ProblemSpec& spec, const ProblemArgs& args) {
       read.surfaces[input.name] = ReadBSplineJson(path);
       continue;
     }
+    if (input.kind == InputKind::kText) {
+      read.texts[input.name] = ReadTextFile(path);
+      continue;
+    }
     read.meshes[input.name] = ReadMesh(path, MeshRequirements{input.kind == InputKind::kQuadMesh});
     if (num_vertices < 0) num_vertices = static_cast<int>(read.meshes[input.name].n_vertices());
   }
   return read;
+}
+
+// Writes the outputs asked for and the report, all or none; returns the paths written. A run
+// that failed, or ended before its result (e.g. an H-net without rounds), writes nothing.
+std::vector<std::string> WriteResult(const ProblemSpec& spec, const ProblemArgs& args,
+                                     const RunInputs& inputs, const nlohmann::json& options,
+                                     const RunResult& result) {
+  std::vector<std::string> written;
+  bool complete = !result.report.failed;
+  for (const OutputSpec& output : spec.outputs)
+    if (output.required)
+      complete = complete && (result.meshes.count(output.name) || result.texts.count(output.name));
+  if (!complete) return written;
+  OutputFiles files;
+  for (const OutputSpec& output : spec.outputs) {
+    const std::string& path = args.paths.at(output.name);
+    if (path.empty()) continue;
+    if (!result.meshes.count(output.name) && !result.texts.count(output.name)) continue;
+    if (output.kind == OutputKind::kMesh)
+      files.AddMesh(result.meshes.at(output.name), path);
+    else
+      files.AddText(path, result.texts.at(output.name));
+    written.push_back(path);
+  }
+  if (!args.paths.at("report").empty()) {
+    const nlohmann::json report =
+        RunResultJson(spec, result, options, inputs, true,
+                      args.paths.count("output") ? args.paths.at("output") : "");
+    files.AddText(args.paths.at("report"), report.dump(2) + "\n");
+    written.push_back(args.paths.at("report"));
+  }
+  files.Commit();
+  return written;
 }
 
 int RunProblemCommand(const ProblemSpec& spec, const ProblemArgs& args) {
@@ -123,40 +162,17 @@ int RunProblemCommand(const ProblemSpec& spec, const ProblemArgs& args) {
   try {
     const RunInputs inputs = ReadInputs(spec, args);
     result = RunProblem(spec, inputs, options, context);
-    OutputFiles files;
-    // A run that failed, or ended before its result (e.g. an H-net without rounds), writes
-    // nothing.
-    bool complete = !result.report.failed;
-    for (const OutputSpec& output : spec.outputs)
-      if (output.required)
-        complete =
-            complete && (result.meshes.count(output.name) || result.texts.count(output.name));
-    if (complete) {
-      for (const OutputSpec& output : spec.outputs) {
-        const std::string& path = args.paths.at(output.name);
-        if (path.empty()) continue;
-        if (!result.meshes.count(output.name) && !result.texts.count(output.name)) continue;
-        if (output.kind == OutputKind::kMesh)
-          files.AddMesh(result.meshes.at(output.name), path);
-        else
-          files.AddText(path, result.texts.at(output.name));
-        written.push_back(path);
-      }
-      if (!args.paths.at("report").empty()) {
-        const nlohmann::json report =
-            RunResultJson(spec, result, options, args.paths.at(spec.inputs.front().name),
-                          args.paths.count("output") ? args.paths.at("output") : "");
-        files.AddText(args.paths.at("report"), report.dump(2) + "\n");
-        written.push_back(args.paths.at("report"));
-      }
-    }
-    files.Commit();
+    written = WriteResult(spec, args, inputs, options, result);
   } catch (const InputError& e) {
     std::cerr << name << ": " << SpellOptions(e.what(), true) << "\n";
     return kExitInputError;
   }
   if (!result.report.failed)
     for (const RunMessage& message : result.messages) context.on_message(message);
+  if (spec.generator) {
+    std::printf("wrote %s\n", written.front().c_str());
+    return kExitOk;
+  }
   const int code =
       ConcludeRun(spec.name, result.report, result.tolerance_measure, result.tolerance, written);
   if (code == kExitNotConverged)
@@ -171,11 +187,12 @@ void AddPaths(CLI::App* cmd, const ProblemSpec& spec, ProblemArgs* args) {
   for (const InputSpec& input : spec.inputs) {
     const std::string format = input.kind == InputKind::kCurve     ? " (text: x y z per line)"
                                : input.kind == InputKind::kBSpline ? " (.json)"
+                               : input.kind == InputKind::kText    ? " (a text file)"
                                : input.kind == InputKind::kVertexIds
                                    ? ": a text file of ids separated by spaces or newlines, '#' "
                                      "comments"
                                    : " (.obj, .off or .ply)";
-    CLI::Option* option = cmd->add_option(input.required ? input.name : Flag(input.name),
+    CLI::Option* option = cmd->add_option(input.IsPositional() ? input.name : Flag(input.name),
                                           args->paths[input.name], input.doc + format);
     option->type_name("FILE");
     if (input.required) option->required();
@@ -190,6 +207,8 @@ void AddPaths(CLI::App* cmd, const ProblemSpec& spec, ProblemArgs* args) {
     option->type_name("FILE");
     if (output.required) option->required();
   }
+  args->paths["report"];
+  if (spec.generator) return;
   cmd->add_option("--report", args->paths["report"],
                   "Write a JSON report: converged, iterations, seconds, variables, per-iteration "
                   "history, the initial and final measures and the options")
@@ -228,7 +247,7 @@ void AddOption(CLI::App* cmd, const OptionSpec& option, ProblemArgs* args) {
   std::string& text = args->texts[option.name];
   CLI::Option* cli = nullptr;
   if (option.type == OptionType::kNumbers || option.type == OptionType::kInts ||
-      option.type == OptionType::kPoints) {
+      option.type == OptionType::kPoints || option.type == OptionType::kVertexValues) {
     cli = AddListOption(cmd, option, &text);
   } else {
     const CLI::Validator check(
@@ -245,7 +264,9 @@ void AddOption(CLI::App* cmd, const OptionSpec& option, ProblemArgs* args) {
   }
   if (!option.default_value.is_null()) cli->default_str(OptionText(option.default_value));
   if (option.required) cli->required();
-  cli->type_name(option.type == OptionType::kInt ? "INT" : "NUMBER");
+  cli->type_name(option.type == OptionType::kInt            ? "INT"
+                 : option.type == OptionType::kVertexValues ? "VERTEX:VALUE,..."
+                                                            : "NUMBER");
   if (!option.placeholder.empty()) cli->type_name(option.placeholder);
   if (!option.choices.empty()) {
     std::string choices;
@@ -260,10 +281,11 @@ void AddOption(CLI::App* cmd, const OptionSpec& option, ProblemArgs* args) {
 void RegisterProblemCommand(CLI::App* app, const ProblemSpec& spec, int* exit_code) {
   auto args = std::make_shared<ProblemArgs>();
   CLI::App* cmd = app->add_subcommand(
-      spec.name, spec.summary +
-                     " Exit codes: 0 converged, 1 bad input or option (nothing written), 3 "
-                     "tolerance not reached (result written), 4 numerical failure (nothing "
-                     "written).");
+      spec.name,
+      spec.summary + (spec.generator ? " Exit codes: 0 written, 1 bad option (nothing written)."
+                                     : " Exit codes: 0 converged, 1 bad input or option (nothing "
+                                       "written), 3 tolerance not reached (result written), 4 "
+                                       "numerical failure (nothing written)."));
   AddPaths(cmd, spec, args.get());
   for (const OptionSpec& option : spec.options) AddOption(cmd, option, args.get());
   cmd->callback([&spec, args, exit_code]() { *exit_code = RunProblemCommand(spec, *args); });

@@ -10,19 +10,17 @@
 
 namespace gproj {
 
-namespace {
-
-// The whole file.
 std::string ReadTextFile(const std::string& path) {
   CheckRegularFile(path);
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec) CheckMemory(path + ": the file", 2.0 * static_cast<double>(size));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open the file");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw InputError(path + ": read error");
   return text;
 }
-
-}  // namespace
 
 void CheckRegularFile(const std::string& path) {
   namespace fs = std::filesystem;

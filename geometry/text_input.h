@@ -18,6 +18,9 @@ struct TextLine {
   std::vector<std::string> words;
 };
 
+// The whole text file. Throws InputError naming it when it cannot be read or would not fit in
+// memory.
+std::string ReadTextFile(const std::string& path);
 // The non-blank lines of `path` after dropping '#' comments, split at whitespace (and at
 // commas when `commas_separate`). Throws InputError when the file cannot be read or has no
 // such line.

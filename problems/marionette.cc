@@ -83,7 +83,7 @@ std::string CheckPlanView(const PolyMesh& mesh, const std::string& path, bool al
       " quads of the plan view overlap or are not convex in x, y: " + FaceList(folded);
   if (!allow)
     throw InputError((path.empty() ? "" : path + ": ") + what +
-                     " (a lift over them folds; --allow-folded-plan lifts it anyway)");
+                     " (a lift over them folds; `allow_folded_plan` lifts it anyway)");
   return "warning: " + what + "; the lift over them folds\n";
 }
 

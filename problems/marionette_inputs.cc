@@ -43,12 +43,14 @@ MarionetteGuideFile ParseMarionetteGuides(const std::string& text, const std::st
   return GuidesFromLines(SplitTextLines(text, name), name, num_vertices);
 }
 
-ClosedStripFile ReadClosedStrip(const std::string& path) {
+namespace {
+
+ClosedStripFile ClosedStripFromLines(const std::vector<TextLine>& lines, const std::string& path) {
   ClosedStripFile file;
   std::vector<double> heights;
   std::vector<int> line_of;
   size_t words = 0;
-  for (const TextLine& line : ReadTextLines(path)) {
+  for (const TextLine& line : lines) {
     const std::string where = TextPlace(path, line.number);
     if (words == 0) words = line.words.size();
     if (line.words.size() < 5 || line.words.size() % 2 == 0 || line.words.size() != words)
@@ -88,6 +90,16 @@ ClosedStripFile ReadClosedStrip(const std::string& path) {
   return file;
 }
 
+}  // namespace
+
+ClosedStripFile ReadClosedStrip(const std::string& path) {
+  return ClosedStripFromLines(ReadTextLines(path), path);
+}
+
+ClosedStripFile ParseClosedStrip(const std::string& text, const std::string& name) {
+  return ClosedStripFromLines(SplitTextLines(text, name), name);
+}
+
 std::vector<MarionetteTarget> GridGuideValues(const GridShape& shape,
                                               const std::vector<double>& row,
                                               const std::vector<double>& column) {
@@ -107,12 +119,12 @@ MarionetteProjectionOptions MarionetteProjectionFromValues(const std::string& na
                                                            const std::vector<double>& centre) {
   MarionetteProjectionOptions projection;
   if (!ParseMarionetteProjection(name, &projection.type))
-    throw InputError("--projection must be vertical, cylindrical or central, not '" + name + "'");
+    throw InputError("`projection` must be vertical, cylindrical or central, not '" + name + "'");
   if (axis.size() != 6)
-    throw InputError("--axis needs six numbers px,py,pz,dx,dy,dz, got " +
+    throw InputError("`axis` needs six numbers px,py,pz,dx,dy,dz, got " +
                      std::to_string(axis.size()));
   if (centre.size() != 3)
-    throw InputError("--centre needs three numbers x,y,z, got " + std::to_string(centre.size()));
+    throw InputError("`centre` needs three numbers x,y,z, got " + std::to_string(centre.size()));
   projection.axis_point = Eigen::Vector3d(axis[0], axis[1], axis[2]);
   projection.axis_direction = Eigen::Vector3d(axis[3], axis[4], axis[5]);
   projection.centre = Eigen::Vector3d(centre[0], centre[1], centre[2]);

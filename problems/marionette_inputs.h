@@ -38,6 +38,8 @@ struct ClosedStripFile {
   Eigen::VectorXd inner_heights;                     // N
 };
 ClosedStripFile ReadClosedStrip(const std::string& path);
+// The same from the file's text; `name` stands for the path in messages.
+ClosedStripFile ParseClosedStrip(const std::string& text, const std::string& name);
 
 // The guide values of a grid plan (`gproj grid` order): `row` for vertices (0, j), j = 0..cols,
 // `column` for (i, 0), i = 0..rows (its first value is vertex 0's again, checked by the lift).

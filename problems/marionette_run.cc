@@ -54,9 +54,9 @@ class GridRun : public MarionetteRun {
     const bool full_target = !options.fit.empty() || options.fit_mesh.has_value();
     const bool partial_target = !options.fit_heights.empty();
     if (full_target && partial_target)
-      throw InputError("give either --fit or --fit-heights, not both");
+      throw InputError("give either `fit` or `fit_heights`, not both");
     if ((full_target || partial_target) && (!options.row.empty() || !options.column.empty()))
-      throw InputError("give either a target (--fit, --fit-heights) or --row/--column, not both");
+      throw InputError("give either a target (`fit`, `fit_heights`) or `row`/`column`, not both");
     if (full_target) {
       const PolyMesh fit = FitMesh(options);
       if (fit.n_vertices() != mesh.n_vertices())
@@ -68,7 +68,9 @@ class GridRun : public MarionetteRun {
     } else if (partial_target) {
       const int n = static_cast<int>(mesh.n_vertices());
       target = weights = Eigen::VectorXd::Zero(n);
-      for (const TextLine& line : ReadTextLines(options.fit_heights)) {
+      for (const TextLine& line :
+           options.fit_heights_text ? SplitTextLines(*options.fit_heights_text, options.fit_heights)
+                                    : ReadTextLines(options.fit_heights)) {
         const std::string where = TextPlace(options.fit_heights, line.number);
         if (line.words.size() != 2)
           throw InputError(where + ": a line is 'VERTEX HEIGHT' (got " +
@@ -81,16 +83,16 @@ class GridRun : public MarionetteRun {
       }
     } else if (options.row.empty() || options.column.empty()) {
       throw InputError(
-          "give the guide curves (--row and --column heights, or --guides) or a target (--fit, "
-          "--fit-heights)");
+          "give the guide curves (`row` and `column` heights, or `guides`) or a target (`fit`, "
+          "`fit_heights`)");
     }
     if (!options.constraints.empty() && !full_target && !partial_target)
       throw InputError(
-          "--hold, --volume and --max-height constrain a fit (--fit or --fit-heights)");
+          "`hold`, `volume` and `max_height` constrain a fit (`fit` or `fit_heights`)");
     if (weights.size() > 0 && options.solver != "direct")
       throw InputError(
-          "a partial target (--fit-heights) and hard constraints (--hold, --volume, "
-          "--max-height) are solved exactly by the KKT system: use --solver direct");
+          "a partial target (`fit_heights`) and hard constraints (`hold`, `volume`, "
+          "`max_height`) are solved exactly by the KKT system: use `solver` direct");
     const auto vector = [](const std::vector<double>& v) {
       return Eigen::Map<const Eigen::VectorXd>(v.data(), v.size());
     };
@@ -107,8 +109,8 @@ class GridRun : public MarionetteRun {
 
   std::string Description() const override {
     const MarionettePlan& plan = problem_->plan();
-    return Format("gproj marionette: %s: %d x %d faces, %d heights, %s\n", options_.plan.c_str(),
-                  plan.rows, plan.cols, plan.num_vertices(),
+    return Format("%s: %d x %d faces, %d heights, %s\n", options_.plan.c_str(), plan.rows,
+                  plan.cols, plan.num_vertices(),
                   problem_->fit() ? "least-squares fit to a target" : "lift from guide curves") +
            warning_;
   }
@@ -157,7 +159,7 @@ std::vector<MarionetteTarget> MeshGuideValues(const MarionetteRunOptions& option
                                               const PolyMesh& mesh) {
   if (!options.guides.empty() || options.guides_text) {
     if (!options.row.empty() || !options.column.empty())
-      throw InputError("give either --guides or --row/--column, not both");
+      throw InputError("give either `guides` or `row`/`column`, not both");
     const int n = static_cast<int>(mesh.n_vertices());
     const MarionetteGuideFile file =
         options.guides_text ? ParseMarionetteGuides(*options.guides_text, options.guides, n)
@@ -165,7 +167,7 @@ std::vector<MarionetteTarget> MeshGuideValues(const MarionetteRunOptions& option
     return ResolveMarionetteGuides(mesh, file.guides, file.vertices);
   }
   if (options.row.empty() || options.column.empty())
-    throw InputError("give the guides (--guides FILE, or --row and --column on a grid plan)");
+    throw InputError("give the guides (`guides`, or `row` and `column` on a grid plan)");
   return ResolveMarionetteGuides(
       mesh, {}, GridGuideValues(DetectGridShape(mesh, options.plan), options.row, options.column));
 }
@@ -177,7 +179,7 @@ class MeshRun : public MarionetteRun {
     const MarionetteProjectionOptions projection =
         MarionetteProjectionFromValues(options.projection, options.axis, options.centre);
     if (!options.fit.empty() || options.fit_mesh)
-      throw InputError("--fit works with the vertical projection and --row/--column only");
+      throw InputError("`fit` works with the vertical projection and `row`/`column` only");
     std::string why;
     if (!options.lift.IsValid(&why)) throw InputError("invalid option: " + why);
     const PolyMesh mesh = PlanMesh(options);
@@ -192,7 +194,7 @@ class MeshRun : public MarionetteRun {
 
   std::string Description() const override {
     std::string text = Format(
-        "gproj marionette: %s: %d vertices, %zu quads, %s projection\npatches: %zu singular "
+        "%s: %d vertices, %zu quads, %s projection\npatches: %zu singular "
         "vertices, %zu separatrices, %zu patches, %zu strips of patches (%d face strips, %d "
         "closed): a lift needs %d guide values, the guides give %zu\n",
         options_.plan.c_str(), lines_.num_vertices(), lines_.mesh.n_faces(),
@@ -259,15 +261,15 @@ class PolygonRun : public MarionetteRun {
         !options.column.empty() || !options.fit.empty() || options.fit_mesh ||
         !options.fit_heights.empty())
       throw InputError(options.plan +
-                       ": a plan of polygons is lifted from prescribed heights (--hold "
+                       ": a plan of polygons is lifted from prescribed heights (`hold` "
                        "VERTEX:HEIGHT) and fairness; guides, rows, columns and fits need quads");
     if (options.projection != "vertical" || options.solver != "direct")
       throw InputError(options.plan + ": a plan of polygons is lifted vertically and directly");
     if (options.constraints.with_volume || options.constraints.with_max_height)
-      throw InputError(options.plan + ": --volume and --max-height need a quad plan");
+      throw InputError(options.plan + ": `volume` and `max_height` need a quad plan");
     if (options.constraints.heights.empty())
       throw InputError(options.plan +
-                       ": a plan of polygons needs prescribed heights (--hold VERTEX:HEIGHT,...)");
+                       ": a plan of polygons needs prescribed heights (`hold` VERTEX:HEIGHT,...)");
     plan_ = options.plan_mesh ? *options.plan_mesh : ReadMesh(options.plan);
     const auto start = std::chrono::steady_clock::now();
     try {
@@ -283,8 +285,8 @@ class PolygonRun : public MarionetteRun {
     for (auto f : plan_.faces()) ++sizes[static_cast<int>(plan_.valence(f))];
     std::string faces;
     for (const auto& [n, count] : sizes) faces += Format(" %d %d-gons,", count, n);
-    return Format("gproj marionette: %s: %d vertices,%s vertical projection\n",
-                  options_.plan.c_str(), space_.vertices, faces.c_str()) +
+    return Format("%s: %d vertices,%s vertical projection\n", options_.plan.c_str(),
+                  space_.vertices, faces.c_str()) +
            Format(
                "design space (002 eq. 16): %d vertices - %d planarity rows = %d; by rank %d; "
                "%zu heights prescribed, fairness (eq. 17) fixes the rest\n",
@@ -334,16 +336,16 @@ NamedValues StripMeasures(const PolyMesh& mesh) {
 // A closed strip lifted by its closing condition.
 class StripRun : public MarionetteRun {
  public:
-  explicit StripRun(const MarionetteRunOptions& options)
-      : options_(options), file_(ReadClosedStrip(options.closed_strip)) {
-    if (!std::isfinite(options.outer_height)) throw InputError("--outer-height must be finite");
+  StripRun(const MarionetteRunOptions& options, ClosedStripFile file)
+      : options_(options), file_(std::move(file)) {
+    if (!std::isfinite(options.outer_height)) throw InputError("`outer_height` must be finite");
     lift_ = LiftClosedStrip(file_.strip, file_.inner_heights, options.outer_height);
     warning_ = CheckPlanView(Result(), options.closed_strip, options.allow_folded_plan);
   }
 
   std::string Description() const override {
-    std::string text = Format("gproj marionette: closed strip %s: %d quads\n",
-                              options_.closed_strip.c_str(), num_quads());
+    std::string text =
+        Format("closed strip %s: %d quads\n", options_.closed_strip.c_str(), num_quads());
     if (lift_.a_is_one)
       return text +
              Format(
@@ -399,7 +401,7 @@ class RingsRun : public MarionetteRun {
     warning_ = CheckPlanView(lift_.mesh, options.closed_strip, options.allow_folded_plan);
   }
   std::string Description() const override {
-    std::string text = Format("gproj marionette: closed mesh %s: %d rings of %d quads\n",
+    std::string text = Format("closed mesh %s: %d rings of %d quads\n",
                               options_.closed_strip.c_str(), rings(), points());
     for (int r = 0; r < rings(); ++r)
       text += Format("ring %d: a = %.12g, |V| = %.3g%s\n", r, lift_.a[r], lift_.v_norm[r],
@@ -485,18 +487,20 @@ bool IsGridPlan(const MarionetteRunOptions& options) {
 std::unique_ptr<MarionetteRun> MakeMarionetteRun(const MarionetteRunOptions& options) {
   if (!options.closed_strip.empty()) {
     if (!options.plan.empty() || options.plan_mesh)
-      throw InputError("give either a plan or --closed-strip, not both");
+      throw InputError("give either a plan or `closed_strip`, not both");
     if (options.solver != "direct")
-      throw InputError("--closed-strip is lifted directly (002 eq. 8): --solver " + options.solver +
+      throw InputError("`closed_strip` is lifted directly (002 eq. 8): `solver` " + options.solver +
                        " does not apply");
-    ClosedStripFile file = ReadClosedStrip(options.closed_strip);
+    ClosedStripFile file = options.closed_strip_text
+                               ? ParseClosedStrip(*options.closed_strip_text, options.closed_strip)
+                               : ReadClosedStrip(options.closed_strip);
     if (file.curves.size() > 2) return std::make_unique<RingsRun>(options, std::move(file));
-    return std::make_unique<StripRun>(options);
+    return std::make_unique<StripRun>(options, std::move(file));
   }
   if (options.plan.empty() && !options.plan_mesh)
-    throw InputError("give a plan view (or --closed-strip FILE)");
+    throw InputError("give a plan view (or `closed_strip`)");
   if (options.solver != "direct" && options.solver != "gp" && options.solver != "ceres")
-    throw InputError("--solver must be direct, gp or ceres, not '" + options.solver + "'");
+    throw InputError("`solver` must be direct, gp or ceres, not '" + options.solver + "'");
   // A plan with a face that is not a quad, or only prescribed heights on a quad plan that is
   // no grid: the polygon lift (002 §4.2).
   if (PlanHasPolygons(options) ||

@@ -36,11 +36,12 @@ struct MarionetteRunOptions {
   // Hard linear constraints of the fit (002 §3.3), met exactly (direct solver).
   MarionetteConstraints constraints;
   std::string closed_strip;  // closed strip file (ReadClosedStrip) instead of a plan
-  // The plan, the fit target and the guide file's text held in memory (a caller such as the
-  // Python module): when set, each replaces reading its file, and `plan`, `fit`, `guides` are
-  // only the names used in messages and in Facts(). The meshes are validated like a file.
+  // The plan, the fit target and the texts of the guide, fit-heights and closed-strip files held
+  // in memory (the registry's front ends): when set, each replaces reading its file, and `plan`,
+  // `fit`, `guides`, `fit_heights`, `closed_strip` are only the names used in messages and in
+  // Facts(). The meshes are validated like a file.
   std::optional<PolyMesh> plan_mesh, fit_mesh;
-  std::optional<std::string> guides_text;
+  std::optional<std::string> guides_text, fit_heights_text, closed_strip_text;
   std::vector<double> row, column;      // guide values of a grid plan's row 0 and column 0
   std::string projection = "vertical";  // vertical, cylindrical or central
   std::vector<double> axis = {0, 0, 0, 0, 0, 1};  // cylindrical: point and direction

@@ -1,10 +1,7 @@
-// gproj.read_mesh, gproj.write_mesh, gproj.face_values and gproj.grid.
-#include <functional>
+// gproj.read_mesh, gproj.write_mesh and gproj.face_values.
 #include <string>
 #include <vector>
 
-#include "geometry/parametric_grid.h"
-#include "geometry/quad_grid.h"
 #include "geometry/quad_shape.h"
 #include "python/conversions.h"
 #include "python/module.h"
@@ -26,40 +23,6 @@ void WriteMeshArrays(const std::string& path, const py::object& vertices, const 
   const PolyMesh mesh = MeshFromArrays(vertices, faces, false);
   py::gil_scoped_release release;
   WriteMeshAtomically(mesh, path);
-}
-
-// `gproj grid`: the paraboloid grid, or a parametric surface's.
-py::tuple Grid(int nu, int nv, const std::string& surface, double a, double b, double c,
-               double wave, double noise, std::uint32_t seed) {
-  if (nu < 2 || nv < 2 || nu > 100000 || nv > 100000)
-    throw InputError("nu and nv must be in [2, 100000]");
-  if (!(noise >= 0.0)) throw InputError("noise must be >= 0");
-  if (surface == "paraboloid") {
-    QuadGridOptions o;
-    o.nu = nu;
-    o.nv = nv;
-    o.a = a;
-    o.b = b;
-    o.c = c;
-    o.wave = wave;
-    o.noise = noise;
-    o.seed = seed;
-    return MeshToPython(MakeQuadGrid(o));
-  }
-  if (surface != "revolution" && surface != "hypar" && surface != "hyperboloid" &&
-      surface != "enneper")
-    throw InputError(
-        "surface must be paraboloid, hypar, hyperboloid, enneper or revolution, not '" + surface +
-        "'");
-  ParametricGridOptions o;
-  o.nu = nu;
-  o.nv = nv;
-  o.jitter = noise;
-  o.seed = seed;
-  const auto f = surface == "revolution"
-                     ? std::function<Eigen::Vector3d(double, double)>(RevolutionSurface)
-                     : AsymptoticSurface(surface);
-  return MeshToPython(MakeParametricGrid(f, o));
 }
 
 // Per quad: the columns of `--face-values` (MeasureFaceValues), as arrays.
@@ -118,25 +81,6 @@ Returns {"planarity": distance between the diagonals / the mesh's mean edge leng
 two triangles of either diagonal split, "min_angle_deg": the smallest corner angle, "convex":
 bool, and with circular "concyclicity": distance of the corners to their fitted circle / mean
 edge}.
-)");
-  const QuadGridOptions g;
-  m.def("grid", &Grid, py::kw_only(), py::arg("nu") = g.nu, py::arg("nv") = g.nv,
-        py::arg("surface") = "paraboloid", py::arg("a") = g.a, py::arg("b") = g.b,
-        py::arg("c") = g.c, py::arg("wave") = g.wave, py::arg("noise") = 0.05,
-        py::arg("seed") = g.seed,
-        R"(grid(nu=21, nv=21, ...) -> (V, F)
-
-A noisy quad grid (`gproj grid`), the test input of the problems.
-
-    nu, nv: vertices along u and v (>= 2); vertex (i, j) is i * nv + j.
-    surface: "paraboloid" (z = a x^2 + b y^2 + c x y + wave sin(pi x) sin(pi y) over
-        [-1, 1]^2), an asymptotic net
-        "hypar", "hyperboloid", "enneper", or a circular net "revolution".
-    a, b, c, wave: the paraboloid's coefficients.
-    noise: noise amplitude as a fraction of the grid spacing (mean edge for the nets).
-    seed: random seed.
-
-Returns V: (nu * nv, 3) float64, F: ((nu - 1) * (nv - 1), 4) int32.
 )");
 }
 

@@ -11,11 +11,12 @@ PYBIND11_MODULE(gproj, m) {
 Meshes are numpy arrays: V (n, 3) float64 vertex positions and F (m, k) int32 faces (0-based
 vertex indices; a list of faces for meshes with faces of different sizes).
 
-    read_mesh, write_mesh, grid      meshes in and out (.obj, .off, .ply)
-    planarize, anet, hnet,           the command line's problems, one call each, returning the
-    marionette_lift, marionette_fit, result and the report as a dict (the keys of --report)
-    combescure, invert, canal,
-    weingarten
+    read_mesh, write_mesh            meshes in and out (.obj, .off, .ply)
+    grid                             a test grid (V, F)
+    planarize, anet, hnet, field,    the command line's problems, one call each with the same
+    remesh, invert, cyclidic,        names and defaults, returning the result and the report as
+    combescure, beams, mrevolution,  a dict (the keys of --report)
+    weingarten, marionette, canal
     schema                           the registry of problems as a dict (`gproj schema`)
     Problem                          your own problem: variable blocks, built-in terms
                                      (planarity, closeness, fairness), terms written in Python,
@@ -35,8 +36,6 @@ Bad input raises ValueError with the command line's message.)";
   });
   gproj::python::BindMeshIo(m);
   gproj::python::BindRegistry(m);
-  gproj::python::BindConstructions(m);
   gproj::python::BindWeingarten(m);
-  gproj::python::BindMarionette(m);
   gproj::python::BindGenericProblem(m);
 }

@@ -7,11 +7,9 @@ namespace gproj::python {
 
 namespace py = pybind11;
 
-void BindMeshIo(py::module_& m);          // read_mesh, write_mesh, grid
+void BindMeshIo(py::module_& m);          // read_mesh, write_mesh, face_values
 void BindRegistry(py::module_& m);        // the registry's problems (planarize, ...), schema
-void BindConstructions(py::module_& m);   // combescure, invert, canal
 void BindWeingarten(py::module_& m);      // bspline_curvature
-void BindMarionette(py::module_& m);      // marionette_lift, marionette_fit
 void BindGenericProblem(py::module_& m);  // Problem: blocks, terms, solve
 
 }  // namespace gproj::python

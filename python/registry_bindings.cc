@@ -108,31 +108,55 @@ struct CallArguments {
   std::set<std::string> outputs;  // the required ones and those asked for
 };
 
-// The required inputs from the positional arguments: (V, F) per mesh, one object per curve or
-// B-spline. Returns the vertex count of the first mesh (-1: none).
+// A text input: a str (the text of the file the command line reads).
+std::string TextFromPython(const std::string& name, const py::handle& value) {
+  if (!py::isinstance<py::str>(value))
+    TypeError(name + ": expected a str (the file's text), not " + TypeNameOf(value));
+  return value.cast<std::string>();
+}
+
+// One input from its Python value: (V, F) for a mesh passed as a keyword, an array for a curve,
+// a dict for a B-spline, a str for a text, ids or a mask for vertex ids.
+void ReadInput(const InputSpec& input, const py::handle& value, int num_vertices,
+               RunInputs* inputs) {
+  if (input.kind == InputKind::kVertexIds)
+    inputs->vertex_ids[input.name] = VertexIdsFromPython(input.name, value, num_vertices);
+  else if (input.kind == InputKind::kCurve)
+    inputs->curves[input.name] = CurveFromPython(input.name, value);
+  else if (input.kind == InputKind::kBSpline)
+    inputs->surfaces[input.name] = BSplineFromPython(input.name, value);
+  else if (input.kind == InputKind::kText)
+    inputs->texts[input.name] = TextFromPython(input.name, value);
+  else
+    inputs->meshes[input.name] = MeshFromPython(input, value);
+  inputs->sources[input.name] = input.name;
+}
+
+// The positional inputs from the positional arguments: (V, F) per mesh, one object per other
+// kind; an optional positional input may be left out. Returns the vertex count of the first
+// mesh (-1: none).
 int ReadPositional(const ProblemSpec& spec, const py::args& args, RunInputs* inputs) {
   size_t next = 0;
   int num_vertices = -1;
   for (const InputSpec& input : spec.inputs) {
-    if (!input.required) continue;
-    inputs->sources[input.name] = input.name;
-    if (input.kind == InputKind::kCurve || input.kind == InputKind::kBSpline) {
-      if (args.size() < next + 1)
-        TypeError(spec.name + "() needs its " + input.name +
-                  (input.kind == InputKind::kCurve ? " (an (n, 3) array)" : " (a dict)"));
-      if (input.kind == InputKind::kCurve)
-        inputs->curves[input.name] = CurveFromPython(input.name, args[next]);
-      else
-        inputs->surfaces[input.name] = BSplineFromPython(input.name, args[next]);
-      next += 1;
-      continue;
+    if (!input.IsPositional()) continue;
+    const bool mesh = input.kind == InputKind::kMesh || input.kind == InputKind::kQuadMesh;
+    const size_t count = mesh ? 2 : 1;
+    if (args.size() < next + count) {
+      if (!input.required && args.size() == next) break;
+      TypeError(spec.name + "() needs " +
+                (mesh ? "the arrays V and F of its " + input.name : "its " + input.name));
     }
-    if (args.size() < next + 2)
-      TypeError(spec.name + "() needs the arrays V and F of its " + input.name);
-    inputs->meshes[input.name] =
-        MeshFromArrays(args[next], args[next + 1], input.kind == InputKind::kQuadMesh);
-    if (num_vertices < 0) num_vertices = static_cast<int>(inputs->meshes[input.name].n_vertices());
-    next += 2;
+    if (mesh) {
+      inputs->meshes[input.name] =
+          MeshFromArrays(args[next], args[next + 1], input.kind == InputKind::kQuadMesh);
+      inputs->sources[input.name] = input.name;
+      if (num_vertices < 0)
+        num_vertices = static_cast<int>(inputs->meshes[input.name].n_vertices());
+    } else {
+      ReadInput(input, args[next], num_vertices, inputs);
+    }
+    next += count;
   }
   if (args.size() > next)
     TypeError(spec.name + "() takes " + std::to_string(next) + " positional arguments but " +
@@ -176,15 +200,13 @@ void ReadKeywords(const ProblemSpec& spec, const py::kwargs& kwargs, int num_ver
       ReadOutputNames(spec, value, &call->outputs);
     } else if (const InputSpec* input = spec.FindInput(name)) {
       if (value.is_none()) continue;
-      if (input->kind == InputKind::kVertexIds)
-        call->inputs.vertex_ids[name] = VertexIdsFromPython(name, value, num_vertices);
-      else if (input->kind == InputKind::kCurve)
-        call->inputs.curves[name] = CurveFromPython(name, value);
-      else if (input->kind == InputKind::kBSpline)
-        call->inputs.surfaces[name] = BSplineFromPython(name, value);
-      else
-        call->inputs.meshes[name] = MeshFromPython(*input, value);
-      call->inputs.sources[name] = name;
+      if (input->IsPositional())
+        TypeError(spec.name + "(): " + name + " is positional (" +
+                  (input->kind == InputKind::kMesh || input->kind == InputKind::kQuadMesh
+                       ? "its arrays V, F"
+                       : "the first argument") +
+                  ")");
+      ReadInput(*input, value, num_vertices, &call->inputs);
     } else {
       try {
         call->options[name] = PythonToJson(value);
@@ -195,12 +217,14 @@ void ReadKeywords(const ProblemSpec& spec, const py::kwargs& kwargs, int num_ver
   }
 }
 
-// (V_out, report) for a result that keeps the input's connectivity, else (result, report) with
+// (V, F) alone for a generator; (V_out, report) for a result that keeps the connectivity of the
+// mesh input given, else (result, report) with
 // the meshes as (V, F), JSON texts as dicts, other texts as str and the arrays as numpy arrays.
-py::tuple ResultToPython(const ProblemSpec& spec, const RunResult& result,
-                         const py::object& report) {
+py::object ResultToPython(const ProblemSpec& spec, const RunInputs& inputs, const RunResult& result,
+                          const py::object& report) {
+  if (spec.generator) return MeshToPython(result.meshes.at(spec.outputs.front().name));
   for (const OutputSpec& output : spec.outputs)
-    if (output.kind == OutputKind::kMesh && output.same_connectivity) {
+    if (output.kind == OutputKind::kMesh && output.same_connectivity && !inputs.meshes.empty()) {
       const auto mesh = result.meshes.find(output.name);
       return py::make_tuple(mesh == result.meshes.end() ? py::object(py::none())
                                                         : py::object(VerticesToArray(mesh->second)),
@@ -245,8 +269,9 @@ py::object Call(const ProblemSpec& spec, const py::args& args, const py::kwargs&
     if (message.kind == RunMessage::Kind::kWarning)
       warnings.attr("warn")(spec.name + ": " + SpellOptions(message.text, false),
                             py::module_::import("builtins").attr("UserWarning"), 2);
-  return ResultToPython(spec, result,
-                        JsonToPython(RunResultJson(spec, result, call.options, nullptr, nullptr)));
+  return ResultToPython(
+      spec, call.inputs, result,
+      JsonToPython(RunResultJson(spec, result, call.options, call.inputs, false, nullptr)));
 }
 
 // "picture, face_values" (or "none").
@@ -257,23 +282,45 @@ std::string OptionalOutputs(const ProblemSpec& spec) {
   return names.empty() ? "none" : names;
 }
 
+// A keyword input's entry: what it takes.
+std::string KeywordInputKind(InputKind kind) {
+  switch (kind) {
+    case InputKind::kVertexIds:
+      return "None, a sequence of 0-based vertex ids or a boolean mask. ";
+    case InputKind::kCurve:
+      return "None or an (n, 3) array of points. ";
+    case InputKind::kText:
+      return "None or a str, the text of the file the command line reads. ";
+    case InputKind::kBSpline:
+      return "None or a dict, the B-spline's JSON. ";
+    default:
+      return "None or a mesh (V, F). ";
+  }
+}
+
 // The positional part of the signature ("V, F, ") and the inputs' entries.
 void DescribeInputs(const ProblemSpec& spec, std::string* signature, std::string* arguments) {
   for (const InputSpec& input : spec.inputs) {
-    if (!input.required) continue;
+    if (!input.IsPositional()) continue;
+    const std::string optional = input.required ? "" : "=None";
+    const std::string left_out = input.required ? "" : " (optional)";
     if (input.kind == InputKind::kCurve) {
-      *signature += input.name + ", ";
-      *arguments +=
-          "    " + input.name + ": (n, 3) float64 points, at least 2. " + input.doc + ".\n";
+      *signature += input.name + optional + ", ";
+      *arguments += "    " + input.name + left_out + ": (n, 3) float64 points, at least 2. " +
+                    input.doc + ".\n";
     } else if (input.kind == InputKind::kBSpline) {
-      *signature += input.name + ", ";
-      *arguments += "    " + input.name +
+      *signature += input.name + optional + ", ";
+      *arguments += "    " + input.name + left_out +
                     ": a dict, the B-spline's JSON (degree, knots_u, knots_v, control_points; "
                     "numpy arrays accepted). " +
                     input.doc + ".\n";
+    } else if (input.kind == InputKind::kText) {
+      *signature += input.name + optional + ", ";
+      *arguments +=
+          "    " + input.name + left_out + ": a str, the file's text. " + input.doc + ".\n";
     } else {
-      *signature += "V, F, ";
-      *arguments += "    V, F: the " + input.name +
+      *signature += "V" + optional + ", F" + optional + ", ";
+      *arguments += "    V, F: the " + input.name + left_out +
                     ": (n, 3) float64 vertex positions and (m, k) integer faces (0-based; a list "
                     "of faces for mixed sizes). " +
                     input.doc + ".\n";
@@ -281,26 +328,30 @@ void DescribeInputs(const ProblemSpec& spec, std::string* signature, std::string
   }
   *signature += "*";
   for (const InputSpec& input : spec.inputs) {
-    if (input.required) continue;
+    if (input.IsPositional()) continue;
     *signature += ", " + input.name + "=None";
-    *arguments += "    " + input.name + ": " +
-                  (input.kind == InputKind::kVertexIds
-                       ? "None, a sequence of 0-based vertex ids or a boolean mask. "
-                   : input.kind == InputKind::kCurve ? "None or an (n, 3) array of points. "
-                                                     : "None or a mesh (V, F). ") +
-                  input.doc + ".\n";
+    *arguments += "    " + input.name + ": " + KeywordInputKind(input.kind) + input.doc + ".\n";
   }
+}
+
+// A default as a Python literal: None, True, 'text', 1e-09, [0, 0, 1].
+std::string PythonLiteral(const nlohmann::json& d) {
+  if (d.is_null()) return "None";
+  if (d.is_boolean()) return d.get<bool>() ? "True" : "False";
+  if (d.is_string()) return "'" + d.get<std::string>() + "'";
+  if (d.is_array()) {
+    std::string items;
+    for (const nlohmann::json& item : d) items += (items.empty() ? "" : ", ") + PythonLiteral(item);
+    return "[" + items + "]";
+  }
+  return OptionText(d);
 }
 
 // The options' part of the signature (", tolerance=1e-09") and their entries.
 void DescribeOptions(const ProblemSpec& spec, std::string* signature, std::string* arguments) {
   for (const OptionSpec& option : spec.options) {
-    const nlohmann::json& d = option.default_value;
-    const std::string shown = d.is_null()      ? "None"
-                              : d.is_boolean() ? (d.get<bool>() ? "True" : "False")
-                              : d.is_string()  ? "'" + d.get<std::string>() + "'"
-                                               : OptionText(d);
-    *signature += ", " + option.name + (option.required ? "" : "=" + shown);
+    *signature +=
+        ", " + option.name + (option.required ? "" : "=" + PythonLiteral(option.default_value));
     *arguments += "    " + option.name + " (" + OptionTypeName(option.type) +
                   (option.unit.empty() ? "" : ", " + option.unit) +
                   (option.RangeText().empty() ? "" : ", " + option.RangeText()) +
@@ -310,7 +361,9 @@ void DescribeOptions(const ProblemSpec& spec, std::string* signature, std::strin
 
 // What a call returns, for the docstring.
 std::string DescribeReturns(const ProblemSpec& spec, bool keeps) {
-  if (keeps) return "Returns the result vertices (None when the run failed) and the report dict";
+  if (keeps)
+    return "Returns the result vertices (None when the run failed; a dict {\"output\": (V, F)} "
+           "when no input mesh was given) and the report dict";
   std::string returns =
       "Returns a dict of the results (None when the run failed) and the report dict; the "
       "results:\n";
@@ -331,6 +384,10 @@ std::string DocOf(const ProblemSpec& spec) {
   std::string signature = spec.name + "(", arguments;
   DescribeInputs(spec, &signature, &arguments);
   DescribeOptions(spec, &signature, &arguments);
+  if (spec.generator)
+    return signature + ") -> (V, F)\n\n" + spec.summary + "\n\n" + arguments +
+           "\nReturns V: (n, 3) float64 and F: (m, 4) int32. Raises ValueError for option values "
+           "out of range and TypeError for arguments of the wrong type, naming the argument.\n";
   bool keeps = false;
   for (const OutputSpec& output : spec.outputs) keeps = keeps || output.same_connectivity;
   signature += std::string(", outputs=(), callback=None)") +

@@ -16,6 +16,9 @@ const Registry& Registry::Builtin() {
     r.Add(BeamsSpec());
     r.Add(MRevolutionSpec());
     r.Add(WeingartenSpec());
+    r.Add(MarionetteSpec());
+    r.Add(CanalSpec());
+    r.Add(GridSpec());
     return r;
   }();
   return registry;

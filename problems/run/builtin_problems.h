@@ -17,5 +17,8 @@ ProblemSpec CombescureSpec();   // problems/combescure_problem.cc
 ProblemSpec BeamsSpec();        // problems/beams_problem.cc
 ProblemSpec MRevolutionSpec();  // problems/mrevolution_problem.cc
 ProblemSpec WeingartenSpec();   // problems/weingarten_problem.cc
+ProblemSpec MarionetteSpec();   // problems/marionette_problem.cc
+ProblemSpec CanalSpec();        // problems/canal_problem.cc
+ProblemSpec GridSpec();         // problems/grid_problem.cc
 
 }  // namespace gproj

@@ -3,13 +3,18 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <set>
 
 namespace gproj {
 namespace {
 
 std::string Compact(double value) {
   char text[32];
-  std::snprintf(text, sizeof(text), "%g", value);
+  // Integers in full (a seed's 4294967295), other values in %g's short form.
+  if (std::abs(value) < 1e10 && std::floor(value) == value)
+    std::snprintf(text, sizeof(text), "%.0f", value);
+  else
+    std::snprintf(text, sizeof(text), "%g", value);
   return text;
 }
 
@@ -71,6 +76,40 @@ nlohmann::json NumberFromText(const OptionSpec& spec, const std::string& text, b
   return nlohmann::json(value);
 }
 
+// [[id, value], ...] (or {"id": value}) checked: ids 0-based integers, each once, values in range.
+nlohmann::json CheckVertexValues(const OptionSpec& spec, const nlohmann::json& value) {
+  nlohmann::json pairs = nlohmann::json::array();
+  if (value.is_object()) {  // a Python dict: its keys are text; by increasing id
+    OptionSpec id_spec;
+    id_spec.name = spec.name;
+    std::vector<std::pair<long long, nlohmann::json>> items;
+    for (const auto& item : value.items())
+      items.emplace_back(NumberFromText(id_spec, item.key(), true).get<long long>(), item.value());
+    std::sort(items.begin(), items.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& [id, v] : items) pairs.push_back({id, v});
+  } else if (value.is_array()) {
+    pairs = value;
+  } else {
+    throw OptionError(spec.name, Shown(value) + " is not a list of [vertex, value] pairs", true);
+  }
+  OptionSpec ids;
+  ids.name = spec.name, ids.min = 0.0, ids.max = 2e9;
+  nlohmann::json out = nlohmann::json::array();
+  std::set<long long> seen;
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const nlohmann::json& p = pairs[i];
+    if (!p.is_array() || p.size() != 2)
+      throw OptionError(spec.name, "entry " + std::to_string(i) + " is not a pair [vertex, value]",
+                        !p.is_array());
+    const auto id = static_cast<long long>(CheckNumber(ids, p[0], true));
+    if (!seen.insert(id).second)
+      throw OptionError(spec.name, "vertex " + std::to_string(id) + " is given twice");
+    out.push_back({id, CheckNumber(spec, p[1], false)});
+  }
+  return out;
+}
+
 }  // namespace
 
 const char* OptionTypeName(OptionType type) {
@@ -89,6 +128,8 @@ const char* OptionTypeName(OptionType type) {
       return "points";
     case OptionType::kInts:
       return "ints";
+    case OptionType::kVertexValues:
+      return "vertex_values";
   }
   return "?";
 }
@@ -171,6 +212,8 @@ nlohmann::json CheckOptionValue(const OptionSpec& spec, const nlohmann::json& va
       }
       return out;
     }
+    case OptionType::kVertexValues:
+      return CheckVertexValues(spec, value);
   }
   return value;
 }
@@ -217,11 +260,38 @@ nlohmann::json ParseOptionText(const OptionSpec& spec, const std::string& text) 
         points.push_back({numbers[i], numbers[i + 1], numbers[i + 2]});
       return CheckOptionValue(spec, points);
     }
+    case OptionType::kVertexValues: {
+      if (text.empty()) throw OptionError(spec.name, "an empty value is not allowed");
+      nlohmann::json pairs = nlohmann::json::array();
+      size_t start = 0;
+      while (true) {
+        const size_t comma = text.find(',', start);
+        const std::string word = text.substr(start, comma - start);
+        const size_t colon = word.find(':');
+        if (colon == std::string::npos)
+          throw OptionError(spec.name, "'" + word + "' is not VERTEX:VALUE (e.g. 12:0.5)");
+        OptionSpec id;
+        id.name = spec.name;
+        pairs.push_back({NumberFromText(id, word.substr(0, colon), true),
+                         NumberFromText(spec, word.substr(colon + 1), false)});
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+      }
+      return CheckOptionValue(spec, pairs);
+    }
   }
   return nullptr;
 }
 
 std::string OptionText(const nlohmann::json& value) {
+  // Vertex values: "ID:VALUE,...".
+  if (value.is_array() && !value.empty() && value[0].is_array() && value[0].size() == 2 &&
+      value[0][0].is_number_integer()) {
+    std::string out;
+    for (const nlohmann::json& p : value)
+      out += (out.empty() ? "" : ",") + Shown(p[0]) + ":" + Shown(p[1]);
+    return out;
+  }
   if (value.is_array()) {
     std::string out;
     for (const nlohmann::json& v : value) out += (out.empty() ? "" : ",") + OptionText(v);

@@ -24,8 +24,11 @@ enum class OptionType {
   kPoints,   // a list of `count` points [x, y, z] (0: any number), "x,y,z,x,y,z,..." on the
              // command line; in Python an (n, 3) array
   kInts,     // a list of `count` integers (0: any length), "a,b,..." on the command line
+  // Values of vertices: [[id, value], ...] with 0-based ids and each value within the range;
+  // "ID:VALUE,ID:VALUE" on the command line; in Python also a dict {id: value}.
+  kVertexValues,
 };
-// "bool", "int", "number", "choice", "numbers", "points", "ints"
+// "bool", "int", "number", "choice", "numbers", "points", "ints", "vertex_values"
 const char* OptionTypeName(OptionType type);
 
 struct OptionSpec {

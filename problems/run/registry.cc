@@ -34,6 +34,8 @@ const char* InputKindName(InputKind kind) {
       return "curve";
     case InputKind::kBSpline:
       return "bspline";
+    case InputKind::kText:
+      return "text";
   }
   return "?";
 }
@@ -101,8 +103,14 @@ const BSplineSurface& RunInputs::Surface(const std::string& name) const {
   return it->second;
 }
 
+const std::string* RunInputs::Text(const std::string& name) const {
+  const auto it = texts.find(name);
+  return it == texts.end() ? nullptr : &it->second;
+}
+
 bool RunInputs::Has(const std::string& name) const {
-  return meshes.count(name) || vertex_ids.count(name) || curves.count(name) || surfaces.count(name);
+  return meshes.count(name) || vertex_ids.count(name) || curves.count(name) ||
+         surfaces.count(name) || texts.count(name);
 }
 
 std::string RunInputs::Source(const std::string& name) const {
@@ -142,7 +150,23 @@ void Registry::Add(ProblemSpec spec) {
     if (!IsIdentifier(name)) bad("'" + name + "' is not an identifier");
     if (!names.insert(name).second) bad("two inputs, outputs or options are named '" + name + "'");
   };
-  for (const InputSpec& input : spec.inputs) unique(input.name);
+  bool optional_positional = false;
+  for (const InputSpec& input : spec.inputs) {
+    unique(input.name);
+    if (input.positional && (input.required || optional_positional))
+      bad("'" + input.name + "': only one optional input may be positional");
+    if (input.required && optional_positional)
+      bad("'" + input.name + "': a required input after the optional positional one");
+    if (input.positional && input.kind == InputKind::kVertexIds)
+      bad("'" + input.name + "': vertex ids cannot be positional");
+    optional_positional = optional_positional || input.positional;
+  }
+  if (spec.generator) {
+    int meshes = 0;
+    for (const OutputSpec& output : spec.outputs) meshes += output.kind == OutputKind::kMesh;
+    if (!spec.inputs.empty() || meshes != 1 || !spec.outputs.front().required)
+      bad("a generator has no inputs and one mesh output, the first and required");
+  }
   for (const ArraySpec& array : spec.arrays) unique(array.name);
   for (const OutputSpec& output : spec.outputs) unique(output.name);
   for (const OptionSpec& option : spec.options) {
@@ -172,7 +196,8 @@ nlohmann::json Registry::SchemaJson() const {
       inputs.push_back({{"name", i.name},
                         {"kind", InputKindName(i.kind)},
                         {"doc", i.doc},
-                        {"required", i.required}});
+                        {"required", i.required},
+                        {"positional", i.IsPositional()}});
     for (const OutputSpec& o : spec.outputs)
       outputs.push_back({{"name", o.name},
                          {"kind", OutputKindName(o.kind)},
@@ -188,7 +213,8 @@ nlohmann::json Registry::SchemaJson() const {
                         {"outputs", outputs},
                         {"options", options},
                         {"arrays", arrays},
-                        {"log_measures", spec.log_measures}});
+                        {"log_measures", spec.log_measures},
+                        {"generator", spec.generator}});
   }
   return {{"version", GprojVersion()}, {"problems", problems}};
 }
@@ -206,11 +232,19 @@ RunResult RunProblem(const ProblemSpec& spec, const RunInputs& inputs,
 }
 
 nlohmann::json RunResultJson(const ProblemSpec& spec, const RunResult& result,
-                             const nlohmann::json& options, const nlohmann::json& input,
+                             const nlohmann::json& options, const RunInputs& inputs, bool paths,
                              const nlohmann::json& output) {
   nlohmann::json extra = result.facts;
   extra["options"] = CompleteOptions(spec.options, options);
-  extra["input"] = input;
+  extra["input"] = nullptr;
+  bool first = true;
+  for (const InputSpec& input : spec.inputs) {
+    if (!inputs.Has(input.name)) continue;
+    const nlohmann::json source =
+        paths ? nlohmann::json(inputs.Source(input.name)) : nlohmann::json(nullptr);
+    extra[first ? "input" : input.name] = source;
+    first = false;
+  }
   extra["output"] = output;
   nlohmann::json report = ReportJson(spec.name, result.report, extra);
   for (size_t i = 0; i < result.history_facts.size() && i < report["history"].size(); ++i)

@@ -31,15 +31,22 @@ enum class InputKind {
   kCurve,      // a polyline: at least two points, none repeating the one before (a text file of
                // x y z lines; an (n, 3) array in Python)
   kBSpline,    // a tensor-product B-spline surface (the JSON of SPEC §4; a dict in Python)
+  kText,       // a text document the run parses (a file on the command line; a str in Python),
+               // its messages naming the file and line
 };
-// "quad_mesh", "mesh", "vertex_ids", "curve", "bspline"
+// "quad_mesh", "mesh", "vertex_ids", "curve", "bspline", "text"
 const char* InputKindName(InputKind kind);
 
 struct InputSpec {
   std::string name;  // identifier, e.g. "mesh", "reference", "fixed"
   InputKind kind = InputKind::kMesh;
   std::string doc;
-  bool required = false;  // required inputs are positional on the command line
+  bool required = false;  // required inputs are positional on the command line and in Python
+  // An optional input taken like a required one (positional), e.g. a plan view that another
+  // input can replace; at most one per problem, the last of the positional inputs.
+  bool positional = false;
+
+  bool IsPositional() const { return required || positional; }
 };
 
 enum class OutputKind {
@@ -70,6 +77,7 @@ struct RunInputs {
   std::map<std::string, std::vector<int>> vertex_ids;
   std::map<std::string, std::vector<Eigen::Vector3d>> curves;
   std::map<std::string, BSplineSurface> surfaces;
+  std::map<std::string, std::string> texts;  // inputs of kind kText
   // Where each input came from ("in.obj", "V"), for messages.
   std::map<std::string, std::string> sources;
 
@@ -78,7 +86,8 @@ struct RunInputs {
   std::vector<int> VertexIds(const std::string& name) const;    // empty when not given
   const std::vector<Eigen::Vector3d>& Curve(const std::string& name) const;  // a required curve
   const BSplineSurface& Surface(const std::string& name) const;              // a required B-spline
-  bool Has(const std::string& name) const;  // whether the input was given
+  const std::string* Text(const std::string& name) const;  // a text input; null when not given
+  bool Has(const std::string& name) const;                 // whether the input was given
   std::string Source(const std::string& name) const;
 };
 
@@ -147,6 +156,9 @@ struct ProblemSpec {
   std::vector<OptionSpec> options;
   std::vector<ArraySpec> arrays;          // the arrays a run returns
   std::vector<std::string> log_measures;  // the live log's columns
+  // Makes an input rather than solving one (a test grid): Python returns its one mesh output
+  // as (V, F) alone, and the command line writes it without a report or a conclusion.
+  bool generator = false;
   // Runs on checked, complete options (CompleteOptions). Throws InputError for bad input.
   std::function<RunResult(const RunInputs&, const nlohmann::json&, const RunContext&)> run;
 
@@ -179,9 +191,11 @@ RunResult RunProblem(const ProblemSpec& spec, const RunInputs& inputs,
                      const nlohmann::json& options, const RunContext& context);
 
 // The run's report (problems/report_json.h) with the problem's facts, the complete options
-// under "options", and "input" and "output" as given (null for front ends without files).
+// under "options", "input" (the first input given) and "output", and a key per other input
+// given (e.g. "reference"): its source with `paths` (the command line's file names), else null
+// (front ends without files, such as Python).
 nlohmann::json RunResultJson(const ProblemSpec& spec, const RunResult& result,
-                             const nlohmann::json& options, const nlohmann::json& input,
+                             const nlohmann::json& options, const RunInputs& inputs, bool paths,
                              const nlohmann::json& output);
 
 // Messages of a run name options as `name` (backquoted); a front end spells them its way: the

@@ -1,5 +1,4 @@
-"""combescure, invert, canal, cyclidic, weingarten, marionette_lift/_fit against the command
-line."""
+"""combescure, invert, canal, cyclidic, weingarten, marionette against the command line."""
 import json
 
 import numpy as np
@@ -68,17 +67,18 @@ def test_canal_equals_the_command_line(cli):
     cli.run("canal", DATA / "canal_curve.txt", "--first-point", "-0.5,0.5,2", "--length", 2,
             "--smooth", "-o", cli.path("c.obj"), "--report", cli.path("r.json"))
     records = []
-    (V, F), report = gproj.canal(curve, [-0.5, 0.5, 2], length=2.0, smooth=True,
+    result, report = gproj.canal(curve, first_point=[-0.5, 0.5, 2], length=2.0, smooth=True,
                                  callback=records.append)
-    expected = cli.read_report("r.json")
-    expected["curve"] = None
-    assert_reports_equal(report, expected)
+    V, F = result["output"]
+    assert_reports_equal(report, cli.read_report("r.json"))
     Vc, Fc = gproj.read_mesh(cli.path("c.obj"))
     assert_close(V, Vc)
     assert (F == Fc).all()
     assert len(records) == len(report["history"])
     with pytest.raises(ValueError, match="lengths"):
-        gproj.canal(curve, [-0.5, 0.5, 2])
+        gproj.canal(curve, first_point=[-0.5, 0.5, 2])
+    with pytest.raises(ValueError, match="^first_point x,y,z is needed"):
+        gproj.canal(curve, length=2.0)
 
 
 def test_closed_canal_equals_the_command_line(cli):
@@ -86,18 +86,18 @@ def test_closed_canal_equals_the_command_line(cli):
     curve = np.loadtxt(source)
     cli.run("canal", source, "--closed", "--first-point", "3.2,-0.2,0.5", "--length", 0.5,
             "--normal", "1,0,0", "-o", cli.path("c.obj"), "--report", cli.path("r.json"))
-    (V, F), report = gproj.canal(curve, [3.2, -0.2, 0.5], length=0.5, normal=[1, 0, 0],
-                                 closed=True)
-    expected = cli.read_report("r.json")
-    expected["curve"] = None
-    assert_reports_equal(report, expected)
+    result, report = gproj.canal(curve, first_point=[3.2, -0.2, 0.5], length=0.5,
+                                 normal=[1, 0, 0], closed=True, outputs=["strip"])
+    V, F = result["output"]
+    assert result["strip"][1].shape == (21, 4)
+    assert_reports_equal(report, cli.read_report("r.json"))
     Vc, Fc = gproj.read_mesh(cli.path("c.obj"))
     assert_close(V, Vc)
     assert (F == Fc).all()
     assert report["converged"] and report["mesh"]["closed"]
     assert report["final"]["closing_case"] == 2
     with pytest.raises(ValueError, match="smooth"):
-        gproj.canal(curve, [3.2, -0.2, 0.5], length=0.5, closed=True, smooth=True)
+        gproj.canal(curve, first_point=[3.2, -0.2, 0.5], length=0.5, closed=True, smooth=True)
 
 
 def test_cyclidic_equals_the_command_line(cli):
@@ -177,7 +177,7 @@ def test_marionette_lift_equals_the_command_line(cli):
         cli.run("marionette", plan, "-o", cli.path("m.obj"), "--row", ",".join(map(repr, row)),
                 "--column", ",".join(map(repr, column)), "--solver", solver,
                 "--report", cli.path("r.json"))
-        V_out, report = gproj.marionette_lift(V, F, row=row, column=column, solver=solver)
+        V_out, report = gproj.marionette(V, F, row=row, column=column, solver=solver)
         assert_reports_equal(report, cli.read_report("r.json"))
         assert_close(V_out, gproj.read_mesh(cli.path("m.obj"))[0])
 
@@ -188,19 +188,80 @@ def test_marionette_guides_and_fit(cli):
     cli.run("marionette", plan, "--guides", DATA / "marionette_valence6_guides.txt",
             "-o", cli.path("m.obj"), "--report", cli.path("r.json"))
     V, F = gproj.read_mesh(str(plan))
-    V_out, report = gproj.marionette_lift(V, F, guides=guides)
+    V_out, report = gproj.marionette(V, F, guides=guides)
     assert_close(V_out, gproj.read_mesh(cli.path("m.obj"))[0])
     assert report["converged"]
-    with pytest.raises(ValueError, match="^guides:"):
-        gproj.marionette_lift(V, F, guides="guide 0 1 nonsense\n")
+    expected = cli.read_report("r.json")
+    expected["guides"] = None
+    assert_reports_equal(report, expected)
+    with pytest.raises(ValueError, match="guides:1: "):
+        gproj.marionette(V, F, guides="guide 0 1 nonsense\n")
     Vp, Fp = gproj.read_mesh(str(DATA / "marionette_plan_21x21.obj"))
     target = Vp.copy()
     target[:, 2] = 0.1 * Vp[:, 0] ** 2 - 0.05 * Vp[:, 1] ** 2
     cli.write_mesh("target.obj", target, Fp)
     cli.run("marionette", DATA / "marionette_plan_21x21.obj", "--fit", cli.path("target.obj"),
             "-o", cli.path("f.obj"), "--report", cli.path("r.json"))
-    V_fit, report = gproj.marionette_fit(Vp, Fp, target)
+    V_fit, report = gproj.marionette(Vp, Fp, fit=(target, Fp))
     expected = cli.read_report("r.json")
     expected["fit"] = None
     assert_reports_equal(report, expected)
     assert_close(V_fit, gproj.read_mesh(cli.path("f.obj"))[0])
+
+
+def test_marionette_closed_strip_and_polygon_plan_equal_the_command_line(cli):
+    strip = DATA / "marionette_closed_strip.txt"
+    cli.run("marionette", "--closed-strip", strip, "-o", cli.path("s.obj"),
+            "--report", cli.path("r.json"))
+    result, report = gproj.marionette(closed_strip=strip.read_text())
+    V, F = result["output"]  # no plan: the strip's own connectivity comes back
+    Vc, Fc = gproj.read_mesh(cli.path("s.obj"))
+    assert_close(V, Vc)
+    assert (F == Fc).all()
+    expected = cli.read_report("r.json")
+    assert expected["input"] == str(strip)
+    assert_reports_equal(report, expected)
+    with pytest.raises(TypeError, match="closed_strip: expected a str"):
+        gproj.marionette(closed_strip=strip)
+    with pytest.raises(ValueError, match="^closed_strip:1: "):
+        gproj.marionette(closed_strip="1 2 3\n")
+    # A plan of polygons lifted from held heights: a dict of vertex heights as --hold's words.
+    plan = DATA / "marionette_kagome.obj"
+    Vk, Fk = gproj.read_mesh(str(plan))
+    cli.run("marionette", plan, "-o", cli.path("k.obj"), "--hold", "0:0.2,40:0.5,100:0.1")
+    V_out, report = gproj.marionette(Vk, Fk, hold={0: 0.2, 40: 0.5, 100: 0.1})
+    assert_close(V_out, gproj.read_mesh(cli.path("k.obj"))[0])
+    assert report["options"]["hold"] == [[0, 0.2], [40, 0.5], [100, 0.1]]
+    assert abs(V_out[40, 2] - 0.5) < 1e-9
+    with pytest.raises(ValueError, match="hold: vertex 40 is given twice"):
+        gproj.marionette(Vk, Fk, hold=[[40, 0.5], [40, 0.1]])
+
+
+def test_canal_from_two_curves_equals_the_command_line(cli):
+    first, second = DATA / "canal_curve_fine.txt", DATA / "canal_second_curve.txt"
+    cli.run("canal", first, "--second-curve", second, "--normal", "0,0,1", "--segments", 6,
+            "-o", cli.path("c.obj"), "--report", cli.path("r.json"))
+    result, report = gproj.canal(np.loadtxt(first), second_curve=np.loadtxt(second),
+                                 normal=[0, 0, 1], segments=6)
+    assert_close(result["output"][0], gproj.read_mesh(cli.path("c.obj"))[0])
+    expected = cli.read_report("r.json")
+    assert expected["second_curve"] == str(second)
+    assert_reports_equal(report, expected)
+    assert len(report["spheres"]) == 49
+    with pytest.raises(ValueError, match="^second_curve needs normal"):
+        gproj.canal(np.loadtxt(first), second_curve=np.loadtxt(second))
+
+
+def test_grid_returns_the_mesh_alone_as_the_command_line_writes_it(cli):
+    cli.run("grid", "-o", cli.path("g.obj"), "--nu", 5, "--nv", 7, "--surface", "enneper",
+            "--noise", 0.02, "--seed", 9)
+    V, F = gproj.grid(nu=5, nv=7, surface="enneper", noise=0.02, seed=9)
+    Vc, Fc = gproj.read_mesh(cli.path("g.obj"))
+    assert V.shape == (35, 3) and F.shape == (24, 4)
+    assert_close(V, Vc, tol=1e-9)  # the OBJ text rounds
+    assert (F == Fc).all()
+    assert gproj.grid.__doc__.startswith("grid(*, surface='paraboloid', nu=21, nv=21")
+    with pytest.raises(ValueError, match="^nu: 1 is not in \\[2, 100000\\]"):
+        gproj.grid(nu=1)
+    with pytest.raises(TypeError, match="did you mean noise"):
+        gproj.grid(nosie=0.1)

@@ -21,6 +21,8 @@ def test_version_is_the_command_lines(cli):
 
 
 def python_literal(value):
+    if isinstance(value, list):
+        return "[" + ", ".join(python_literal(v) for v in value) + "]"
     return repr(value) if not isinstance(value, float) else "%g" % value
 
 
@@ -38,7 +40,7 @@ def test_every_problem_is_a_function_whose_doc_gives_every_option(problem):
         assert f"{option['name']}={shown}" in signature, option["name"]
         assert f"    {option['name']} ({option['type']}" in function.__doc__
     for item in spec["inputs"]:
-        if not item["required"]:
+        if not item["positional"]:
             assert f"{item['name']}=None" in signature
 
 

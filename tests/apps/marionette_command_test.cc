@@ -212,8 +212,9 @@ TEST_F(MarionetteMeshCommandTest, MissedToleranceExitsThreeWithTheResultWritten)
 TEST_F(MarionetteMeshCommandTest, RefusesBadProjectionOptions) {
   const std::string tower = kData + "marionette_tower_12x18.obj --row " + Repeat("7", 19) +
                             " --column " + Repeat("7", 13);
-  ExpectRefused(tower + " --projection cylindrical --axis 0,0,1", "--axis needs six numbers");
-  ExpectRefused(tower + " --projection conic", "--projection must be vertical, cylindrical");
+  ExpectRefused(tower + " --projection cylindrical --axis 0,0,1", "--axis: expects 6 numbers");
+  ExpectRefused(tower + " --projection conic",
+                "--projection: 'conic' is not one of vertical, cylindrical, central");
   ExpectRefused(tower + " --projection cylindrical --axis 0,0,0,0,0,0",
                 "the axis direction must not be zero");
   // The tower's first vertex (10, 0, 0) at the centre: it has no line.
@@ -326,7 +327,8 @@ TEST_F(MarionetteMeshCommandTest, FitsWithHardConstraintsAndPartialTargets) {
                 "use --solver direct");
   ExpectRefused(plan + " --row 0,0,0,0,0,0,0 --column 0,0,0,0,0,0,0,0,0 --volume 1",
                 "constrain a fit");
-  ExpectRefused(plan + " --fit " + Path("target.obj") + " --hold 3x:1", "--hold '3x:1'");
+  ExpectRefused(plan + " --fit " + Path("target.obj") + " --hold 3x:1",
+                "--hold: 3x is not an integer");
   std::ofstream bad(dir_ / "bad.txt");
   bad << "0 0.1\n99 0.2\n";
   bad.close();

@@ -42,7 +42,7 @@ TEST_F(OptionValidationTest, NonFiniteAndOutOfRangeValuesAreRefusedNamingTheOpti
       {weingarten + " --alignment nan", "--alignment", "nan is not a finite number"},
       {weingarten + " --boundary nan", "--boundary", "nan is not a finite number"},
       {weingarten + " --soft-start nan", "--soft-start", "nan is not a finite number"},
-      {weingarten + " --molds -5", "--molds", "-5 is not in [0, 1e+06]"},
+      {weingarten + " --molds -5", "--molds", "-5 is not in [0, 1000000]"},
       {weingarten + " --samples 0 0", "--samples", "0 is not in [5, 100000]"},
       {"marionette " + Data("marionette_plan_21x21.obj") + " -o " + Path("out.obj") +
            " --max-iterations -5",

@@ -84,11 +84,11 @@ TEST(MarionetteInputsTest, ProjectionFromValuesChecksTheCounts) {
   EXPECT_EQ(InputErrorOf([] {
               MarionetteProjectionFromValues("conic", {0, 0, 0, 0, 0, 1}, {0, 0, 0});
             }),
-            "--projection must be vertical, cylindrical or central, not 'conic'");
+            "`projection` must be vertical, cylindrical or central, not 'conic'");
   EXPECT_EQ(InputErrorOf([] {
               MarionetteProjectionFromValues("central", {0, 0, 0, 0, 0, 1}, {0, 0});
             }),
-            "--centre needs three numbers x,y,z, got 2");
+            "`centre` needs three numbers x,y,z, got 2");
 }
 
 }  // namespace

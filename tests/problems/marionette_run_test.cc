@@ -20,25 +20,25 @@ std::string ErrorOf(const MarionetteRunOptions& options) {
 
 TEST(MarionetteRunTest, RefusesMissingOrConflictingInputs) {
   MarionetteRunOptions options;
-  EXPECT_EQ(ErrorOf(options), "give a plan view (or --closed-strip FILE)");
+  EXPECT_EQ(ErrorOf(options), "give a plan view (or `closed_strip`)");
   options.plan = kData + "marionette_plan_21x21.obj";
   EXPECT_EQ(ErrorOf(options),
-            "give the guide curves (--row and --column heights, or --guides) or a target (--fit, "
-            "--fit-heights)");
+            "give the guide curves (`row` and `column` heights, or `guides`) or a target (`fit`, "
+            "`fit_heights`)");
   options.closed_strip = kData + "marionette_closed_strip.txt";
-  EXPECT_EQ(ErrorOf(options), "give either a plan or --closed-strip, not both");
+  EXPECT_EQ(ErrorOf(options), "give either a plan or `closed_strip`, not both");
   options.closed_strip.clear();
   options.fit = kData + "marionette_plan_21x21.obj";
   options.row = {1, 2};
   EXPECT_EQ(ErrorOf(options),
-            "give either a target (--fit, --fit-heights) or --row/--column, not both");
+            "give either a target (`fit`, `fit_heights`) or `row`/`column`, not both");
   options.fit_heights = kData + "marionette_valence6_guides.txt";
-  EXPECT_EQ(ErrorOf(options), "give either --fit or --fit-heights, not both");
+  EXPECT_EQ(ErrorOf(options), "give either `fit` or `fit_heights`, not both");
   options.fit_heights.clear();
   options.fit.clear();
   options.guides = kData + "marionette_valence6_guides.txt";
   options.row = {1, 2};
-  EXPECT_EQ(ErrorOf(options), "give either --guides or --row/--column, not both");
+  EXPECT_EQ(ErrorOf(options), "give either `guides` or `row`/`column`, not both");
 }
 
 // The plan and the guides held in memory give the same run as their files; the names stand
@@ -70,7 +70,7 @@ TEST(MarionetteRunTest, InputsFromMemoryEqualInputsFromFiles) {
   memory.plan_mesh = triangle;
   // A plan with polygons other than quads takes prescribed heights, not guides (002 §4.2).
   EXPECT_EQ(ErrorOf(memory),
-            "plan: a plan of polygons is lifted from prescribed heights (--hold VERTEX:HEIGHT) and "
+            "plan: a plan of polygons is lifted from prescribed heights (`hold` VERTEX:HEIGHT) and "
             "fairness; guides, rows, columns and fits need quads");
 }
 

@@ -99,6 +99,35 @@ TEST(OptionSchemaTest, PointsAreTriplesInTheirOrder) {
             "point 0 is not three numbers x, y, z");
 }
 
+// Vertex values: "ID:VALUE" words, pairs or an object of ids; ids whole, once, values in range.
+TEST(OptionSchemaTest, VertexValuesArePairsOfAnIdAndAValue) {
+  OptionSpec hold = Spec(OptionType::kVertexValues);
+  hold.min = -10.0;
+  const nlohmann::json pairs = {{12, 0.5}, {3, -1.0}};
+  EXPECT_EQ(ParseOptionText(hold, "12:0.5,3:-1"), pairs);
+  EXPECT_EQ(CheckOptionValue(hold, {{12.0, 0.5}, {3, -1}}), pairs);
+  const nlohmann::json object = {{"3", -1}, {"12", 0.5}};  // Python's {3: -1, 12: 0.5}
+  ASSERT_TRUE(object.is_object());
+  EXPECT_EQ(CheckOptionValue(hold, object), nlohmann::json({{3, -1.0}, {12, 0.5}}));  // by id
+  EXPECT_EQ(OptionText(pairs), "12:0.5,3:-1");
+  EXPECT_EQ(RuleOf([&] { ParseOptionText(hold, "12=0.5"); }),
+            "'12=0.5' is not VERTEX:VALUE (e.g. 12:0.5)");
+  EXPECT_EQ(RuleOf([&] { ParseOptionText(hold, "3x:1"); }), "3x is not an integer");
+  EXPECT_EQ(RuleOf([&] { ParseOptionText(hold, "1:-11"); }), "-11 is not >= -10");
+  EXPECT_EQ(RuleOf([&] { CheckOptionValue(hold, {{-1, 0.0}}); }), "-1 is not in [0, 2000000000]");
+  EXPECT_EQ(RuleOf([&] { CheckOptionValue(hold, {{1.5, 0.0}}); }), "1.5 is not an integer");
+  EXPECT_EQ(RuleOf([&] {
+              CheckOptionValue(hold, {{1, 0.0}, {1, 2.0}});
+            }),
+            "vertex 1 is given twice");
+  EXPECT_EQ(RuleOf([&] {
+              CheckOptionValue(hold, {{1, 0.0, 3.0}});
+            }),
+            "entry 0 is not a pair [vertex, value]");
+  EXPECT_EQ(RuleOf([&] { CheckOptionValue(hold, 3.0); }),
+            "3 is not a list of [vertex, value] pairs");
+}
+
 TEST(OptionSchemaTest, CompleteOptionsFillsDefaultsAndRefusesUnknownNames) {
   OptionSpec tolerance = Spec(OptionType::kNumber);
   tolerance.name = "tolerance", tolerance.default_value = 1e-9, tolerance.min = 0.0;

@@ -36,7 +36,20 @@ TEST(RegistryTest, RefusesMalformedEntries) {
   option.name = "tolerance", option.default_value = -1.0, option.min = 0.0;
   out_of_range.options = {option};
   EXPECT_THROW(registry.Add(out_of_range), std::invalid_argument);
-  EXPECT_EQ(registry.problems().size(), 1u);
+  ProblemSpec positional = Minimal("six");  // two optional positional inputs
+  positional.inputs = {{"plan", InputKind::kMesh, "", false, true},
+                       {"strip", InputKind::kText, "", false, true}};
+  EXPECT_THROW(registry.Add(positional), std::invalid_argument);
+  ProblemSpec generator = Minimal("seven");  // a generator without its mesh
+  generator.generator = true;
+  generator.outputs = {{"picture", OutputKind::kSvg, "", true}};
+  EXPECT_THROW(registry.Add(generator), std::invalid_argument);
+  generator.inputs = {{"mesh", InputKind::kMesh, "", true}};
+  generator.outputs = {{"output", OutputKind::kMesh, "", true}};
+  EXPECT_THROW(registry.Add(generator), std::invalid_argument);  // one with an input
+  generator.inputs.clear();
+  registry.Add(generator);
+  EXPECT_EQ(registry.problems().size(), 2u);
   EXPECT_NE(registry.Find("one"), nullptr);
   EXPECT_EQ(registry.Find("two"), nullptr);
 }
@@ -50,7 +63,8 @@ TEST(RegistryTest, TheBuiltinRegistryDescribesEveryProblem) {
   for (const nlohmann::json& problem : schema["problems"]) {
     SCOPED_TRACE(problem["name"].get<std::string>());
     EXPECT_FALSE(problem["summary"].get<std::string>().empty());
-    EXPECT_FALSE(problem["inputs"].empty());
+    EXPECT_EQ(problem["inputs"].empty(),
+              problem["generator"].get<bool>());  // only generators have none
     EXPECT_FALSE(problem["outputs"].empty());
     for (const nlohmann::json& option : problem["options"]) {
       SCOPED_TRACE(option["name"].get<std::string>());
