@@ -7,10 +7,10 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "geometry/face_colours.h"
-#include "geometry/mesh_io.h"
-#include "geometry/svg_render.h"
-#include "problems/run/mesh_outputs.h"
+#include "gproj/geometry/io/mesh_io.h"
+#include "gproj/geometry/render/face_colours.h"
+#include "gproj/geometry/render/svg_render.h"
+#include "gproj/problems/mesh/mesh_outputs.h"
 
 namespace gproj {
 

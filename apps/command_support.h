@@ -8,12 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "geometry/mesh_io.h"
-#include "geometry/quad_shape.h"
-#include "problems/guided_problem.h"
-#include "problems/panel_bounds.h"
-#include "problems/report_json.h"
-#include "problems/vertex_control.h"
+#include "gproj/geometry/io/mesh_io.h"
+#include "gproj/geometry/mesh/quad_shape.h"
+#include "gproj/problems/mesh/panel_bounds.h"
+#include "gproj/problems/mesh/vertex_control.h"
+#include "gproj/problems/run/guided_problem.h"
+#include "gproj/problems/run/report_json.h"
 
 namespace gproj {
 

@@ -5,11 +5,11 @@
 #include <CLI/CLI.hpp>
 
 #include "apps/command_support.h"
-#include "problems/run/registry.h"
+#include "gproj/problems/run/registry.h"
 
 namespace gproj {
 
-// Registers the subcommand of a problem of the registry (problems/run/registry.h), generated
+// Registers the subcommand of a problem of the registry (gproj/problems/run/registry.h), generated
 // from its spec; *exit_code receives the handler's exit code. `spec` must outlive `app`.
 void RegisterProblemCommand(CLI::App* app, const ProblemSpec& spec, int* exit_code);
 // Registers `gproj schema` (the registry as JSON).

@@ -8,8 +8,8 @@
 #include <memory>
 
 #include "apps/commands.h"
-#include "geometry/text_input.h"
-#include "problems/run/registry.h"
+#include "gproj/geometry/io/text_input.h"
+#include "gproj/problems/run/registry.h"
 
 namespace gproj {
 namespace {

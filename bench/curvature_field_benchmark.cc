@@ -7,8 +7,8 @@
 //   BM_QuadExtraction/n   the quads traced along the map's integer iso-lines
 #include <benchmark/benchmark.h>
 
-#include "geometry/curvature_field.h"
-#include "problems/quad_remeshing.h"
+#include "gproj/geometry/mesh/curvature_field.h"
+#include "gproj/problems/remesh/quad_remeshing.h"
 
 namespace gproj {
 namespace {

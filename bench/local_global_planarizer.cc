@@ -5,8 +5,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "geometry/quad_shape.h"
-#include "solver/sparse_cholesky.h"
+#include "gproj/geometry/mesh/quad_shape.h"
+#include "gproj/solver/sparse_cholesky.h"
 
 namespace gproj {
 

@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/mesh_io.h"
+#include "gproj/geometry/io/mesh_io.h"
 
 namespace gproj {
 

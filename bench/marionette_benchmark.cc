@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "geometry/quad_grid.h"
-#include "problems/marionette.h"
+#include "gproj/geometry/mesh/quad_grid.h"
+#include "gproj/problems/marionette/marionette.h"
 
 namespace gproj {
 namespace {

@@ -6,8 +6,8 @@
 
 #include <chrono>
 
-#include "geometry/parametric_grid.h"
-#include "problems/hnet.h"
+#include "gproj/geometry/mesh/parametric_grid.h"
+#include "gproj/problems/nets/hnet.h"
 #include "solver_counters.h"
 
 namespace gproj {

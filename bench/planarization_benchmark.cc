@@ -22,9 +22,9 @@
 #include <utility>
 
 #include "dense_rate.h"
-#include "geometry/quad_grid.h"
+#include "gproj/geometry/mesh/quad_grid.h"
+#include "gproj/problems/pq/pq_planarization.h"
 #include "local_global_planarizer.h"
-#include "problems/pq_planarization.h"
 #include "solver_counters.h"
 
 namespace gproj {

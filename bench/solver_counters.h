@@ -3,7 +3,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include "solver/guided_projection.h"
+#include "gproj/solver/guided_projection.h"
 
 namespace gproj {
 

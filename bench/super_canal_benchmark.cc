@@ -9,9 +9,9 @@
 
 #include <cmath>
 
-#include "geometry/parametric_grid.h"
-#include "problems/combescure.h"
-#include "problems/cyclidic_surface.h"
+#include "gproj/geometry/mesh/parametric_grid.h"
+#include "gproj/problems/circular/combescure.h"
+#include "gproj/problems/circular/cyclidic_surface.h"
 
 namespace gproj {
 namespace {

@@ -12,8 +12,8 @@
 #include <memory>
 #include <random>
 
-#include "constraints/quad_planarity.h"
-#include "solver/linearized_system.h"
+#include "gproj/constraints/quad_planarity.h"
+#include "gproj/solver/internal/linearized_system.h"
 
 namespace gproj {
 namespace {

@@ -12,7 +12,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bench/solver_counters.h"
-#include "problems/weingarten.h"
+#include "gproj/problems/weingarten/weingarten.h"
 
 namespace gproj {
 namespace {

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "solver/ceres_adapter.h"
-#include "solver/guided_projection.h"
+#include "gproj/solver/ceres_adapter.h"
+#include "gproj/solver/guided_projection.h"
 
 // The custom constraint: one row per point p (an item of 2 scalars).
 struct OnUnitCircle {

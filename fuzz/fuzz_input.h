@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <string>
 
-#include "geometry/input_error.h"
+#include "gproj/common/input_error.h"
 
 namespace gproj {
 namespace fuzz {

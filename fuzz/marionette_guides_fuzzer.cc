@@ -1,7 +1,7 @@
 // libFuzzer target: Marionette guide files through ReadMarionetteGuides, for a mesh of 100
 // vertices.
 #include "fuzz/fuzz_input.h"
-#include "problems/marionette_inputs.h"
+#include "gproj/problems/marionette/marionette_inputs.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   return gproj::fuzz::ReadFromFile(data, size, ".txt", [](const std::string& path) {

@@ -1,6 +1,6 @@
 // libFuzzer target: OFF meshes through ReadMesh (reading and validation).
 #include "fuzz/fuzz_input.h"
-#include "geometry/mesh_io.h"
+#include "gproj/geometry/io/mesh_io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   return gproj::fuzz::ReadFromFile(data, size, ".off",

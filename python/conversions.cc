@@ -5,7 +5,7 @@
 #include <climits>
 #include <cmath>
 
-#include "geometry/input_error.h"
+#include "gproj/common/input_error.h"
 
 namespace gproj::python {
 
@@ -21,7 +21,7 @@ std::string ShapeText(const py::array& array) {
   return text + (array.ndim() == 1 ? ",)" : ")");
 }
 
-// The library's message for a face index outside the vertices (geometry/mesh_io.cc).
+// The library's message for a face index outside the vertices (gproj/geometry/io/mesh_io.cc).
 [[noreturn]] void IndexOutOfRange(std::size_t face, long long index, std::size_t num_vertices) {
   throw InputError("mesh: face " + std::to_string(face) + " references vertex " +
                    std::to_string(index) + ", but the mesh has " + std::to_string(num_vertices) +

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/mesh_io.h"
+#include "gproj/geometry/io/mesh_io.h"
 
 namespace gproj::python {
 

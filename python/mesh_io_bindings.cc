@@ -2,7 +2,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/quad_shape.h"
+#include "gproj/geometry/mesh/quad_shape.h"
 #include "python/conversions.h"
 #include "python/module.h"
 

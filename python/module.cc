@@ -1,9 +1,9 @@
 // The `gproj` Python module: guided projection from numpy.
 #include "python/module.h"
 
-#include "geometry/input_error.h"
-#include "problems/run/option_schema.h"
-#include "problems/run/registry.h"
+#include "gproj/common/input_error.h"
+#include "gproj/problems/run/option_schema.h"
+#include "gproj/problems/run/registry.h"
 
 PYBIND11_MODULE(gproj, m) {
   m.doc() = R"(gproj: guided projection for architectural geometry, from numpy.

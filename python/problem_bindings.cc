@@ -1,4 +1,4 @@
-// gproj.Problem: the generic API (solver/problem.h) from Python — variable blocks, the
+// gproj.Problem: the generic API (gproj/solver/problem.h) from Python — variable blocks, the
 // built-in planarity, closeness and fairness terms, terms written in Python, and a solve by
 // guided projection or by Ceres returning the summary as a dict.
 #include <pybind11/numpy.h>
@@ -8,18 +8,18 @@
 #include <string>
 #include <vector>
 
-#include "constraints/closeness.h"
-#include "constraints/polyline_fairness.h"
-#include "constraints/quad_planarity.h"
-#include "geometry/input_error.h"
-#include "problems/guided_problem.h"
+#include "gproj/common/input_error.h"
+#include "gproj/constraints/closeness.h"
+#include "gproj/constraints/polyline_fairness.h"
+#include "gproj/constraints/quad_planarity.h"
+#include "gproj/problems/run/guided_problem.h"
+#include "gproj/solver/ceres_adapter.h"
+#include "gproj/solver/guided_projection.h"
 #include "python/module.h"
 #include "python/problem_solve.h"
 #include "python/python_term.h"
 #include "python/run_bridge.h"
 #include "python/solver_args.h"
-#include "solver/ceres_adapter.h"
-#include "solver/guided_projection.h"
 
 namespace gproj::python {
 namespace {

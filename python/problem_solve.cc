@@ -1,7 +1,7 @@
 #include "python/problem_solve.h"
 
-#include "geometry/input_error.h"
-#include "problems/guided_problem.h"
+#include "gproj/common/input_error.h"
+#include "gproj/problems/run/guided_problem.h"
 #include "python/run_bridge.h"
 
 namespace gproj::python {

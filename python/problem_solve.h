@@ -5,10 +5,10 @@
 
 #include <string>
 
+#include "gproj/solver/ceres_adapter.h"
+#include "gproj/solver/guided_projection.h"
+#include "gproj/solver/problem.h"
 #include "python/python_term.h"
-#include "solver/ceres_adapter.h"
-#include "solver/guided_projection.h"
-#include "solver/problem.h"
 
 namespace gproj::python {
 

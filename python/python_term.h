@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/constraint_family.h"
+#include "gproj/solver/constraint_family.h"
 
 namespace gproj::python {
 

@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "problems/run/registry.h"
+#include "gproj/problems/run/registry.h"
 #include "python/conversions.h"
 #include "python/module.h"
 #include "python/run_bridge.h"

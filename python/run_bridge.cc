@@ -1,6 +1,6 @@
 #include "python/run_bridge.h"
 
-#include "problems/report_json.h"
+#include "gproj/problems/run/report_json.h"
 #include "python/conversions.h"
 
 namespace gproj::python {

@@ -11,13 +11,13 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "problems/guided_problem.h"
+#include "gproj/problems/run/guided_problem.h"
 
 namespace gproj::python {
 
 namespace py = pybind11;
 
-// A record as the report's history entry (problems/report_json.h), as a dict.
+// A record as the report's history entry (gproj/problems/run/report_json.h), as a dict.
 py::dict RecordToPython(const RunRecord& record);
 // ReportJson(command, report, extra) as a dict.
 py::dict ReportToPython(const std::string& command, const RunReport& report,

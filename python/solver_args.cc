@@ -1,6 +1,6 @@
 #include "python/solver_args.h"
 
-#include "geometry/input_error.h"
+#include "gproj/common/input_error.h"
 
 namespace gproj::python {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <tuple>
 
-#include "solver/guided_projection.h"
+#include "gproj/solver/guided_projection.h"
 
 namespace gproj::python {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "problems/weingarten.h"
+#include "gproj/problems/weingarten/weingarten.h"
 #include "python/conversions.h"
 #include "python/module.h"
 #include "python/run_bridge.h"

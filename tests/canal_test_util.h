@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "problems/canal_surface.h"
+#include "gproj/problems/circular/canal_surface.h"
 
 namespace gproj {
 

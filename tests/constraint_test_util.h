@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "solver/constraint_family.h"
+#include "gproj/solver/constraint_family.h"
 
 namespace gproj {
 

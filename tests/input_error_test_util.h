@@ -4,7 +4,7 @@
 #include <functional>
 #include <string>
 
-#include "geometry/input_error.h"
+#include "gproj/common/input_error.h"
 
 namespace gproj {
 

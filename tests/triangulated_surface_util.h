@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "geometry/mesh_io.h"
+#include "gproj/geometry/io/mesh_io.h"
 
 namespace gproj {
 

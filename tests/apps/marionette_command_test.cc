@@ -11,7 +11,7 @@
 #include <string>
 
 #include "apps/command_test_util.h"
-#include "geometry/mesh_io.h"
+#include "gproj/geometry/io/mesh_io.h"
 
 namespace gproj {
 namespace {

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "apps/command_test_util.h"
-#include "geometry/mesh_io.h"
+#include "gproj/geometry/io/mesh_io.h"
 
 namespace gproj {
 namespace {

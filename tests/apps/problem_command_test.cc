@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "command_test_util.h"
-#include "problems/run/registry.h"
+#include "gproj/problems/run/registry.h"
 
 namespace gproj {
 namespace {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "apps/command_test_util.h"
-#include "geometry/mesh_io.h"
+#include "gproj/geometry/io/mesh_io.h"
 #include "triangulated_surface_util.h"
 
 namespace gproj {

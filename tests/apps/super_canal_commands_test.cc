@@ -7,8 +7,8 @@
 #include <string>
 
 #include "apps/command_test_util.h"
-#include "geometry/circle.h"
-#include "geometry/mesh_io.h"
+#include "gproj/geometry/io/mesh_io.h"
+#include "gproj/geometry/mesh/circle.h"
 
 namespace gproj {
 namespace {

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "apps/command_test_util.h"
-#include "geometry/bspline_surface.h"
-#include "geometry/helical_fit.h"
+#include "gproj/geometry/surface/bspline_surface.h"
+#include "gproj/problems/weingarten/helical_fit.h"
 
 namespace gproj {
 namespace {

@@ -1,4 +1,4 @@
-#include "constraints/circular_quad.h"
+#include "gproj/constraints/circular_quad.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "constraints/closeness.h"
+#include "gproj/constraints/closeness.h"
 
 #include <gtest/gtest.h>
 

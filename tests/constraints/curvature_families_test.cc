@@ -4,10 +4,10 @@
 #include <random>
 
 #include "constraint_test_util.h"
-#include "constraints/control_net.h"
-#include "constraints/curvature_relations.h"
-#include "constraints/geodesic_parallel_isolines.h"
-#include "constraints/isoline_alignment.h"
+#include "gproj/constraints/control_net.h"
+#include "gproj/constraints/curvature_relations.h"
+#include "gproj/constraints/geodesic_parallel_isolines.h"
+#include "gproj/constraints/isoline_alignment.h"
 
 namespace gproj {
 namespace {

@@ -1,4 +1,4 @@
-#include "constraints/edge_parallelism.h"
+#include "gproj/constraints/edge_parallelism.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "constraints/frame_point_planarity.h"
+#include "gproj/constraints/frame_point_planarity.h"
 
 #include <gtest/gtest.h>
 

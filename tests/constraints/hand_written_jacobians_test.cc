@@ -12,17 +12,17 @@
 #include <cmath>
 #include <random>
 
-#include "constraints/circular_quad.h"
-#include "constraints/closeness.h"
-#include "constraints/control_net.h"
-#include "constraints/curvature_auxiliaries.h"
-#include "constraints/edge_parallelism.h"
-#include "constraints/frame_point_planarity.h"
-#include "constraints/isoline_alignment.h"
-#include "constraints/line_quad_planarity.h"
-#include "constraints/marionette_planarity.h"
-#include "constraints/normal_orthogonality.h"
-#include "constraints/quad_diagonal_planarity.h"
+#include "gproj/constraints/circular_quad.h"
+#include "gproj/constraints/closeness.h"
+#include "gproj/constraints/control_net.h"
+#include "gproj/constraints/curvature_auxiliaries.h"
+#include "gproj/constraints/edge_parallelism.h"
+#include "gproj/constraints/frame_point_planarity.h"
+#include "gproj/constraints/isoline_alignment.h"
+#include "gproj/constraints/line_quad_planarity.h"
+#include "gproj/constraints/marionette_planarity.h"
+#include "gproj/constraints/normal_orthogonality.h"
+#include "gproj/constraints/quad_diagonal_planarity.h"
 
 namespace gproj {
 namespace {

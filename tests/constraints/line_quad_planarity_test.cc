@@ -1,4 +1,4 @@
-#include "constraints/line_quad_planarity.h"
+#include "gproj/constraints/line_quad_planarity.h"
 
 #include <gtest/gtest.h>
 

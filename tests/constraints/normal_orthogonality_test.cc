@@ -1,4 +1,4 @@
-#include "constraints/normal_orthogonality.h"
+#include "gproj/constraints/normal_orthogonality.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "constraints/panel_validity.h"
+#include "gproj/constraints/panel_validity.h"
 
 #include <gtest/gtest.h>
 

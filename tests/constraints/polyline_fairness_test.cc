@@ -1,4 +1,4 @@
-#include "constraints/polyline_fairness.h"
+#include "gproj/constraints/polyline_fairness.h"
 
 #include <gtest/gtest.h>
 

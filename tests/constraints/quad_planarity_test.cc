@@ -1,4 +1,4 @@
-#include "constraints/quad_planarity.h"
+#include "gproj/constraints/quad_planarity.h"
 
 #include <gtest/gtest.h>
 

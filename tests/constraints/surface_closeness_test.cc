@@ -1,4 +1,4 @@
-#include "constraints/surface_closeness.h"
+#include "gproj/constraints/surface_closeness.h"
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
-#include "solver/ceres_adapter.h"
+#include "gproj/solver/ceres_adapter.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/QR>
 
-#include "solver/guided_projection.h"
+#include "gproj/solver/guided_projection.h"
 #include "test_problems.h"
 
 namespace gproj {

@@ -1,11 +1,11 @@
-#include "solver/guided_projection.h"
+#include "gproj/solver/guided_projection.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
 
-#include "solver/ceres_adapter.h"
-#include "solver/linearized_system.h"
+#include "gproj/solver/ceres_adapter.h"
+#include "gproj/solver/internal/linearized_system.h"
 #include "test_problems.h"
 
 namespace gproj {

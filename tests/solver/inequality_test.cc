@@ -1,12 +1,12 @@
-#include "solver/inequality.h"
+#include "gproj/solver/inequality.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "constraint_test_util.h"
-#include "solver/ceres_adapter.h"
-#include "solver/guided_projection.h"
+#include "gproj/solver/ceres_adapter.h"
+#include "gproj/solver/guided_projection.h"
 
 namespace gproj {
 namespace {

@@ -1,5 +1,5 @@
 // One conformance suite run over every sparse Cholesky backend.
-#include "solver/sparse_cholesky.h"
+#include "gproj/solver/sparse_cholesky.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "solver/term.h"
+#include "gproj/solver/term.h"
 
 #include <gtest/gtest.h>
 
@@ -8,10 +8,10 @@
 #include <vector>
 
 #include "constraint_test_util.h"
-#include "constraints/quad_planarity.h"
-#include "solver/ceres_adapter.h"
-#include "solver/guided_projection.h"
-#include "solver/problem.h"
+#include "gproj/constraints/quad_planarity.h"
+#include "gproj/solver/ceres_adapter.h"
+#include "gproj/solver/guided_projection.h"
+#include "gproj/solver/problem.h"
 #include "test_problems.h"
 
 namespace gproj {

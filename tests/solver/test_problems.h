@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include "solver/problem.h"
+#include "gproj/solver/problem.h"
 
 namespace gproj {
 

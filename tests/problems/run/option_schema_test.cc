@@ -1,4 +1,4 @@
-#include "problems/run/option_schema.h"
+#include "gproj/problems/run/option_schema.h"
 
 #include <gtest/gtest.h>
 

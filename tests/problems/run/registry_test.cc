@@ -1,11 +1,11 @@
-#include "problems/run/registry.h"
+#include "gproj/problems/run/registry.h"
 
 #include <gtest/gtest.h>
 
 #include <stdexcept>
 
-#include "geometry/quad_grid.h"
-#include "problems/pq_planarization.h"
+#include "gproj/geometry/mesh/quad_grid.h"
+#include "gproj/problems/pq/pq_planarization.h"
 
 namespace gproj {
 namespace {

@@ -1,0 +1,59 @@
+#pragma once
+// Valid panels (SPEC §3 inequalities, Tang et al. 2014 §4): bounds that keep a quad mesh
+// buildable while other rows make it planar, circular or asymptotic.
+//   Corner angles: for corner i of quad (v0, v1, v2, v3)
+//     sin∠_i = ((v_{i+1} − v_i) × (v_{i−1} − v_i)) · N / (|v_{i+1} − v_i| |v_{i−1} − v_i| |N|),
+//     N = (v2 − v0) × (v3 − v1)  (the diagonals' normal),
+//   and g_i = sin∠_i − s_i ≥ 0 keeps ∠_i in [arcsin s_i, 180° − arcsin s_i]: the signed sine is
+//   negative at a reflex corner, so s_i > 0 on all four corners means a convex, unfolded quad.
+//   Edge lengths: g = (v_b − v_a) · u − ℓ_min ≥ 0 with u the edge's unit direction in the input,
+//   and ℓ_max² − |v_b − v_a|² ≥ 0. The lower row keeps its gradient at zero length (|e|² − ℓ²
+//   does not: an edge collapsed past it stayed collapsed) and counts a flipped edge as broken.
+// Both are added through AddInequalities (one slack per row, eliminated with the auxiliaries).
+
+#include <array>
+
+#include "gproj/geometry/mesh/quad_shape.h"
+#include "gproj/solver/inequality.h"
+
+namespace gproj {
+
+// Lower bounds s_i on the four corner sines of one quad.
+struct QuadCornerBounds {
+  std::array<double, 4> min_sine = {0.0, 0.0, 0.0, 0.0};
+};
+
+struct QuadCornerResidual {
+  template <typename T>
+  void operator()(const QuadCornerBounds& bounds, const T* v0, const T* v1, const T* v2,
+                  const T* v3, T* r) const {
+    QuadCornerSines(v0, v1, v2, v3, r);
+    for (int i = 0; i < 4; ++i) r[i] -= bounds.min_sine[i];
+  }
+};
+
+// One bound on an edge: a lower bound `length` along `direction` (unit), or, with a zero
+// direction, an upper bound `length` on |v_b − v_a|.
+struct EdgeLengthBound {
+  std::array<double, 3> direction = {0.0, 0.0, 0.0};
+  double length = 0.0;
+};
+
+struct EdgeLengthResidual {
+  template <typename T>
+  void operator()(const EdgeLengthBound& bound, const T* a, const T* b, T* r) const {
+    const auto& u = bound.direction;
+    if (u[0] != 0.0 || u[1] != 0.0 || u[2] != 0.0) {
+      r[0] = (b[0] - a[0]) * u[0] + (b[1] - a[1]) * u[1] + (b[2] - a[2]) * u[2] - bound.length;
+      return;
+    }
+    const T squared = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
+                      (b[2] - a[2]) * (b[2] - a[2]);
+    r[0] = bound.length * bound.length - squared;
+  }
+};
+
+using QuadCornerTerm = InequalityTerm<QuadCornerBounds, QuadCornerResidual, 4, 3, 3, 3, 3>;
+using EdgeLengthTerm = InequalityTerm<EdgeLengthBound, EdgeLengthResidual, 1, 3, 3>;
+
+}  // namespace gproj

@@ -1,0 +1,171 @@
+// `hnet` in the registry: an A-net extended to smoothly joined rational bilinear patches.
+#include <cstdio>
+
+#include "gproj/geometry/render/svg_render.h"
+#include "gproj/problems/nets/anet_options.h"
+#include "gproj/problems/nets/hnet.h"
+#include "gproj/problems/run/builtin_problems.h"
+
+namespace gproj {
+namespace {
+
+struct HNetSettings {
+  HNetOptions options;
+  std::string solver = "gp";
+  std::string star_form = "normals";
+  int samples = 8;
+};
+
+const OptionSchema<HNetSettings>& Schema() {
+  static const OptionSchema<HNetSettings> schema = [] {
+    using S = HNetSettings;
+    OptionSchema<S> s;
+    AddANetOptions<S>(
+        &s, [](S& x) -> ANetOptions& { return x.options.anet; },
+        [](S& x) -> std::string& { return x.solver; },
+        [](S& x) -> std::string& { return x.star_form; });
+    s.Field<int>("rounds", OptionType::kInt, "Alternations of weight and vertex updates at most",
+                 [](S& x) -> int& { return x.options.max_rounds; })
+        .Range(1, 1000);
+    s.Field<double>("frame_weight", OptionType::kNumber, "Weight of frame-point planarity",
+                    [](S& x) -> double& { return x.options.frame_weight; })
+        .Positive();
+    s.Field<bool>("allow_not_simply_connected", OptionType::kBool,
+                  "Optimise meshes that are not simply connected (no exact extension exists in "
+                  "general): the vertices and the shape parameters are solved for together",
+                  [](S& x) -> bool& { return x.options.allow_not_simply_connected; });
+    s.Field<int>("samples", OptionType::kInt, "Samples per patch edge of the surface_mesh output",
+                 [](S& x) -> int& { return x.samples; })
+        .Range(1, 200);
+    return s;
+  }();
+  return schema;
+}
+
+// One H-net round as a line of the log's table, with the table's header before round 0.
+void LogRound(const HNetRound& r, const RunContext& context) {
+  char line[256];
+  if (r.round == 0) {
+    context.Info("H-net rounds:");
+    std::snprintf(line, sizeof(line), "%5s %14s %12s %12s %12s %12s %8s", "round", "max_angle_deg",
+                  "W_change", "W_min", "W_max", "max_star", "iters");
+    context.Info(line);
+  }
+  std::snprintf(line, sizeof(line), "%5d %14.3e %12.3e %12.4e %12.4e %12.3e %8d", r.round,
+                r.max_tangent_angle_deg, r.weight_change, r.min_w, r.max_w,
+                r.star.max_star_planarity, r.solver_iterations);
+  context.Info(line);
+}
+
+// The log's lines and the warnings after a run with rounds.
+void Describe(const HNetSummary& summary, const HNetOptions& options, bool with_reference,
+              RunResult* result) {
+  const HNetRound& last = summary.rounds.back();
+  char line[512];
+  std::snprintf(line, sizeof(line),
+                "final: max tangent-plane angle %.3e deg, W in [%.4g, %.4g], max star planarity "
+                "%.3e, max displacement %.3e of the bbox diagonal",
+                last.max_tangent_angle_deg, last.min_w, last.max_w, last.star.max_star_planarity,
+                last.star.max_displacement);
+  result->Info(line);
+  if (with_reference) {
+    std::snprintf(line, sizeof(line),
+                  "distance to the reference surface: max %.3e of its bbox diagonal",
+                  summary.max_reference_distance);
+    result->Info(line);
+  }
+  if (!summary.equitwist_violations.empty())
+    result->Warn(std::to_string(summary.equitwist_violations.size()) +
+                 " inner edges violate the equitwist condition (listed in the report)");
+  if (!summary.simply_connected) {
+    std::snprintf(line, sizeof(line),
+                  "note: the mesh is not simply connected, so no exact extension need exist: "
+                  "round 0 propagated the weights over a spanning tree, round 1 optimised the "
+                  "vertices and weights together (W near 1, W >= %g); the report lists the worst "
+                  "edges",
+                  options.min_shape_parameter);
+    result->Info(line);
+  }
+}
+
+RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunContext& context) {
+  HNetSettings settings = Schema().Apply(values);
+  HNetOptions& options = settings.options;
+  options.anet.star_form = StarFormOf(settings.star_form);
+  options.use_ceres = settings.solver == "ceres";
+  options.anet.vertices.fixed = inputs.VertexIds("fixed");
+  const PolyMesh& mesh = inputs.Mesh("mesh");
+  const std::string source = inputs.Source("mesh");
+  CheckANetTopology(mesh, source);
+  const PolyMesh* reference = inputs.OptionalMesh("reference");
+  std::unique_ptr<HNet> hnet;
+  try {
+    hnet = std::make_unique<HNet>(mesh, reference, options);
+  } catch (const InputError& e) {
+    throw InputError(source + ": " + e.what());
+  }
+  context.Headline(source + ": " + std::to_string(mesh.n_vertices()) + " vertices, " +
+                   std::to_string(mesh.n_faces()) + " quads");
+  context.Info("A-net step:");
+  const HNetSummary summary =
+      hnet->Run([&context](const RunRecord& r) { return context.Record(r); },
+                [&context](const HNetRound& r) { LogRound(r, context); });
+  RunResult result;
+  result.report = summary.report;
+  result.facts = HNet::ReportFacts(summary);
+  result.tolerance_measure = "weight_change";
+  result.tolerance = options.weight_tolerance;
+  if (result.report.failed || summary.rounds.empty()) return result;
+
+  const HNetRound& last = summary.rounds.back();
+  result.texts["output"] = HNetJson(hnet->mesh(), hnet->weights()).dump(1) + "\n";
+  if (context.Wants("surface_mesh"))
+    result.meshes["surface_mesh"] =
+        SampleHNetSurface(hnet->mesh(), hnet->weights(), settings.samples);
+  if (context.Wants("picture")) {
+    SvgOptions svg;
+    char title[160];
+    std::snprintf(title, sizeof(title),
+                  "H-net: %zu patches, max tangent-plane angle %.2e deg, W in [%.4g, %.4g]",
+                  hnet->mesh().n_faces(), last.max_tangent_angle_deg, last.min_w, last.max_w);
+    svg.title = title;
+    result.texts["picture"] =
+        RenderMeshSvg(SampleHNetSurface(hnet->mesh(), hnet->weights(), 2), svg);
+  }
+  Describe(summary, options, reference != nullptr, &result);
+  if (!result.report.converged && !BoundaryControlNote(options.anet.vertices).empty())
+    result.shortfalls.push_back(BoundaryControlNote(options.anet.vertices));
+  return result;
+}
+
+}  // namespace
+
+ProblemSpec HNetSpec() {
+  ProblemSpec spec;
+  spec.name = "hnet";
+  spec.summary =
+      "H-net (004 §2-3): extend an A-net (running the A-net step first when needed) to smoothly "
+      "joined rational bilinear patches: corner weights per patch, shape parameters propagated "
+      "and scaled, vertices and weights alternated until the weights settle.";
+  spec.inputs = {
+      {"mesh", InputKind::kQuadMesh,
+       "Quad mesh roughly along asymptotic directions (simply connected, inner vertices of even "
+       "valence)",
+       true},
+      {"reference", InputKind::kMesh,
+       "Reference surface (polygon mesh) to stay close to; default: the input itself"},
+      {"fixed", InputKind::kVertexIds,
+       "Vertices that do not move at all (0-based ids; returned bit for bit)"}};
+  spec.outputs = {{"output", OutputKind::kJson,
+                   "the H-net: vertices, quad faces, four corner weights per face", true},
+                  {"surface_mesh", OutputKind::kMesh,
+                   "a triangle mesh sampling every patch on a (samples + 1)^2 grid"},
+                  {"picture", OutputKind::kSvg, "a shaded picture of the patchwork"}};
+  spec.options = Schema().specs();
+  spec.log_measures = {"max_star_planarity", "mean_star_planarity", "non_convex_quads",
+                       "min_corner_angle_deg"};
+  spec.run = Run;
+  return spec;
+}
+
+}  // namespace gproj

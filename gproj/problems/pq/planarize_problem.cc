@@ -1,0 +1,164 @@
+// `planarize` in the registry: PQ (or circular) planarisation of a quad mesh.
+#include <cstdio>
+
+#include "gproj/problems/mesh/mesh_options.h"
+#include "gproj/problems/mesh/mesh_outputs.h"
+#include "gproj/problems/pq/pq_planarization.h"
+#include "gproj/problems/run/builtin_problems.h"
+#include "gproj/problems/run/shared_options.h"
+
+namespace gproj {
+namespace {
+
+struct PlanarizeSettings {
+  PQPlanarizationOptions problem;
+  std::string solver = "gp";
+};
+
+const OptionSchema<PlanarizeSettings>& Schema() {
+  static const OptionSchema<PlanarizeSettings> schema = [] {
+    using S = PlanarizeSettings;
+    OptionSchema<S> s;
+    AddMethodOption<S>(&s, [](S& x) -> std::string& { return x.solver; });
+    s.Field<double>("tolerance", OptionType::kNumber,
+                    "Stop when max planarity (diagonal distance / mean edge length) is <= this",
+                    [](S& x) -> double& { return x.problem.tolerance; })
+        .Positive();
+    s.Field<double>("closeness", OptionType::kNumber,
+                    "Weight of closeness to the input vertices (mesh scaled to mean edge 1)",
+                    [](S& x) -> double& { return x.problem.closeness_weight; })
+        .NonNegative();
+    s.Field<bool>("circular", OptionType::kBool,
+                  "Circular quads (planar and concyclic, 000 §2) instead of planar ones; the "
+                  "tolerance also bounds the concyclicity (distance to the fitted circle / mean "
+                  "edge)",
+                  [](S& x) -> bool& { return x.problem.circular; });
+    s.Field<int>("fairness_order", OptionType::kInt, "2: second differences, 3: third differences",
+                 [](S& x) -> int& { return x.problem.fairness_order; })
+        .Range(2, 3);
+    s.Field<double>("ceres_soft_scale", OptionType::kNumber,
+                    "With solver ceres: fixed factor on the closeness and fairness weights (0: "
+                    "tolerance / 100)",
+                    [](S& x) -> double& { return x.problem.ceres_soft_scale; })
+        .NonNegative();
+    AddSolverOptions<S>(&s, [](S& x) -> SolverOptions& { return x.problem.solver; });
+    AddPanelBoundsOptions<S>(&s, [](S& x) -> PanelBoundsOptions& { return x.problem.panels; });
+    AddVertexControlOptions<S>(&s,
+                               [](S& x) -> VertexControlOptions& { return x.problem.vertices; });
+    return s;
+  }();
+  return schema;
+}
+
+void AddShortfalls(const PQPlanarization& pq, RunResult* result) {
+  const PQPlanarizationOptions& options = pq.options();
+  const std::vector<int> above = pq.FacesAboveTolerance();
+  if (!above.empty())
+    result->shortfalls.push_back(std::to_string(above.size()) +
+                                 " quads above the tolerance, worst first: " + FaceList(above));
+  const std::vector<int> held = pq.FacesAtAngleBound();
+  char bound[64];
+  std::snprintf(bound, sizeof(bound), "%g", options.panels.min_angle_deg);
+  if (!held.empty())
+    result->shortfalls.push_back(std::to_string(held.size()) +
+                                 " quads sit on their corner-angle bound (`min_angle` " + bound +
+                                 "): " + FaceList(held));
+  const std::vector<std::array<int, 2>> edges = pq.EdgesAtLengthBound();
+  if (!edges.empty())
+    result->shortfalls.push_back(
+        std::to_string(edges.size()) + " edges sit on their length bound (" +
+        (options.panels.min_edge_length > 0.0 || options.panels.max_edge_length > 0.0
+             ? "`edge_length`"
+             : "a tenth of their input length") +
+        "): " + EdgeList(edges));
+}
+
+RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunContext& context) {
+  PlanarizeSettings settings = Schema().Apply(values);
+  PQPlanarizationOptions& options = settings.problem;
+  const PolyMesh& input = inputs.Mesh("mesh");
+  options.vertices.fixed = inputs.VertexIds("fixed");
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("invalid option: " + why);
+  PQPlanarization pq(input, options, inputs.OptionalMesh("reference"));
+  const bool ceres = settings.solver == "ceres";
+
+  char line[512];
+  const PlanarityMeasures initial = pq.Measures();
+  std::snprintf(line, sizeof(line), "%s: %zu vertices, %zu quads, %d variables, solver %s",
+                inputs.Source("mesh").c_str(), input.n_vertices(), input.n_faces(),
+                pq.problem().layout().num_variables(),
+                ceres ? "ceres" : LinearSolverTypeName(options.solver.linear_solver));
+  context.Headline(line);
+  std::snprintf(line, sizeof(line),
+                "start: max planarity %.3e, mean %.3e (diagonal distance / mean edge)",
+                initial.max_planarity, initial.mean_planarity);
+  context.Info(line);
+
+  const RunCallback record = [&context](const RunRecord& r) { return context.Record(r); };
+  RunResult result;
+  result.report = ceres ? pq.RunCeres(options.solver.max_iterations, record) : pq.Run(record);
+  result.tolerance_measure = "max_planarity";
+  result.tolerance = options.tolerance;
+  const PolyMesh mesh = pq.Result();
+  result.facts = PlanarizationFacts(input, mesh, options);
+  result.facts.erase("options");
+  result.facts["fixed_vertices"] = options.vertices.fixed.size();
+  if (result.report.failed) return result;
+
+  const PlanarityMeasures final_measures = pq.Measures();
+  result.meshes["output"] = mesh;
+  std::snprintf(line, sizeof(line), "%zu quads, max planarity %.2e", input.n_faces(),
+                final_measures.max_planarity);
+  AddFaceOutputTexts(mesh, RelativeFacePlanarity(mesh, options.circular),
+                     PlanarityColourScale(mesh, options.circular),
+                     QuadShapesCsv(mesh, options.circular), line, context, &result);
+  std::snprintf(line, sizeof(line),
+                "final: max planarity %.3e, mean %.3e, max displacement %.3e of the bbox diagonal",
+                final_measures.max_planarity, final_measures.mean_planarity,
+                final_measures.max_displacement);
+  result.Info(line);
+  if (final_measures.max_concyclicity >= 0.0) {
+    std::snprintf(line, sizeof(line),
+                  "       max concyclicity %.3e (distance to the fitted circle / mean edge)",
+                  final_measures.max_concyclicity);
+    result.Info(line);
+  }
+  AddPanelMessages(options.circular ? "a circular mesh" : "a PQ (conjugate) mesh", input, mesh,
+                   10.0, final_measures.max_displacement, &result);
+  if (!result.report.converged) AddShortfalls(pq, &result);
+  return result;
+}
+
+}  // namespace
+
+ProblemSpec PlanarizeSpec() {
+  ProblemSpec spec;
+  spec.name = "planarize";
+  spec.summary =
+      "PQ planarisation: make every quad of a mesh planar (or circular: planar and concyclic) "
+      "while staying close to the input and fair.";
+  spec.inputs = {
+      {"mesh", InputKind::kQuadMesh, "Quad mesh to planarise", true},
+      {"reference", InputKind::kMesh,
+       "Reference surface (triangle or polygon mesh): vertices keep close to it through the "
+       "tangent plane of their closest point (sliding along it) instead of to their start"},
+      {"fixed", InputKind::kVertexIds,
+       "Vertices that do not move at all (0-based ids; returned bit for bit)"}};
+  spec.outputs = {
+      {"output", OutputKind::kMesh, "the planarised mesh", true, true},
+      {"picture", OutputKind::kSvg,
+       "a shaded picture of the result, each face coloured by its planarity"},
+      {"face_values", OutputKind::kCsv,
+       "per-face values: face, planarity (/ mean edge), planarity_abs (input units), kink_deg "
+       "(between the quad's two triangles), min_angle_deg (and concyclicity when circular)"},
+      {"heatmap", OutputKind::kPly,
+       "the result with a colour per face (planarity, log scale; the scale is in the report)"}};
+  spec.options = Schema().specs();
+  spec.log_measures = {"max_planarity", "mean_planarity", "non_convex_quads",
+                       "min_corner_angle_deg"};
+  spec.run = Run;
+  return spec;
+}
+
+}  // namespace gproj

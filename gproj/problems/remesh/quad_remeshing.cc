@@ -1,0 +1,616 @@
+#include "gproj/problems/remesh/quad_remeshing.h"
+
+#include <Eigen/Geometry>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <queue>
+#include <string>
+
+#include "gproj/geometry/mesh/scale_free.h"
+
+namespace gproj {
+namespace {
+
+constexpr double kQuarter = M_PI / 2.0;
+// The quads' edge length, in mean triangle edges.
+constexpr double kMinEdgeLength = 0.25, kMaxEdgeLength = 1e6;
+// Map values this close to an integer (in quad edges) are taken as that integer.
+constexpr double kSnapToInteger = 1e-8;
+
+Eigen::Vector2d Direction(double angle) { return {std::cos(angle), std::sin(angle)}; }
+
+// A face's own orthonormal basis (e1 along its first edge, e2 = n × e1) and its corners there.
+struct FaceBasis {
+  std::array<int, 3> vertex;
+  Eigen::Vector3d e1, e2, normal;
+  std::array<Eigen::Vector2d, 3> corner;
+  double area = 0.0;
+  Eigen::Vector2d To2d(const Eigen::Vector3d& x) const { return {x.dot(e1), x.dot(e2)}; }
+  int Corner(int v) const { return vertex[0] == v ? 0 : vertex[1] == v ? 1 : 2; }
+  // The gradient of the linear function with corner values s: G s, G 2 × 3.
+  Eigen::Matrix<double, 2, 3> Gradient() const {
+    Eigen::Matrix<double, 2, 3> g;
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector2d e = corner[(i + 2) % 3] - corner[(i + 1) % 3];
+      g.col(i) = Eigen::Vector2d(-e.y(), e.x()) / (2.0 * area);
+    }
+    return g;
+  }
+};
+
+// The frame of a face: the cross angle γ (of the bisector of a and b) in its basis and the half
+// angle θ of the pair about it: a at γ − θ, b at γ + θ. A quarter turn (a, b) → (b, −a) is
+// (γ, θ) → (γ + π/2, π/2 − θ).
+struct Frame {
+  double gamma = 0.0, theta = M_PI / 4;
+  void Turn(int k) {
+    k &= 3;
+    gamma += k * kQuarter;
+    if (k & 1) theta = kQuarter - theta;
+  }
+};
+
+struct Surface {
+  const PolyMesh& mesh;
+  std::vector<FaceBasis> basis;
+  std::vector<Frame> frame;
+  // Quarter turns per symmetry step: 1 for the principal cross (d1 and d2 may trade places), 2
+  // for the asymptotic pair (its two families never do: they differ in the sign of their
+  // torsion, Beltrami–Enneper).
+  int step = 2;
+};
+
+// Angle that carries a direction of face(opposite(h))'s basis to face(h)'s, unfolding across
+// their common edge.
+double Transport(const Surface& s, PolyMesh::HalfedgeHandle h) {
+  const auto& m = s.mesh;
+  const auto& p = m.point(m.from_vertex_handle(h));
+  const auto& q = m.point(m.to_vertex_handle(h));
+  const Eigen::Vector3d e(q[0] - p[0], q[1] - p[1], q[2] - p[2]);
+  const FaceBasis& f = s.basis[m.face_handle(h).idx()];
+  const FaceBasis& g = s.basis[m.opposite_face_handle(h).idx()];
+  const Eigen::Vector2d ef = f.To2d(e), eg = g.To2d(e);
+  return std::atan2(ef.y(), ef.x()) - std::atan2(eg.y(), eg.x());
+}
+
+// The quarter turns k (a multiple of s.step) that bring the frame of face(opposite(h)) closest
+// to that of face(h), and the remaining turning δ ∈ [−step π/4, step π/4] of the frame from
+// face(h) to its neighbour.
+int Matching(const Surface& s, PolyMesh::HalfedgeHandle h, double* delta) {
+  const Frame& f = s.frame[s.mesh.face_handle(h).idx()];
+  const Frame& g = s.frame[s.mesh.opposite_face_handle(h).idx()];
+  const double carried = g.gamma + Transport(s, h);
+  const double k = s.step * std::round((f.gamma - carried) / (s.step * kQuarter));
+  if (delta) *delta = carried + k * kQuarter - f.gamma;
+  return static_cast<int>(((static_cast<long long>(k) % 4) + 4) % 4);
+}
+
+Surface Frames(const PolyMesh& mesh, const DirectionField& field,
+               const QuadRemeshOptions& options) {
+  Surface s{mesh, {}, {}, field.symmetry == 4 ? 1 : 2};
+  s.basis.resize(mesh.n_faces());
+  s.frame.resize(mesh.n_faces());
+  const double min_half = 0.5 * options.min_net_angle_deg * M_PI / 180.0;
+  for (auto f : mesh.faces()) {
+    FaceBasis& b = s.basis[f.idx()];
+    std::array<Eigen::Vector3d, 3> p;
+    int i = 0;
+    for (auto fv = mesh.cfv_iter(f); fv.is_valid(); ++fv, ++i) {
+      b.vertex[i] = fv->idx();
+      const auto& q = mesh.point(*fv);
+      p[i] = Eigen::Vector3d(q[0], q[1], q[2]);
+    }
+    const Eigen::Vector3d n = (p[1] - p[0]).cross(p[2] - p[0]);
+    b.normal = n.normalized();
+    b.e1 = (p[1] - p[0]).normalized();
+    b.e2 = b.normal.cross(b.e1);
+    for (int k = 0; k < 3; ++k) b.corner[k] = b.To2d(p[k] - p[0]);
+    b.area = 0.5 * n.norm();
+    // The principal line d1 of the corners, averaged with the field's symmetry (angles times
+    // 2 or 4), and the asymptotic half angle where K < 0.
+    const double symmetry = field.symmetry;
+    Eigen::Vector2d doubled = Eigen::Vector2d::Zero();
+    double theta = 0.0;
+    int negative = 0;
+    for (int k = 0; k < 3; ++k) {
+      const VertexCurvature& c = field.curvature[b.vertex[k]];
+      if (!c.fitted) continue;
+      const Eigen::Vector2d d = b.To2d(c.d1);
+      if (!(d.norm() > 0.0)) continue;
+      const double alpha = std::atan2(d.y(), d.x());
+      doubled += d.norm() * Direction(symmetry * alpha);
+      if (c.k1 > 0.0 && c.k2 < 0.0) theta += std::atan(std::sqrt(-c.k1 / c.k2)), ++negative;
+    }
+    const double alpha = std::atan2(doubled.y(), doubled.x()) / symmetry;
+    Frame& frame = s.frame[f.idx()];
+    if (options.directions == DirectionKind::kPrincipal) {
+      frame.gamma = alpha + M_PI / 4;  // a = d1, b = d2
+      frame.theta = M_PI / 4;
+    } else {
+      frame.gamma = alpha;  // the asymptotic pair is symmetric about d1
+      frame.theta = negative > 0 ? theta / negative : M_PI / 4;
+      frame.theta = std::clamp(frame.theta, min_half, kQuarter - min_half);
+    }
+  }
+  return s;
+}
+
+// Frame singularities at inner vertices: (Σ δ + angle defect) / 2π, in quarters (cross) or
+// halves (pair).
+std::vector<FrameSingularity> FrameSingularities(const Surface& s) {
+  const auto& m = s.mesh;
+  std::vector<FrameSingularity> out;
+  for (auto v : m.vertices()) {
+    if (m.is_boundary(v) || m.is_isolated(v)) continue;
+    double total = 2.0 * M_PI;
+    for (auto h : m.voh_range(v)) {
+      // Corner angle of face(h) at v, and the turning of the cross from face(opposite(h)) to
+      // face(h) (counter-clockwise about v).
+      const auto& o = m.point(v);
+      const auto& a = m.point(m.to_vertex_handle(h));
+      const auto& b = m.point(m.to_vertex_handle(m.next_halfedge_handle(h)));
+      const Eigen::Vector3d x(a[0] - o[0], a[1] - o[1], a[2] - o[2]);
+      const Eigen::Vector3d y(b[0] - o[0], b[1] - o[1], b[2] - o[2]);
+      total -= std::atan2(x.cross(y).norm(), x.dot(y));
+      double delta = 0.0;
+      Matching(s, m.opposite_halfedge_handle(h), &delta);
+      total += delta;
+    }
+    const double steps = 4.0 / s.step;  // the index is a multiple of 1 / steps
+    const double index = std::round(steps * total / (2.0 * M_PI)) / steps;
+    if (index != 0.0) out.push_back({v.idx(), index});
+  }
+  return out;
+}
+
+// Shortest paths (by length) from every singularity to the boundary, each avoiding the other
+// singularities and the paths already cut. Per path its vertices from the singularity on.
+std::vector<std::vector<int>> CutPaths(const PolyMesh& m,
+                                       const std::vector<FrameSingularity>& singularities) {
+  std::vector<char> blocked(m.n_vertices(), 0);
+  for (const FrameSingularity& s : singularities) blocked[s.vertex] = 1;
+  std::vector<std::vector<int>> paths;
+  std::vector<double> distance(m.n_vertices());
+  std::vector<int> previous(m.n_vertices());
+  for (const FrameSingularity& s : singularities) {
+    std::fill(distance.begin(), distance.end(), std::numeric_limits<double>::infinity());
+    std::fill(previous.begin(), previous.end(), -1);
+    using Item = std::pair<double, int>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    distance[s.vertex] = 0.0;
+    queue.push({0.0, s.vertex});
+    int reached = -1;
+    while (!queue.empty()) {
+      const auto [d, v] = queue.top();
+      queue.pop();
+      if (d > distance[v]) continue;
+      const auto vh = m.vertex_handle(v);
+      if (m.is_boundary(vh)) {
+        reached = v;
+        break;
+      }
+      for (auto h : m.voh_range(vh)) {
+        const int w = m.to_vertex_handle(h).idx();
+        if (blocked[w]) continue;
+        const double step = (m.point(m.to_vertex_handle(h)) - m.point(vh)).norm();
+        if (d + step < distance[w]) {
+          distance[w] = d + step;
+          previous[w] = v;
+          queue.push({d + step, w});
+        }
+      }
+    }
+    if (reached < 0)
+      throw InputError("the frame singularity at vertex " + std::to_string(s.vertex) +
+                       " cannot be joined to the boundary without crossing another "
+                       "singularity's cut: the field has " +
+                       std::to_string(singularities.size()) +
+                       " singularities, too many for a cut from each to the boundary (a noisy "
+                       "mesh? smooth the field more with a smaller --smooth, or the mesh)");
+    std::vector<int> path;
+    for (int v = reached; v >= 0; v = previous[v]) path.push_back(v);
+    std::reverse(path.begin(), path.end());
+    for (int v : path) blocked[v] = 1;  // the boundary end too: one cut per boundary vertex
+    paths.push_back(path);
+  }
+  return paths;
+}
+
+PolyMesh::HalfedgeHandle HalfedgeBetween(const PolyMesh& m, int a, int b) {
+  return m.find_halfedge(m.vertex_handle(a), m.vertex_handle(b));
+}
+
+CscMatrix ToCsc(const Eigen::SparseMatrix<double>& a) {
+  CscMatrix out;
+  out.num_rows = static_cast<int>(a.rows());
+  out.num_cols = static_cast<int>(a.cols());
+  out.col_begin.assign(a.outerIndexPtr(), a.outerIndexPtr() + a.cols() + 1);
+  out.row_index.assign(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros());
+  out.values.assign(a.valuePtr(), a.valuePtr() + a.nonZeros());
+  return out;
+}
+
+}  // namespace
+
+void CheckTriangulatedDisk(const PolyMesh& m) {
+  for (auto f : m.faces())
+    if (m.valence(f) != 3)
+      throw InputError("face " + std::to_string(f.idx()) + " has " + std::to_string(m.valence(f)) +
+                       " vertices: the remeshing needs a triangle mesh");
+  for (auto v : m.vertices()) {
+    int boundary = 0;
+    for (auto h : m.voh_range(v)) boundary += m.is_boundary(h);
+    if (boundary > 1)
+      throw InputError("vertex " + std::to_string(v.idx()) +
+                       " joins separate fans of faces (a non-manifold vertex): the remeshing "
+                       "needs a disk");
+  }
+  std::vector<char> seen(m.n_halfedges(), 0);
+  int loops = 0;
+  for (auto h : m.halfedges()) {
+    if (!m.is_boundary(h) || seen[h.idx()]) continue;
+    ++loops;
+    for (auto g = h; !seen[g.idx()]; g = m.next_halfedge_handle(g)) seen[g.idx()] = 1;
+  }
+  int used = 0;
+  for (auto v : m.vertices()) used += !m.is_isolated(v);
+  const long euler =
+      static_cast<long>(used) - static_cast<long>(m.n_edges()) + static_cast<long>(m.n_faces());
+  // Connected faces: one component.
+  std::vector<char> reached(m.n_faces(), 0);
+  std::vector<int> stack = {0};
+  reached[0] = 1;
+  size_t count = 1;
+  while (!stack.empty()) {
+    const auto f = m.face_handle(stack.back());
+    stack.pop_back();
+    for (auto g : m.ff_range(f))
+      if (!reached[g.idx()]) reached[g.idx()] = 1, ++count, stack.push_back(g.idx());
+  }
+  if (euler != 1 || loops != 1 || count != m.n_faces())
+    throw InputError(
+        "the surface is not a disk (Euler characteristic " + std::to_string(euler) + ", " +
+        std::to_string(loops) + " boundary loops, " +
+        (count == m.n_faces() ? std::string("connected") : std::string("several components")) +
+        "): the quad remeshing cuts a disk from its singularities to its boundary");
+}
+
+bool QuadRemeshOptions::IsValid(std::string* why) const {
+  if (!(edge_length >= 0.0) || !std::isfinite(edge_length)) {
+    *why = "the edge length must be a finite number >= 0 (0: 3 mean triangle edges)";
+    return false;
+  }
+  if (!(smoothing > 0.0) || !std::isfinite(smoothing)) {
+    *why = "the field smoothing weight must be a finite number > 0";
+    return false;
+  }
+  if (!(size_weight > 0.0 && size_weight <= 10.0)) {
+    *why = "the size weight must be in (0, 10]";
+    return false;
+  }
+  if (!(min_net_angle_deg > 0.0 && min_net_angle_deg <= 90.0)) {
+    *why = "the smallest net angle must be in (0, 90] degrees";
+    return false;
+  }
+  return fit.IsValid(why);
+}
+
+FieldParametrization ParametrizeAlongField(const PolyMesh& triangles, const DirectionField& field,
+                                           const QuadRemeshOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError(why);
+  if (triangles.n_faces() == 0) throw InputError("the mesh has no faces");
+  if (field.curvature.size() != triangles.n_vertices())
+    throw InputError("the direction field does not belong to the mesh");
+  CheckTriangulatedDisk(triangles);
+  UnitFrame unit;
+  const PolyMesh m = UnitScaleCopy(triangles, &unit);
+  const double h = options.edge_length > 0.0 ? options.edge_length / unit.length : 3.0;
+  // Quads much smaller than the triangles only interpolate them (and a tiny h asks for
+  // millions of quads): at least a quarter of a mean triangle edge.
+  if (!(h >= kMinEdgeLength && h <= kMaxEdgeLength)) {
+    char text[200];
+    std::snprintf(text, sizeof(text),
+                  "the edge length (--edge-length) %g is %g mean triangle edges; it must be within "
+                  "%g … %g of "
+                  "them (%g … %g)",
+                  h * unit.length, h, kMinEdgeLength, kMaxEdgeLength, kMinEdgeLength * unit.length,
+                  kMaxEdgeLength * unit.length);
+    throw InputError(text);
+  }
+  Surface s = Frames(m, field, options);
+  FieldParametrization out;
+  out.edge_length = h * unit.length;
+  out.singularities = FrameSingularities(s);
+  for (const FrameSingularity& sg : out.singularities)
+    if (sg.index >= 1.0) {
+      char text[300];
+      std::snprintf(text, sizeof(text),
+                    "the frame field has a singularity of index %+g at vertex %d (an umbilic of "
+                    "a surface of revolution?), which no quad vertex can follow (valence 4 - 4 × "
+                    "index): perturb the surface or smooth the field more",
+                    sg.index, sg.vertex);
+      throw InputError(text);
+    }
+  const std::vector<std::vector<int>> paths = CutPaths(m, out.singularities);
+  std::vector<char> cut(m.n_edges(), 0);
+  std::vector<int> path_of_vertex(m.n_vertices(), -1);
+  for (size_t p = 0; p < paths.size(); ++p)
+    for (size_t i = 0; i + 1 < paths[p].size(); ++i) {
+      const auto hh = HalfedgeBetween(m, paths[p][i], paths[p][i + 1]);
+      cut[m.edge_handle(hh).idx()] = 1;
+      out.cut_edges.push_back(m.edge_handle(hh).idx());
+      path_of_vertex[paths[p][i + 1]] = static_cast<int>(p);
+    }
+  // Comb the frames across the uncut edges (breadth first from face 0).
+  std::vector<char> combed(m.n_faces(), 0);
+  std::queue<int> queue;
+  queue.push(0);
+  combed[0] = 1;
+  while (!queue.empty()) {
+    const auto f = m.face_handle(queue.front());
+    queue.pop();
+    for (auto hh : m.fh_range(f)) {
+      const auto g = m.opposite_face_handle(hh);
+      if (!g.is_valid() || combed[g.idx()] || cut[m.edge_handle(hh).idx()]) continue;
+      s.frame[g.idx()].Turn(Matching(s, hh, nullptr));
+      combed[g.idx()] = 1;
+      queue.push(g.idx());
+    }
+  }
+  for (auto e : m.edges()) {
+    if (m.is_boundary(e) || cut[e.idx()]) continue;
+    if (Matching(s, m.halfedge_handle(e, 0), nullptr) != 0)
+      throw InputError("the frame field does not comb across edge " + std::to_string(e.idx()) +
+                       " (a singularity below the detection threshold): smooth the field more");
+  }
+  // Across a path the combed frames turn by k quarter turns (the same k along the path: its
+  // inner vertices are regular); a frame turned by a quarter turn has the target gradient
+  // turned by −π/2, so the map jumps by R = Rot(kπ/2) from the left faces to the right.
+  std::vector<int> path_turns(paths.size(), 0);
+  for (size_t p = 0; p < paths.size(); ++p)
+    for (size_t i = 0; i + 1 < paths[p].size(); ++i) {
+      const int k = Matching(s, HalfedgeBetween(m, paths[p][i], paths[p][i + 1]), nullptr);
+      if (i == 0) path_turns[p] = k;
+      if (k != path_turns[p])
+        throw InputError("the frame field turns differently along the cut from vertex " +
+                         std::to_string(paths[p][0]) + " (at vertex " +
+                         std::to_string(paths[p][i]) + "): smooth the field more");
+    }
+  // Corners on the right of a path: flooded around the vertex from the path's right face
+  // across uncut edges.
+  std::vector<std::array<char, 3>> right_side(m.n_faces(), {0, 0, 0});
+  for (size_t p = 0; p < paths.size(); ++p)
+    for (size_t i = 1; i < paths[p].size(); ++i) {
+      const int v = paths[p][i];
+      const auto hh = HalfedgeBetween(m, paths[p][i - 1], v);
+      auto start = m.opposite_halfedge_handle(hh);  // v → previous: its face is on the right
+      std::vector<int> stack = {m.face_handle(start).idx()};
+      std::vector<int> seen;
+      while (!stack.empty()) {
+        const int f = stack.back();
+        stack.pop_back();
+        if (std::find(seen.begin(), seen.end(), f) != seen.end()) continue;
+        seen.push_back(f);
+        right_side[f][s.basis[f].Corner(v)] = 1;
+        for (auto fh : m.fh_range(m.face_handle(f))) {
+          if (m.from_vertex_handle(fh).idx() != v && m.to_vertex_handle(fh).idx() != v) continue;
+          const auto g = m.opposite_face_handle(fh);
+          if (g.is_valid() && !cut[m.edge_handle(fh).idx()]) stack.push_back(g.idx());
+        }
+      }
+    }
+  // Unknowns: u(v) ∈ R² per vertex (on the left of a cut); the right corners of path p are
+  // R u(v) + (I − R) u(s_p). The singularities' u are rounded after a first solve.
+  const int n = 2 * static_cast<int>(m.n_vertices());
+  std::vector<double> fixed(n, std::numeric_limits<double>::quiet_NaN());
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  std::unique_ptr<SparseCholesky> solver = CreateSparseCholesky(options.linear_solver, 1);
+  auto corner_terms = [&](int f, int k, int component, std::vector<std::pair<int, double>>* terms) {
+    terms->clear();
+    const int v = s.basis[f].vertex[k];
+    if (!right_side[f][k]) {
+      terms->push_back({2 * v + component, 1.0});
+      return;
+    }
+    const int p = path_of_vertex[v];
+    const int sv = paths[p][0];
+    const Eigen::Matrix2d r = QuarterTurns(path_turns[p]);
+    const Eigen::Matrix2d c = Eigen::Matrix2d::Identity() - r;
+    for (int j = 0; j < 2; ++j) {
+      if (r(component, j) != 0.0) terms->push_back({2 * v + j, r(component, j)});
+      if (c(component, j) != 0.0) terms->push_back({2 * sv + j, c(component, j)});
+    }
+  };
+  auto solve = [&]() {
+    std::vector<int> column(n, -1);
+    int free = 0;
+    for (int i = 0; i < n; ++i)
+      if (std::isnan(fixed[i])) column[i] = free++;
+    std::vector<Eigen::Triplet<double>> entries;
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(4 * m.n_faces());
+    std::vector<std::pair<int, double>> terms;
+    for (auto fh : m.faces()) {
+      const int f = fh.idx();
+      const double w = std::sqrt(s.basis[f].area);
+      const Eigen::Matrix<double, 2, 3> g = s.basis[f].Gradient();
+      const Frame& fr = s.frame[f];
+      const Eigen::Vector2d along[2] = {Direction(fr.gamma - fr.theta),
+                                        Direction(fr.gamma + fr.theta)};
+      for (int c = 0; c < 2; ++c)
+        for (int d = 0; d < 2; ++d) {
+          // Row (c, c): ∇u_c along its own direction is 1 / h (the size, weighted σ); row
+          // (c, 1 − c): ∇u_c along the other direction is 0 (the alignment).
+          const int row = 4 * f + 2 * c + d;
+          const double weight = w * (d == c ? options.size_weight : 1.0);
+          const Eigen::Vector3d probe = weight * (along[d].transpose() * g).transpose();
+          double rhs = d == c ? weight / h : 0.0;
+          for (int k = 0; k < 3; ++k) {
+            corner_terms(f, k, c, &terms);
+            for (const auto& [var, coeff] : terms) {
+              const double value = probe[k] * coeff;
+              if (column[var] >= 0)
+                entries.emplace_back(column[var], row, value);
+              else
+                rhs -= value * fixed[var];
+            }
+          }
+          b[row] = rhs;
+        }
+    }
+    Eigen::SparseMatrix<double> at(free, 4 * m.n_faces());
+    at.setFromTriplets(entries.begin(), entries.end());
+    at.makeCompressed();
+    const CscMatrix a = ToCsc(at);
+    std::string message;
+    const Eigen::VectorXd rhs = at * b;
+    Eigen::VectorXd y(free);
+    if (!solver->Analyze(a, MatrixForm::kAAt, &message) || !solver->Factorize(a, 1e-9, &message) ||
+        !solver->Solve(rhs.data(), y.data(), &message) || !y.allFinite())
+      throw InputError("the parametrisation system could not be solved: " + message);
+    for (int i = 0; i < n; ++i) x[i] = column[i] >= 0 ? y[column[i]] : fixed[i];
+  };
+  solve();
+  if (!out.singularities.empty()) {
+    for (const FrameSingularity& sg : out.singularities)
+      for (int j = 0; j < 2; ++j) fixed[2 * sg.vertex + j] = std::round(x[2 * sg.vertex + j]);
+    solve();
+  }
+  // The map at the corners, the quarter turns across the cuts, the frames in 3D.
+  out.map.corner_uv.resize(m.n_faces());
+  out.map.halfedge_rotation.assign(m.n_halfedges(), 0);
+  out.frame_a.resize(m.n_faces());
+  out.frame_b.resize(m.n_faces());
+  std::vector<std::pair<int, double>> terms;
+  for (auto fh : m.faces()) {
+    const int f = fh.idx();
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 2; ++c) {
+        corner_terms(f, k, c, &terms);
+        double value = 0.0;
+        for (const auto& [var, coeff] : terms) value += coeff * x[var];
+        // Within rounding of an integer, exactly on it (an iso-line through a vertex, as on
+        // grids aligned with the field): the transitions map integers to integers, so every
+        // chart of the vertex agrees, and the extraction sees the exact case, not a near miss.
+        if (std::abs(value - std::round(value)) < kSnapToInteger) value = std::round(value);
+        out.map.corner_uv[f][k][c] = value;
+      }
+    if (MappedArea(out.map, f) <= 0.0) ++out.folded_faces;
+    const FaceBasis& b = s.basis[f];
+    const Frame& fr = s.frame[f];
+    const Eigen::Vector2d a2 = Direction(fr.gamma - fr.theta), b2 = Direction(fr.gamma + fr.theta);
+    out.frame_a[f] = a2.x() * b.e1 + a2.y() * b.e2;
+    out.frame_b[f] = b2.x() * b.e1 + b2.y() * b.e2;
+  }
+  for (size_t p = 0; p < paths.size(); ++p)
+    for (size_t i = 0; i + 1 < paths[p].size(); ++i) {
+      const auto hh = HalfedgeBetween(m, paths[p][i], paths[p][i + 1]);
+      out.map.halfedge_rotation[hh.idx()] = path_turns[p];
+      out.map.halfedge_rotation[m.opposite_halfedge_handle(hh).idx()] = (4 - path_turns[p]) & 3;
+    }
+  return out;
+}
+
+std::vector<std::string> QuadRemeshResult::Problems() const {
+  std::vector<std::string> out;
+  auto add = [&out](int count, const char* what) {
+    if (count > 0) out.push_back(std::to_string(count) + " " + what);
+  };
+  // Odd valences (singularities of index ±¼) are fine in a principal cross, not in an
+  // asymptotic net, whose two families alternate around every vertex.
+  if (field.kind == DirectionKind::kAsymptotic)
+    add(odd_inner_vertices, "inner vertices of odd valence");
+  add(inner_valence_count.size() > 2 ? inner_valence_count[2] : 0,
+      "inner vertices of valence 2 (two quads folded onto each other)");
+  add(nonconvex_quads, "non-convex quads");
+  add(parametrization.folded_faces, "triangles folded by the map");
+  if (field.kind == DirectionKind::kAsymptotic && field.negative_area_fraction < 0.99) {
+    char text[160];
+    std::snprintf(text, sizeof(text),
+                  "K >= 0 on %.1f%% of the area (no asymptotic directions there)",
+                  100.0 * (1.0 - field.negative_area_fraction));
+    out.push_back(text);
+  }
+  return out;
+}
+
+QuadRemeshResult RemeshAlongField(const PolyMesh& triangles, const QuadRemeshOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError(why);
+  QuadRemeshResult out;
+  auto clock = std::chrono::steady_clock::now();
+  auto lap = [&clock]() {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - clock).count();
+    clock = now;
+    return seconds;
+  };
+  CheckTriangulatedDisk(triangles);
+  out.field = EstimateDirectionField(triangles, options.directions, options.fit, options.smoothing);
+  out.seconds_field = lap();
+  out.parametrization = ParametrizeAlongField(triangles, out.field, options);
+  out.seconds_map = lap();
+  UnitFrame unit;
+  const PolyMesh scaled = UnitScaleCopy(triangles, &unit);
+  out.extraction = ExtractQuads(scaled, out.parametrization.map);
+  out.seconds_extraction = lap();
+  PolyMesh& q = out.extraction.quads;
+  if (q.n_faces() == 0)
+    throw InputError("no quad could be extracted: the edge length (" +
+                     std::to_string(out.parametrization.edge_length) +
+                     ") is too large for the surface, or the map folds everywhere");
+  // Measures at unit scale, then the quads back to the input's units.
+  double quad_area = 0.0, triangle_area = 0.0;
+  for (auto f : q.faces()) {
+    std::vector<Eigen::Vector3d> p;
+    for (auto v : q.fv_range(f)) p.emplace_back(q.point(v)[0], q.point(v)[1], q.point(v)[2]);
+    quad_area += 0.5 * (p[2] - p[0]).cross(p[3] - p[1]).norm();
+  }
+  for (auto f : scaled.faces()) {
+    std::vector<Eigen::Vector3d> p;
+    for (auto v : scaled.fv_range(f))
+      p.emplace_back(scaled.point(v)[0], scaled.point(v)[1], scaled.point(v)[2]);
+    triangle_area += 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
+  }
+  out.area_covered = quad_area / triangle_area;
+  for (auto v : q.vertices()) {
+    if (q.is_boundary(v)) continue;
+    const int valence = static_cast<int>(q.valence(v));
+    if (static_cast<int>(out.inner_valence_count.size()) <= valence)
+      out.inner_valence_count.resize(valence + 1, 0);
+    ++out.inner_valence_count[valence];
+    if (valence % 2) ++out.odd_inner_vertices;
+  }
+  out.min_corner_angle_deg = 180.0;
+  for (auto f : q.faces()) {
+    std::vector<Eigen::Vector3d> p;
+    for (auto v : q.fv_range(f)) p.emplace_back(q.point(v)[0], q.point(v)[1], q.point(v)[2]);
+    const Eigen::Vector3d n = (p[2] - p[0]).cross(p[3] - p[1]);
+    bool convex = true;
+    for (int k = 0; k < 4; ++k) {
+      const Eigen::Vector3d a = p[(k + 3) % 4] - p[k], b = p[(k + 1) % 4] - p[k];
+      out.min_corner_angle_deg = std::min(out.min_corner_angle_deg,
+                                          std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / M_PI);
+      if (!(b.cross(a).dot(n) > 0.0)) convex = false;
+    }
+    if (!convex) ++out.nonconvex_quads;
+  }
+  double sum = 0.0;
+  for (const QuadExtraction::Edge& e : out.extraction.edges) {
+    const auto& a = q.point(q.vertex_handle(e.from));
+    const auto& b = q.point(q.vertex_handle(e.to));
+    const Eigen::Vector3d d(b[0] - a[0], b[1] - a[1], b[2] - a[2]);
+    const double angle = std::min(LineAngleDeg(d, out.parametrization.frame_a[e.triangle]),
+                                  LineAngleDeg(d, out.parametrization.frame_b[e.triangle]));
+    sum += angle;
+    out.max_alignment_deg = std::max(out.max_alignment_deg, angle);
+  }
+  if (!out.extraction.edges.empty()) out.mean_alignment_deg = sum / out.extraction.edges.size();
+  FromUnitScale(unit, &q);
+  return out;
+}
+
+}  // namespace gproj

@@ -1,0 +1,145 @@
+#include "gproj/problems/run/guided_problem.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace gproj {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Fills the fields every run shares once the solver has stopped.
+void Conclude(const GuidedProblem& problem, Clock::time_point start, bool aborted,
+              RunReport* report) {
+  report->failed = report->failed || !problem.problem().x().allFinite();
+  if (!report->failed) {
+    report->final = problem.Measure();
+    FailOnNonFiniteMeasures(report);
+  }
+  report->converged = !report->failed &&
+                      (problem.HasTolerance() ? problem.MeetsTolerance(report->final) : !aborted);
+  // A solver stop short of the problem's tolerance (a step too small, no lower energy) is a
+  // stall, whatever the solver calls it.
+  const size_t at = report->termination.find("CONVERGENCE");
+  if (!report->converged && !report->failed && at != std::string::npos &&
+      (at == 0 || report->termination[at - 1] == ' '))
+    report->termination.replace(at, 11, "STALLED short of the tolerance");
+  report->seconds = SecondsSince(start);
+}
+
+}  // namespace
+
+void FailOnNonFiniteMeasures(RunReport* report) {
+  for (const NamedValue& v : report->final)
+    if (!std::isfinite(v.value)) {
+      report->failed = true;
+      report->converged = false;
+      report->termination = "FAILURE: the result's " + v.name + " is not finite";
+      return;
+    }
+}
+
+RunRecord ToRunRecord(const IterationRecord& r) {
+  RunRecord record;
+  record.iteration = r.iteration;
+  record.energy = r.energy;
+  record.step = r.step_norm;
+  record.epsilon = r.epsilon;
+  record.soft_scale = r.soft_scale;
+  record.max_constraint = r.max_constraint;
+  record.assembly_seconds = r.assembly_seconds;
+  record.factorization_seconds = r.factorization_seconds;
+  record.solve_seconds = r.solve_seconds;
+  record.seconds = r.assembly_seconds + r.factorization_seconds + r.solve_seconds;
+  record.families = r.families;
+  return record;
+}
+
+RunRecord ToRunRecord(const CeresIterationRecord& s) {
+  RunRecord record;
+  record.iteration = s.iteration;
+  record.energy = s.cost;
+  record.step = s.step_norm;
+  record.max_constraint = NAN;  // Ceres reports no per-row maximum
+  record.seconds = s.iteration_time_in_seconds;
+  return record;
+}
+
+double ValueOf(const NamedValues& values, const std::string& name) {
+  for (const NamedValue& v : values)
+    if (v.name == name) return v.value;
+  return NAN;
+}
+
+double StartSoftScale(double start_residual, double floor) {
+  constexpr double kNear = 1e-2;
+  if (!(start_residual < kNear)) return 1.0;
+  return std::max(start_residual / kNear, floor);
+}
+
+RunReport GuidedProblem::Run(const RunCallback& callback) {
+  const auto start = Clock::now();
+  RunReport report;
+  report.solver = "gp";
+  report.variables = problem().layout().num_variables();
+  report.initial = Measure();
+  report.summary =
+      Solve(solver_options(), &problem(), [&](const IterationRecord& r, const Eigen::VectorXd& x) {
+        RunRecord record = ToRunRecord(r);
+        record.measures = MeasureAt(x);
+        report.history.push_back(record);
+        if (callback && !callback(record)) return CallbackResult::kAbort;
+        return HasTolerance() && StopsAtTolerance() && MeetsTolerance(record.measures)
+                   ? CallbackResult::kConverged
+                   : CallbackResult::kContinue;
+      });
+  report.termination =
+      std::string(TerminationTypeName(report.summary.termination)) + ": " + report.summary.message;
+  report.iterations = report.summary.num_steps();
+  report.failed = report.summary.termination == TerminationType::kFailure;
+  Conclude(*this, start, report.summary.termination == TerminationType::kUserAbort, &report);
+  return report;
+}
+
+RunReport GuidedProblem::RunCeres(int max_iterations, const RunCallback& callback) {
+  const auto start = Clock::now();
+  RunReport report;
+  report.solver = "ceres";
+  report.variables = problem().layout().num_variables();
+  report.initial = Measure();
+  bool aborted = false;
+  const CeresSummary summary = SolveWithCeres(
+      ceres_options(max_iterations), &problem(),
+      [&](const CeresIterationRecord& s, const Eigen::VectorXd& x) {
+        RunRecord record = ToRunRecord(s);
+        record.measures = MeasureAt(x);
+        report.history.push_back(record);
+        if (callback && !callback(record)) return !(aborted = true);
+        return !HasTolerance() || !StopsAtTolerance() || !MeetsTolerance(record.measures);
+      });
+  report.termination = "ceres " + summary.ceres_termination + ": " + summary.message;
+  report.iterations = summary.num_steps();
+  report.failed = summary.termination == TerminationType::kFailure;
+  Conclude(*this, start, aborted, &report);
+  return report;
+}
+
+RunReport GuidedProblem::RunDirect(const std::string& termination,
+                                   const std::function<void()>& solve) {
+  const auto start = Clock::now();
+  RunReport report;
+  report.solver = "direct";
+  report.termination = termination;
+  report.variables = problem().layout().num_variables();
+  report.initial = Measure();
+  solve();
+  Conclude(*this, start, /*aborted=*/false, &report);
+  return report;
+}
+
+}  // namespace gproj

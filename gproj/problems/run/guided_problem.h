@@ -1,0 +1,111 @@
+#pragma once
+// The shape every gproj problem has: Options that embed SolverOptions, a build step (the
+// problem's constructor), named measures of an iterate, a tolerance on them, a run by guided
+// projection with an iteration callback, and the Ceres cross-check from the same rows. Run and
+// RunCeres return one report whose keys are the same for every problem, so the command line
+// (and any other front end) logs, writes and maps exit codes in one place.
+
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "gproj/solver/ceres_adapter.h"
+#include "gproj/solver/guided_projection.h"
+#include "gproj/solver/problem.h"
+
+namespace gproj {
+
+// A measure of an iterate: an identifier (a JSON key, a log column) and its value.
+struct NamedValue {
+  std::string name;
+  double value = 0.0;
+};
+using NamedValues = std::vector<NamedValue>;
+// The value named `name`; NaN when there is none.
+double ValueOf(const NamedValues& values, const std::string& name);
+
+// One iterate of a run, the same for both solvers (fields a solver does not have stay 0).
+struct RunRecord {
+  int iteration = 0;
+  double energy = 0.0;  // ½ Σ w φ² (+ fairness) with the iteration's weights
+  double step = 0.0;  // ‖x^k − x^{k−1}‖ (∞-norm for guided projection, 2-norm for Ceres)
+  double epsilon = 0.0;
+  double soft_scale = 1.0;
+  double max_constraint = 0.0;  // max |φ| over constraint rows (guided projection; NaN for Ceres)
+  double seconds = 0.0;         // time of the step that led here
+  NamedValues measures;         // the problem's measures at the iterate
+  std::vector<FamilyResidual> families;  // per named term: max and RMS |φ| (guided projection)
+  double assembly_seconds = 0.0, factorization_seconds = 0.0, solve_seconds = 0.0;
+};
+
+// The solvers' own records as RunRecords (measures left empty).
+RunRecord ToRunRecord(const IterationRecord& record);
+RunRecord ToRunRecord(const CeresIterationRecord& record);
+
+// What a run did: the report every command writes (see README, "Reports").
+struct RunReport {
+  std::string solver;       // "gp" or "ceres"
+  bool converged = false;   // the problem's tolerance is met by the final iterate
+  bool failed = false;      // numerical failure: the final iterate must not be used
+  std::string termination;  // how the solver stopped, e.g. "CONVERGENCE: step tolerance met"
+  int iterations = 0;
+  double seconds = 0.0;
+  int variables = 0;
+  NamedValues initial, final;
+  std::vector<RunRecord> history;
+  SolverSummary summary;  // guided projection's own summary (empty for Ceres)
+};
+
+// Marks `report` failed ("FAILURE: the result's <name> is not finite") when a value of
+// report->final is not finite: finite unknowns can still give measures that overflow
+// (coordinates near 1e308), and such a result must not be written.
+void FailOnNonFiniteMeasures(RunReport* report);
+
+// The factor on the fairness rows' weight (ω_f²) for a start whose target measure (e.g. max
+// planarity, relative to the mean edge) is `start_residual`: 1 for a start far from the target,
+// and start_residual / 1e-2 (not below `floor`) for one within 1e-2 of it. Fairness is there to
+// guide a long way; against closeness it would smooth a mesh that is nearly there (an exact
+// A-net or PQ mesh) away from where it is.
+double StartSoftScale(double start_residual, double floor);
+
+// Called with every record (the start and each step); returning false stops the run.
+using RunCallback = std::function<bool(const RunRecord&)>;
+
+class GuidedProblem {
+ public:
+  virtual ~GuidedProblem() = default;
+
+  virtual Problem& problem() = 0;
+  const Problem& problem() const { return const_cast<GuidedProblem*>(this)->problem(); }
+  // Guided projection's options (the problem's Options embed them).
+  virtual SolverOptions solver_options() const = 0;
+  // The Ceres cross-check's options for at most `max_iterations` iterations.
+  virtual CeresOptions ceres_options(int max_iterations) const = 0;
+  // The problem's measures at x (same layout as problem().x()).
+  virtual NamedValues MeasureAt(const Eigen::VectorXd& x) const = 0;
+  // Whether measures meet the problem's tolerance.
+  virtual bool MeetsTolerance(const NamedValues& measures) const = 0;
+  // false for a run asked for a number of steps and no tolerance (e.g. the Weingarten presets
+  // of 003, which minimise for a fixed number of iterations): the run then never stops early
+  // and counts as converged when it ends without failure or abort.
+  virtual bool HasTolerance() const { return true; }
+  // false: guided projection stops by its own rules (residual and step tolerances, iterations)
+  // and the tolerance only judges the final iterate, e.g. for problems whose start already
+  // meets it or whose published runs take a fixed number of steps.
+  virtual bool StopsAtTolerance() const { return true; }
+
+  NamedValues Measure() const { return MeasureAt(problem().x()); }
+
+  // Guided projection on problem().x() until the tolerance is met, the solver stops or the
+  // callback says so.
+  RunReport Run(const RunCallback& callback = nullptr);
+  // Ceres' Levenberg–Marquardt on the same rows, stopping when the tolerance is met.
+  RunReport RunCeres(int max_iterations, const RunCallback& callback = nullptr);
+  // A direct solve (closed form, linear system, propagation) as a run: `solve` sets
+  // problem().x(); the report has solver "direct", no iterations, the measures before and
+  // after, and is judged like the others (failed when x is not finite).
+  RunReport RunDirect(const std::string& termination, const std::function<void()>& solve);
+};
+
+}  // namespace gproj

@@ -1,0 +1,22 @@
+#pragma once
+// The run report as JSON: one schema for every problem and front end (the command line's
+// --report, the Python module's report dict). See README, "Reports".
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "gproj/problems/run/guided_problem.h"
+
+namespace gproj {
+
+// A number for JSON: non-finite values become null (JSON has no NaN).
+nlohmann::json JsonNumber(double value);
+
+// The report: command, solver, converged, failed, termination, iterations, seconds,
+// variables, initial and final measures, and the history (per record: iteration, energy, step,
+// epsilon, soft_scale, max_constraint, seconds, the measures, per-term residuals and the time
+// split); `extra` adds the problem's or command's own keys (input, output, options, ...).
+nlohmann::json ReportJson(const std::string& command, const RunReport& report,
+                          const nlohmann::json& extra);
+
+}  // namespace gproj
