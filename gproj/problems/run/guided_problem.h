@@ -43,7 +43,7 @@ struct RunRecord {
 RunRecord ToRunRecord(const IterationRecord& record);
 RunRecord ToRunRecord(const CeresIterationRecord& record);
 
-// What a run did: the report every command writes (see README, "Reports").
+// What a run did: the report every command writes (see docs/command-line.md, "Report JSON").
 struct RunReport {
   std::string solver;       // "gp" or "ceres"
   bool converged = false;   // the problem's tolerance is met by the final iterate

@@ -1,6 +1,6 @@
 #pragma once
 // The run report as JSON: one schema for every problem and front end (the command line's
-// --report, the Python module's report dict). See README, "Reports".
+// --report, the Python module's report dict). See docs/command-line.md, "Report JSON".
 
 #include <nlohmann/json.hpp>
 #include <string>

@@ -36,7 +36,7 @@ enum class CurvatureRelation { kNone, kLinear, kBSpline };
 // Table 2's 2 the samples outnumber the surface's normal freedom by only 4:1 and the tangential
 // freedom lets the surface meet the relation at the samples and miss it between them (the CMC
 // bump of Fig. 3, H = −0.1: 4.4e-5 at the samples, 1.3e-3 between them); with 3 the relation
-// holds between the samples as well as at them (README, "Relations between the samples").
+// holds between the samples as well as at them (docs/families/weingarten.md, "Relations between the samples").
 constexpr int kRelationSamplesPerControl = 3;
 
 // Guided projection's defaults for Weingarten surfaces (003 eq. 11): 10 iterations, ω_f = 0.2,
@@ -341,7 +341,7 @@ WeingartenRun RunWeingarten(
     const RunCallback& on_iteration = nullptr,
     const std::function<void(int, const WeingartenProblem&)>& on_level = nullptr);
 
-// The run's own report keys (see README, Weingarten surfaces): steps, target, tolerance,
+// The run's own report keys (see docs/families/weingarten.md): steps, target, tolerance,
 // samples, levels, worst_sample, linear_relation, dense_check, min_normal_cosine,
 // helical_deviation and, with molds, the clustering. Every history record also gets its level
 // (WeingartenRun::history_level).
