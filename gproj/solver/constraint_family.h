@@ -32,8 +32,14 @@ class ConstraintFamily {
 
   // Appends an element touching the given global item ids (VariableLayout::Item); returns its
   // index. The local vector of the element is the items' scalars concatenated in this order.
+  // In a Problem (AddFamily binds its layout) an item that is not in the layout, or whose size
+  // is not the one the family declared (SetItemDims), is refused: std::invalid_argument naming
+  // the family, the element, the item and its block.
   int AddElement(const std::vector<int>& items);
   int AddElement(const int* items, int count);
+
+  // The layout the family's items belong to (Problem::AddFamily sets it; null: unchecked).
+  void BindLayout(const VariableLayout* layout) { layout_ = layout; }
 
   // Values and gradients of element e's rows at its local vector.
   // x_local: local_dim values; phi: rows_per_element(); jac: rows_per_element() × local_dim,
@@ -82,6 +88,10 @@ class ConstraintFamily {
   const int* element_items(int e) const { return items_.data() + element_begin_[e]; }
   int element_num_items(int e) const { return element_begin_[e + 1] - element_begin_[e]; }
 
+ protected:
+  // The number of scalars of each item of an element, in order (a Term's kDims); empty: any.
+  void SetItemDims(std::vector<int> dims) { item_dims_ = std::move(dims); }
+
  private:
   std::string name_;
   int rows_per_element_;
@@ -89,6 +99,8 @@ class ConstraintFamily {
   double weight_;
   std::vector<int> items_;
   std::vector<int> element_begin_ = {0};
+  const VariableLayout* layout_ = nullptr;
+  std::vector<int> item_dims_;
 };
 
 }  // namespace gproj

@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -15,6 +16,18 @@ namespace gproj {
 
 class Problem {
  public:
+  Problem() = default;
+  // Moves keep the families bound to the moved layout.
+  Problem(Problem&& other) noexcept { *this = std::move(other); }
+  Problem& operator=(Problem&& other) noexcept {
+    layout_ = std::move(other.layout_);
+    x_ = std::move(other.x_);
+    constant_ = std::move(other.constant_);
+    families_ = std::move(other.families_);
+    for (auto& family : families_) family->BindLayout(&layout_);
+    return *this;
+  }
+
   VariableLayout& layout() { return layout_; }
   const VariableLayout& layout() const { return layout_; }
 
@@ -42,10 +55,16 @@ class Problem {
     return false;
   }
 
-  // Takes ownership; returns a pointer for adding elements.
+  // Takes ownership; returns a pointer for adding elements, whose items are checked against the
+  // layout (ConstraintFamily::AddElement). Names are unique (they are report keys): a second
+  // family of a name is refused with std::invalid_argument.
   template <typename Family, typename... Args>
   Family* AddFamily(Args&&... args) {
     auto family = std::make_unique<Family>(std::forward<Args>(args)...);
+    if (FindFamily(family->name()) != nullptr)
+      throw std::invalid_argument("a family named '" + family->name() +
+                                  "' is in the problem already (names are unique)");
+    family->BindLayout(&layout_);
     Family* raw = family.get();
     families_.push_back(std::move(family));
     return raw;

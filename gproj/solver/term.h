@@ -86,7 +86,9 @@ class Term : public ConstraintFamily {
 
   Term(std::string name, Residual residual, FamilyRole role = FamilyRole::kConstraint,
        double weight = 1.0)
-      : ConstraintFamily(std::move(name), kRows, role, weight), residual_(std::move(residual)) {}
+      : ConstraintFamily(std::move(name), kRows, role, weight), residual_(std::move(residual)) {
+    SetItemDims({kDims...});
+  }
 
   // Appends one element; returns its index.
   int Add(const Items& items, Data data = Data()) {

@@ -20,6 +20,13 @@ int VariableLayout::AddBlock(const std::string& name, int num_items, int item_di
   return num_blocks() - 1;
 }
 
+int VariableLayout::BlockOfItem(int item) const {
+  if (item < 0 || item >= num_items()) return -1;
+  for (int b = num_blocks() - 1; b >= 0; --b)
+    if (item >= blocks_[b].first_item) return b;
+  return -1;
+}
+
 int VariableLayout::FindBlock(const std::string& name) const {
   for (int b = 0; b < num_blocks(); ++b)
     if (blocks_[b].name == name) return b;

@@ -32,6 +32,8 @@ class VariableLayout {
   const VariableBlock& block(int id) const { return blocks_[id]; }
   // Block id by name, or -1.
   int FindBlock(const std::string& name) const;
+  // Block id of a global item id, or -1 when there is no such item.
+  int BlockOfItem(int item) const;
 
   // Global item id of item i of block b.
   int Item(int b, int i) const { return blocks_[b].first_item + i; }

@@ -126,3 +126,18 @@ def test_problem_input_errors():
         p.add_closeness(b)
     assert p.terms == ["closeness"]
     assert p.x.shape == (12,)
+
+
+def test_items_outside_the_layout_and_duplicate_names_are_refused():
+    p = gproj.Problem()
+    points = p.add_block("points", 3, 2)
+    p.set_values(points, np.zeros((3, 2)))
+
+    def row(x, element):
+        return [x[0]], [[1.0, 0.0]]
+
+    with pytest.raises(ValueError, match=r"items: row 0 has index 5, outside \[0, 3\)"):
+        p.add_term("row", row, 1, [[5]])
+    p.add_term("row", row, 1, p.items(points)[:, None])
+    with pytest.raises(ValueError, match="a family named 'row' is in the problem already"):
+        p.add_term("row", row, 1, p.items(points)[:, None])

@@ -51,6 +51,8 @@ struct SpringResidual {
 
 TEST(TermTest, JacobianMatchesFiniteDifferencesWithData) {
   Problem problem;
+  problem.layout().AddBlock("points", 2, 3);  // items 0, 1
+  problem.layout().AddBlock("length", 1, 1);  // item 2
   auto* springs = problem.AddTerm<Spring, 2, 3, 3, 1>("springs", SpringResidual{});
   springs->Add({0, 1, 2}, Spring{1.5, 0.3, true});
   springs->Add({0, 1, 2}, Spring{0.5, -0.2, false});
@@ -76,6 +78,7 @@ struct TetraResidual {
 
 TEST(TermTest, EigenExpressionsDifferentiateAndGiveTheirSparsity) {
   Problem problem;
+  problem.layout().AddBlock("corners", 4, 3);
   auto* tetra = problem.AddTerm<3, 3, 3, 3, 3>("tetra", TetraResidual{});
   tetra->Add({0, 1, 2, 3});
   for (unsigned seed = 1; seed <= 3; ++seed)
@@ -90,6 +93,8 @@ TEST(TermTest, EigenExpressionsDifferentiateAndGiveTheirSparsity) {
 
 TEST(TermTest, SparsityIsDerivedPerRowAndFollowsData) {
   Problem problem;
+  problem.layout().AddBlock("points", 2, 3);
+  problem.layout().AddBlock("length", 1, 1);
   auto* springs = problem.AddTerm<Spring, 2, 3, 3, 1>("springs", SpringResidual{});
   springs->Add({0, 1, 2}, Spring{1.0, 0.0, true});
   springs->Add({0, 1, 2}, Spring{1.0, 0.0, false});
@@ -203,6 +208,8 @@ TEST(TermTest, CeresSolvesATermProblemFromTheSameDefinition) {
 TEST(TermTest, QuadraticPerElementDataAndAWrongDeclaration) {
   // Targets as data: one model per element, each exact.
   Problem problem;
+  problem.layout().AddBlock("p", 1, 2);  // item 0
+  problem.layout().AddBlock("s", 1, 1);  // item 1
   auto* targets = problem.AddTerm<double, 1, 2>(
       "targets", [](double t, const auto* p, auto* r) { r[0] = p[0] * p[1] - t; });
   targets->DeclareQuadratic();
@@ -219,7 +226,7 @@ TEST(TermTest, QuadraticPerElementDataAndAWrongDeclaration) {
   auto* cubic =
       problem.AddTerm<1, 1>("cubic", [](const auto* p, auto* r) { r[0] = p[0] * p[0] * p[0]; });
   cubic->DeclareQuadratic();
-  cubic->Add({0});
+  cubic->Add({1});
   try {
     cubic->Prepare();
     FAIL() << "a cubic row passed as quadratic";
@@ -227,6 +234,42 @@ TEST(TermTest, QuadraticPerElementDataAndAWrongDeclaration) {
     EXPECT_NE(std::string(e.what()).find("term 'cubic', element 0"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("row 0"), std::string::npos) << e.what();
   }
+}
+
+// Items that are not in the layout or of the wrong size, and a second family of a name, are
+// refused when added, naming the family, element, item and block (not a crash in Solve).
+TEST(TermTest, AddRefusesItemsOutsideTheLayoutWrongSizesAndDuplicateNames) {
+  Problem problem;
+  const int points = problem.layout().AddBlock("points", 3, 2);
+  problem.layout().AddBlock("normals", 2, 3);
+  problem.ResizeToLayout();
+  auto* pair = problem.AddTerm<1, 2, 2>(
+      "pair", [](const auto* a, const auto* b, auto* r) { r[0] = a[0] * b[1] - a[1] * b[0]; });
+  pair->Add({problem.layout().Item(points, 0), problem.layout().Item(points, 2)});
+  const auto message = [&](const std::array<int, 2>& items) {
+    try {
+      pair->Add(items);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(message({0, 7}),
+            "family 'pair', element 1: item 1 (id 7) is not in the layout (it has 5 items)");
+  EXPECT_EQ(message({-1, 0}),
+            "family 'pair', element 1: item 0 (id -1) is not in the layout (it has 5 items)");
+  EXPECT_EQ(message({0, 3}),
+            "family 'pair', element 1: item 1 (id 3) of block 'normals' has 3 scalars; the family "
+            "takes 2");
+  EXPECT_EQ(pair->num_elements(), 1);
+  EXPECT_THROW((problem.AddTerm<1, 2>("pair", [](const auto* a, auto* r) { r[0] = a[0]; })),
+               std::invalid_argument);
+  // A moved problem keeps checking against its own layout.
+  Problem moved = std::move(problem);
+  auto* again = static_cast<decltype(pair)>(moved.FindFamily("pair"));
+  EXPECT_THROW(again->Add({0, 9}), std::invalid_argument);
+  again->Add({1, 2});
+  EXPECT_EQ(again->num_elements(), 2);
 }
 
 TEST(TermTest, UpdateRefreshesFrozenDataFromTheIterate) {
