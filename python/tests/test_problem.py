@@ -139,5 +139,5 @@ def test_items_outside_the_layout_and_duplicate_names_are_refused():
     with pytest.raises(ValueError, match=r"items: row 0 has index 5, outside \[0, 3\)"):
         p.add_term("row", row, 1, [[5]])
     p.add_term("row", row, 1, p.items(points)[:, None])
-    with pytest.raises(ValueError, match="a family named 'row' is in the problem already"):
+    with pytest.raises(ValueError, match="term name 'row' is empty or already used"):
         p.add_term("row", row, 1, p.items(points)[:, None])
