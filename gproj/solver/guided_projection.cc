@@ -75,6 +75,8 @@ const char* TerminationTypeName(TerminationType type) {
   switch (type) {
     case TerminationType::kConvergence:
       return "CONVERGENCE";
+    case TerminationType::kStalled:
+      return "STALLED";
     case TerminationType::kNoConvergence:
       return "NO_CONVERGENCE";
     case TerminationType::kFailure:
@@ -137,6 +139,17 @@ class Minimizer {
 
  private:
   // Ends the run with this outcome; returns false so callers can `return Finish(…)`.
+  // A stop at a stationary point: converged when no residual tolerance is asked, else a stall
+  // short of it (the rows' maximum named).
+  bool Stop(const std::string& why) {
+    if (options_.residual_tolerance <= 0.0) return Finish(TerminationType::kConvergence, why);
+    char residual[96];
+    std::snprintf(residual, sizeof(residual),
+                  " with the max constraint residual %.3e above the residual tolerance %.1e",
+                  record_.max_constraint, options_.residual_tolerance);
+    return Finish(TerminationType::kStalled, why + residual);
+  }
+
   bool Finish(TerminationType type, const std::string& message) {
     summary_.termination = type;
     summary_.message = message;
@@ -201,7 +214,7 @@ class Minimizer {
     if (options_.residual_tolerance > 0.0 && record_.max_constraint <= options_.residual_tolerance)
       return !Finish(TerminationType::kConvergence, "residual tolerance met");
     if (k > 0 && options_.step_tolerance > 0.0 && record_.step_norm <= options_.step_tolerance)
-      return !Finish(TerminationType::kConvergence, "step tolerance met");
+      return !Stop("step tolerance met");
     if (k == options_.max_iterations)
       return !Finish(TerminationType::kNoConvergence, "maximum number of iterations reached");
     // The targets move after a step (Bregman: the first solve has none), and the step's
@@ -288,10 +301,9 @@ class Minimizer {
       if (admissible && Accepts(energy, epsilon, &failed)) break;
       if (failed) return Finish(TerminationType::kFailure, why_);
       if (++rejections > options_.max_rejections)
-        return Finish(TerminationType::kConvergence,
-                      std::string(admissible ? "no step lowers the energy"
-                                             : "no admissible step (the last trial was refused)") +
-                          " (epsilon raised to " + std::to_string(epsilon) + ")");
+        return Stop(std::string(admissible ? "no step lowers the energy"
+                                           : "no admissible step (the last trial was refused)") +
+                    " (epsilon raised to " + std::to_string(epsilon) + ")");
       epsilon *= std::sqrt(growth_);
       growth_ *= 2.0;
     }

@@ -106,8 +106,11 @@ struct IterationRecord {
 };
 
 enum class TerminationType {
-  kConvergence,    // residual or step tolerance met, the callback said so, or (monotone)
-                   // no step lowers the energy however large ε grows (a local minimum)
+  kConvergence,    // the residual tolerance met, or the callback said the problem's tolerance
+                   // is; with residual_tolerance 0, also a vanished step or (monotone) no step
+                   // that lowers the energy however large ε grows (a stationary point)
+  kStalled,        // the step vanished, or no step lowers the energy, while a kConstraint row
+                   // is still above residual_tolerance: not converged
   kNoConvergence,  // max_iterations reached
   kFailure,        // numerical failure (non-finite values, factorisation failed after retries)
   kUserAbort,      // the callback asked to stop

@@ -256,10 +256,39 @@ TEST(GuidedProjectionMonotoneTest, StopsWhenNoStepLowersTheEnergy) {
   options.max_rejections = 0;  // the overshooting first step is the only try
   Problem problem = MakeRosenbrockProblem();
   const SolverSummary s = Solve(options, &problem);
-  EXPECT_EQ(s.termination, TerminationType::kConvergence);
+  // Stopped at the start, far from a zero of the rows: a stall, not convergence.
+  EXPECT_EQ(s.termination, TerminationType::kStalled);
+  EXPECT_FALSE(s.converged());
   EXPECT_NE(s.message.find("no step lowers the energy"), std::string::npos) << s.message;
+  EXPECT_NE(s.message.find("above the residual tolerance 1.0e-10"), std::string::npos) << s.message;
   EXPECT_EQ(s.num_steps(), 0);
   EXPECT_EQ(problem.x(), Eigen::Vector2d(-1.2, 1.0));
+  // Asked for a stationary point only (no residual tolerance), the same stop is convergence.
+  options.residual_tolerance = 0.0;
+  Problem again = MakeRosenbrockProblem();
+  EXPECT_EQ(Solve(options, &again).termination, TerminationType::kConvergence);
+}
+
+// Rows that contradict each other (x = 0 and x = 2): the step vanishes at x = 1 with both rows
+// at |phi| = 1, which is a stall short of the residual tolerance, never convergence.
+TEST(GuidedProjectionTest, AVanishedStepAboveTheResidualToleranceIsAStall) {
+  Problem problem;
+  const int block = problem.layout().AddBlock("x", 1, 1);
+  problem.ResizeToLayout();
+  auto* rows = problem.AddTerm<double, 1, 1>(
+      "targets", [](double t, const auto* x, auto* r) { r[0] = x[0] - t; });
+  rows->Add({problem.layout().Item(block, 0)}, 0.0);
+  rows->Add({problem.layout().Item(block, 0)}, 2.0);
+  SolverOptions options;
+  options.step_tolerance = 1e-9;
+  const SolverSummary s = Solve(options, &problem);
+  EXPECT_EQ(s.termination, TerminationType::kStalled) << s.FullReport();
+  EXPECT_FALSE(s.converged());
+  EXPECT_NEAR(problem.x()[0], 1.0, 1e-6);
+  EXPECT_NEAR(s.iterations.back().max_constraint, 1.0, 1e-6);
+  EXPECT_NE(s.message.find("step tolerance met with the max constraint residual 1.000e+00"),
+            std::string::npos)
+      << s.message;
 }
 
 TEST(GuidedProjectionMonotoneTest, TrialPointsAreProjected) {

@@ -29,6 +29,11 @@ void Conclude(const GuidedProblem& problem, Clock::time_point start, bool aborte
   if (!report->converged && !report->failed && at != std::string::npos &&
       (at == 0 || report->termination[at - 1] == ' '))
     report->termination.replace(at, 11, "STALLED short of the tolerance");
+  // The solver's own stall (a row above its residual tolerance) when the problem's tolerance,
+  // which decides, is met.
+  if (report->converged && report->termination.rfind("STALLED", 0) == 0)
+    report->termination = "CONVERGENCE: the problem's tolerance was met (the solver: " +
+                          report->termination + ")";
   report->seconds = SecondsSince(start);
 }
 
