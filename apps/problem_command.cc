@@ -9,6 +9,7 @@
 
 #include "apps/commands.h"
 #include "gproj/geometry/io/text_input.h"
+#include "gproj/problems/mesh/vertex_control.h"
 #include "gproj/problems/run/registry.h"
 
 namespace gproj {
