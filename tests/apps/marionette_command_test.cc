@@ -239,6 +239,11 @@ TEST_F(MarionetteMeshCommandTest, ClosedStripReportsAAndTheClosingHeight) {
       Marionette("--closed-strip " + Write("s.txt", RingFile(0.1)) + " --solver ceres");
   EXPECT_EQ(ceres.exit_code, 1);
   EXPECT_NE(ceres.err.find("--solver ceres does not apply"), std::string::npos) << ceres.err;
+  for (const char* other : {" --hold 1:2", " --row 1,2", " --projection central"}) {
+    const Run misused = Marionette("--closed-strip " + Write("s.txt", RingFile(0.1)) + other);
+    EXPECT_EQ(misused.exit_code, 1) << other;
+    EXPECT_NE(misused.err.find("belong to a plan"), std::string::npos) << misused.err;
+  }
   const Run r = Marionette("--closed-strip " + Write("s.txt", RingFile(0.1)));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   nlohmann::json report = Report();

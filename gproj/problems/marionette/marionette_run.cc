@@ -491,6 +491,14 @@ std::unique_ptr<MarionetteRun> MakeMarionetteRun(const MarionetteRunOptions& opt
     if (options.solver != "direct")
       throw InputError("`closed_strip` is lifted directly (002 eq. 8): `solver` " + options.solver +
                        " does not apply");
+    if (!options.row.empty() || !options.column.empty() || !options.guides.empty() ||
+        options.guides_text || !options.fit.empty() || options.fit_mesh ||
+        !options.fit_heights.empty() || !options.constraints.empty() ||
+        options.projection != "vertical")
+      throw InputError(
+          "`closed_strip` is lifted by its closing condition (002 eq. 8): `row`, `column`, "
+          "`guides`, `fit`, `fit_heights`, `hold`, `volume`, `max_height` and `projection` "
+          "belong to a plan");
     ClosedStripFile file = options.closed_strip_text
                                ? ParseClosedStrip(*options.closed_strip_text, options.closed_strip)
                                : ReadClosedStrip(options.closed_strip);
