@@ -2,9 +2,10 @@
 // Marionette meshes (002 §2–3): the plan view (x, y of every vertex) of a regular quad grid is
 // fixed and only heights are unknown, so quad planarity is linear in the heights (002 eq. 2):
 //   z_C = z_A + α (z_B − z_A) + β (z_D − z_A),  AC = α AB + β AD in the plan.
-// (002 eq. 2 as printed has the wrong sign on its (z_B − z_A) term; see docs/families/marionette.md.)
-// Planar height fields of an N × M-face grid form a vector space of dimension N + M + 1: the
-// heights along one row and one column of vertices (the guide curves) determine the rest.
+// (002 eq. 2 as printed has the wrong sign on its (z_B − z_A) term; see
+// docs/families/marionette.md.) Planar height fields of an N × M-face grid form a vector space of
+// dimension N + M + 1: the heights along one row and one column of vertices (the guide curves)
+// determine the rest.
 
 #include <Eigen/Core>
 #include <string>

@@ -32,8 +32,8 @@ void Conclude(const GuidedProblem& problem, Clock::time_point start, bool aborte
   // The solver's own stall (a row above its residual tolerance) when the problem's tolerance,
   // which decides, is met.
   if (report->converged && report->termination.rfind("STALLED", 0) == 0)
-    report->termination = "CONVERGENCE: the problem's tolerance was met (the solver: " +
-                          report->termination + ")";
+    report->termination =
+        "CONVERGENCE: the problem's tolerance was met (the solver: " + report->termination + ")";
   report->seconds = SecondsSince(start);
 }
 

@@ -36,7 +36,8 @@ enum class CurvatureRelation { kNone, kLinear, kBSpline };
 // Table 2's 2 the samples outnumber the surface's normal freedom by only 4:1 and the tangential
 // freedom lets the surface meet the relation at the samples and miss it between them (the CMC
 // bump of Fig. 3, H = −0.1: 4.4e-5 at the samples, 1.3e-3 between them); with 3 the relation
-// holds between the samples as well as at them (docs/families/weingarten.md, "Relations between the samples").
+// holds between the samples as well as at them (docs/families/weingarten.md, "Relations between the
+// samples").
 constexpr int kRelationSamplesPerControl = 3;
 
 // Guided projection's defaults for Weingarten surfaces (003 eq. 11): 10 iterations, ω_f = 0.2,

@@ -51,7 +51,8 @@ TEST(WeingartenTest, VariableCountsOfTable2) {
 }
 
 // 003 Table 1: the weights of every preset, with ω_f = 0.2 and ε = 0.001 throughout except
-// fig3's ε, the floor of its adaptive damping (1e-4; docs/families/weingarten.md, "Fixed relations").
+// fig3's ε, the floor of its adaptive damping (1e-4; docs/families/weingarten.md, "Fixed
+// relations").
 TEST(WeingartenTest, PresetsCarryTheWeightsOfTable1) {
   struct Row {
     const char* preset;
