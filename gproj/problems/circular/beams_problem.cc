@@ -6,6 +6,7 @@
 #include "gproj/geometry/render/svg_render.h"
 #include "gproj/problems/circular/circular_mesh.h"
 #include "gproj/problems/circular/torsion_free_beams.h"
+#include "gproj/problems/mesh/mesh_outputs.h"
 #include "gproj/problems/run/builtin_problems.h"
 
 namespace gproj {
@@ -115,13 +116,9 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
         AxesObj(mesh, layout.axis,
                 settings.axis_length > 0.0 ? settings.axis_length : 2.0 * options.height);
   if (context.Wants("offset")) result.meshes["offset"] = layout.offset;
-  if (context.Wants("picture")) {
-    SvgOptions svg;
-    std::snprintf(line, sizeof(line), "Torsion-free beams, %zu beams, height %g, max gap %.2g h",
-                  mesh.n_edges(), options.height, ValueOf(m, "max_height_gap"));
-    svg.title = line;
-    result.texts["picture"] = RenderMeshSvg(layout.beams, svg);
-  }
+  std::snprintf(line, sizeof(line), "Torsion-free beams, %zu beams, height %g, max gap %.2g h",
+                mesh.n_edges(), options.height, ValueOf(m, "max_height_gap"));
+  AddMeshPicture(context, "picture", layout.beams, line, &result);
   return result;
 }
 

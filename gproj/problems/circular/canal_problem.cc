@@ -14,6 +14,7 @@
 #include "gproj/problems/circular/circular_mesh.h"
 #include "gproj/problems/circular/closed_canal.h"
 #include "gproj/problems/circular/cyclidic_surface.h"
+#include "gproj/problems/mesh/mesh_outputs.h"
 #include "gproj/problems/run/builtin_problems.h"
 
 namespace gproj {
@@ -143,14 +144,6 @@ void CheckCanalResult(const NamedValues& mesh_measures, const CyclidicSurface* s
   report->termination = fault;
 }
 
-void AddPicture(const RunContext& context, const std::string& output, const PolyMesh& mesh,
-                const std::string& title, RunResult* result) {
-  if (!context.Wants(output)) return;
-  SvgOptions svg;
-  svg.title = title;
-  result->texts[output] = RenderMeshSvg(mesh, svg);
-}
-
 // The smooth cyclidic surface of the canal's net (000 §2.2) when `surface` or
 // `surface_picture` asks for it; null otherwise.
 std::unique_ptr<CyclidicSurface> SmoothSurface(const CanalSettings& s, const RunContext& context,
@@ -179,7 +172,7 @@ void AddSmoothSurface(const CyclidicSurface* surface, const RunContext& context,
   if (context.Wants("surface")) result->meshes["surface"] = surface->mesh;
   std::snprintf(line, sizeof(line), "Smooth cyclidic surface (000 §2.2), %g Dupin cyclide patches",
                 ValueOf(m, "patches"));
-  AddPicture(context, "surface_picture", surface->mesh, line, result);
+  AddMeshPicture(context, "surface_picture", surface->mesh, line, result);
 }
 
 double SecondsSince(std::chrono::steady_clock::time_point start) {
@@ -236,7 +229,7 @@ RunResult RunFromCurves(const RunInputs& inputs, const CanalSettings& s,
   result.meshes["output"] = canal.mesh;
   std::snprintf(line, sizeof(line), "Canal surface from two curves, %zu circular quads",
                 canal.mesh.n_faces());
-  AddPicture(context, "picture", canal.mesh, line, &result);
+  AddMeshPicture(context, "picture", canal.mesh, line, &result);
   return result;
 }
 
@@ -281,7 +274,7 @@ RunResult RunCCanal(const RunInputs& inputs, const CanalSettings& s, const RunCo
   result.meshes["output"] = c.mesh;
   std::snprintf(line, sizeof(line), "C-canal surface (000 §5.2), %zu circular quads",
                 c.mesh.n_faces());
-  AddPicture(context, "picture", c.mesh, line, &result);
+  AddMeshPicture(context, "picture", c.mesh, line, &result);
   return result;
 }
 
@@ -359,7 +352,7 @@ RunResult RunClosed(const RunInputs& inputs, const CanalSettings& s, const RunCo
   if (context.Wants("strip")) result.meshes["strip"] = ClosedStripMesh(c.closed.strip);
   std::snprintf(line, sizeof(line), "Closed canal surface (000 §4.2, case %d), %zu circular quads",
                 c.closed.closing_case, c.mesh.n_faces());
-  AddPicture(context, "picture", c.mesh, line, &result);
+  AddMeshPicture(context, "picture", c.mesh, line, &result);
   return result;
 }
 
@@ -404,7 +397,7 @@ RunResult RunStrip(const RunInputs& inputs, const CanalSettings& s, const RunCon
   if (context.Wants("strip")) result.meshes["strip"] = strip_mesh;
   std::snprintf(line, sizeof(line), "Canal surface, %zu circular quads, max concyclicity %.1e",
                 mesh.n_faces(), ValueOf(result.report.final, "max_concyclicity"));
-  AddPicture(context, "picture", mesh, line, &result);
+  AddMeshPicture(context, "picture", mesh, line, &result);
   return result;
 }
 

@@ -5,6 +5,7 @@
 #include "gproj/geometry/render/svg_render.h"
 #include "gproj/problems/circular/circular_mesh.h"
 #include "gproj/problems/circular/combescure.h"
+#include "gproj/problems/mesh/mesh_outputs.h"
 #include "gproj/problems/run/builtin_problems.h"
 
 namespace gproj {
@@ -102,12 +103,8 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
     result.Info(line);
   }
   result.meshes["output"] = combescure.Result();
-  if (context.Wants("picture")) {
-    SvgOptions svg;
-    std::snprintf(line, sizeof(line), "Combescure transform, max edge angle %.1e rad", angle);
-    svg.title = line;
-    result.texts["picture"] = RenderMeshSvg(result.meshes["output"], svg);
-  }
+  std::snprintf(line, sizeof(line), "Combescure transform, max edge angle %.1e rad", angle);
+  AddMeshPicture(context, "picture", result.meshes["output"], line, &result);
   return result;
 }
 

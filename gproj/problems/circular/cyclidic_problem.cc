@@ -6,6 +6,7 @@
 
 #include "gproj/geometry/render/svg_render.h"
 #include "gproj/problems/circular/cyclidic_surface.h"
+#include "gproj/problems/mesh/mesh_outputs.h"
 #include "gproj/problems/run/builtin_problems.h"
 
 namespace gproj {
@@ -94,14 +95,9 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
                 ValueOf(m, "max_face_frame_closure_deg"));
   result.Info(line);
   result.meshes["output"] = r.surface.mesh;
-  if (context.Wants("picture")) {
-    SvgOptions svg;
-    std::snprintf(line, sizeof(line),
-                  "Smooth cyclidic surface (000 §2.2), %g Dupin cyclide patches",
-                  ValueOf(m, "patches"));
-    svg.title = line;
-    result.texts["picture"] = RenderMeshSvg(r.surface.mesh, svg);
-  }
+  std::snprintf(line, sizeof(line), "Smooth cyclidic surface (000 §2.2), %g Dupin cyclide patches",
+                ValueOf(m, "patches"));
+  AddMeshPicture(context, "picture", r.surface.mesh, line, &result);
   return result;
 }
 

@@ -6,6 +6,7 @@
 #include "gproj/geometry/mesh/mobius.h"
 #include "gproj/geometry/render/svg_render.h"
 #include "gproj/problems/circular/circular_mesh.h"
+#include "gproj/problems/mesh/mesh_outputs.h"
 #include "gproj/problems/run/builtin_problems.h"
 
 namespace gproj {
@@ -103,11 +104,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   result.Info(CircularMeasuresLine("input", result.report.initial));
   result.Info(CircularMeasuresLine("inverted", result.report.final));
   result.meshes["output"] = out;
-  if (context.Wants("picture")) {
-    SvgOptions svg;
-    svg.title = "Inversion (Möbius transformation)";
-    result.texts["picture"] = RenderMeshSvg(out, svg);
-  }
+  AddMeshPicture(context, "picture", out, "Inversion (Möbius transformation)", &result);
   return result;
 }
 

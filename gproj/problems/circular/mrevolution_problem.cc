@@ -6,6 +6,7 @@
 #include "gproj/geometry/render/svg_render.h"
 #include "gproj/problems/circular/circular_mesh.h"
 #include "gproj/problems/circular/m_revolution.h"
+#include "gproj/problems/mesh/mesh_outputs.h"
 #include "gproj/problems/run/builtin_problems.h"
 
 namespace gproj {
@@ -106,13 +107,9 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   Describe(surface, options, &result);
   result.meshes["output"] = surface.mesh;
   if (context.Wants("revolution")) result.meshes["revolution"] = surface.revolution;
-  if (context.Wants("picture")) {
-    SvgOptions svg;
-    std::snprintf(line, sizeof(line), "M-revolution surface (000 §5.1), %zu circular quads",
-                  surface.mesh.n_faces());
-    svg.title = line;
-    result.texts["picture"] = RenderMeshSvg(surface.mesh, svg);
-  }
+  std::snprintf(line, sizeof(line), "M-revolution surface (000 §5.1), %zu circular quads",
+                surface.mesh.n_faces());
+  AddMeshPicture(context, "picture", surface.mesh, line, &result);
   return result;
 }
 

@@ -71,4 +71,12 @@ void AddPanelMessages(const std::string& target, const PolyMesh& input, const Po
     result->Warn(std::move(*warning));
 }
 
+void AddMeshPicture(const RunContext& context, const std::string& output, const PolyMesh& mesh,
+                    const std::string& title, RunResult* result) {
+  if (!context.Wants(output)) return;
+  SvgOptions svg;
+  svg.title = title;
+  result->texts[output] = RenderMeshSvg(mesh, svg);
+}
+
 }  // namespace gproj

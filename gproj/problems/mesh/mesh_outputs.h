@@ -22,6 +22,10 @@ void AddFaceOutputTexts(const PolyMesh& mesh, const std::vector<double>& values,
                         const ColourScale& scale, const std::string& csv, const std::string& title,
                         const RunContext& context, RunResult* result);
 
+// The SVG picture of `mesh` titled `title` as the output `output` when `context` asks for it.
+void AddMeshPicture(const RunContext& context, const std::string& output, const PolyMesh& mesh,
+                    const std::string& title, RunResult* result);
+
 // "panels: non-convex quads 0 -> 0, smallest corner angle …" from the ShapeValues of the initial
 // and final measures, preceded by the gliding line when the final measures have
 // max_glide_distance.
