@@ -94,8 +94,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   context.Info(CircularMeasuresLine("input", input_measures));
   const auto start = std::chrono::steady_clock::now();
   const BeamLayout layout = TorsionFreeBeams(mesh, options);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = SecondsSince(start);
   const NamedValues& m = layout.measures;
   NamedValues initial = input_measures;
   initial.push_back({"max_height_gap", ValueOf(m, "initial_max_height_gap")});

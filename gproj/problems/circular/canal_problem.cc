@@ -175,10 +175,6 @@ void AddSmoothSurface(const CyclidicSurface* surface, const RunContext& context,
   AddMeshPicture(context, "surface_picture", surface->mesh, line, result);
 }
 
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 // 000 §4.1 from two curves: spheres equidistant from the line of curvature and the second
 // curve (eq. 6), their circles, the circular mesh between them.
 RunResult RunFromCurves(const RunInputs& inputs, const CanalSettings& s,

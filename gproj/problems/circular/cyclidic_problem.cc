@@ -76,9 +76,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   const auto start = std::chrono::steady_clock::now();
   const CyclidicMeshResult r = CyclidicSurfaceOfMesh(mesh, options, source);
   RunResult result;
-  result.report = CyclidicRunReport(
-      r, settings.tangent_tolerance,
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  result.report = CyclidicRunReport(r, settings.tangent_tolerance, SecondsSince(start));
   result.facts = CyclidicJson(r);
   if (result.report.failed) return result;
   const NamedValues& m = result.report.final;

@@ -96,9 +96,8 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
                 centre.y(), centre.z(), settings.ratio);
   context.Headline(line);
   const PolyMesh out = InvertMesh(mesh, centre, settings.ratio);
-  result.report = ConstructionReport(
-      "none", MeasureCircularMesh(mesh), MeasureCircularMesh(out), true,
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  result.report = ConstructionReport("none", MeasureCircularMesh(mesh), MeasureCircularMesh(out),
+                                     true, SecondsSince(start));
   result.tolerance_measure = "max_concyclicity";
   if (result.report.failed) return result;
   result.Info(CircularMeasuresLine("input", result.report.initial));

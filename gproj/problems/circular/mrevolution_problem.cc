@@ -100,9 +100,9 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   measures.push_back({"far_meridian_miss", surface.far_meridian_miss});
   measures.push_back({"arch_planarity", surface.arch_planarity});
   RunResult result;
-  result.report = ConstructionReport(
-      "inversion of a surface of revolution", MeasureCircularMesh(surface.revolution), measures,
-      true, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  result.report = ConstructionReport("inversion of a surface of revolution",
+                                     MeasureCircularMesh(surface.revolution), measures, true,
+                                     SecondsSince(start));
   if (result.report.failed) return result;
   Describe(surface, options, &result);
   result.meshes["output"] = surface.mesh;

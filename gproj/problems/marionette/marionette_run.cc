@@ -18,10 +18,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 // printf into a string.
 template <typename... Args>
 std::string Format(const char* format, Args... args) {
@@ -278,7 +274,7 @@ class PolygonRun : public MarionetteRun {
       throw InputError(options.plan + ": " + e.what());
     }
     space_ = lift_.space;
-    seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    seconds_ = SecondsSince(start);
   }
   std::string Description() const override {
     std::map<int, int> sizes;

@@ -534,10 +534,6 @@ double MaxDistanceToSurface(const PolyMesh& mesh, const PolyMesh& reference) {
 constexpr double kReportedEdgeAngleDeg = 1e-6;
 constexpr size_t kReportedEdges = 100;
 
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 }  // namespace
 
 bool HNet::RunANetStep(const PolyMesh& reference, const IterationCallback& on_iteration,

@@ -167,8 +167,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
     context.Info(line);
   }
   const DirectionField field = EstimateDirectionField(mesh, kind, settings.fit, settings.smooth);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = SecondsSince(start);
   const NamedValues measures = {{"fitted_vertices", static_cast<double>(field.fitted)},
                                 {"negative_area_fraction", field.negative_area_fraction},
                                 {"undefined_area_fraction", field.undefined_area_fraction},

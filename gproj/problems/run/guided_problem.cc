@@ -9,10 +9,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 // Fills the fields every run shares once the solver has stopped.
 void Conclude(const GuidedProblem& problem, Clock::time_point start, bool aborted,
               RunReport* report) {
@@ -73,6 +69,10 @@ RunRecord ToRunRecord(const CeresIterationRecord& s) {
   record.max_constraint = NAN;  // Ceres reports no per-row maximum
   record.seconds = s.iteration_time_in_seconds;
   return record;
+}
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 double ValueOf(const NamedValues& values, const std::string& name) {

@@ -6,6 +6,7 @@
 // (and any other front end) logs, writes and maps exit codes in one place.
 
 #include <Eigen/Core>
+#include <chrono>
 #include <functional>
 #include <string>
 #include <vector>
@@ -24,6 +25,8 @@ struct NamedValue {
 using NamedValues = std::vector<NamedValue>;
 // The value named `name`; NaN when there is none.
 double ValueOf(const NamedValues& values, const std::string& name);
+// Seconds of wall time since `start` (the run's timer).
+double SecondsSince(std::chrono::steady_clock::time_point start);
 
 // One iterate of a run, the same for both solvers (fields a solver does not have stay 0).
 struct RunRecord {
