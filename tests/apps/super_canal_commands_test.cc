@@ -2,6 +2,7 @@
 // the shipped data.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -26,7 +27,8 @@ TEST_F(SuperCanalCommandTest, CombescureByEveryMethodKeepsEdgesParallelAndQuadsC
     ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
     const nlohmann::json report = Json("r.json");
     EXPECT_TRUE(report["converged"].get<bool>());
-    EXPECT_EQ(report["method"], method);
+    EXPECT_EQ(report["options"]["method"], method);
+    EXPECT_EQ(report["solver"], method == "propagation" ? "direct" : method);
     EXPECT_LT(report["final"]["max_edge_parallelism_angle"].get<double>(), 1e-10) << method;
     EXPECT_LT(report["final"]["max_planarity"].get<double>(), 1e-10) << method;
     EXPECT_LT(report["final"]["max_concyclicity"].get<double>(), 1e-10) << method;
@@ -170,7 +172,8 @@ TEST_F(SuperCanalCommandTest, CanalSmoothingCutShortExitsThreeWithTheResultWritt
   const nlohmann::json report = Json("r.json");
   EXPECT_FALSE(report["converged"].get<bool>());
   EXPECT_FALSE(report["failed"].get<bool>());
-  EXPECT_EQ(report["solver"], "ceres-bfgs");
+  EXPECT_EQ(report["solver"], "ceres");
+  EXPECT_EQ(report["method"], "BFGS");
   EXPECT_EQ(report["iterations"], 2);
   EXPECT_EQ(report["history"].size(), 3u);
   EXPECT_LT(report["final"]["smoothness_energy"].get<double>(),
@@ -180,16 +183,19 @@ TEST_F(SuperCanalCommandTest, CanalSmoothingCutShortExitsThreeWithTheResultWritt
 
 TEST_F(SuperCanalCommandTest, ReportsFollowTheSharedSchema) {
   const std::string in = Data("revolution_13x17.obj");
-  const std::vector<std::pair<std::string, std::string>> cases = {
-      {"invert " + in + " --centre 4,0.5,0.3 --ratio 9", "none"},
-      {"combescure " + in + " --column-scale 0.5", "propagation"},
-      {"combescure " + in + " --column-scale 0.5 --method gp", "gp"},
-      {"canal " + Data("canal_curve.txt") + " --first-point -0.5,0.5,2 --length 2", "none"}};
-  for (const auto& [command, solver] : cases) {
+  // The command, its solver and its construction method (null: an iterative solver).
+  const std::vector<std::array<std::string, 3>> cases = {
+      {"invert " + in + " --centre 4,0.5,0.3 --ratio 9", "direct", "closed form"},
+      {"combescure " + in + " --column-scale 0.5", "direct", "propagation"},
+      {"combescure " + in + " --column-scale 0.5 --method gp", "gp", ""},
+      {"canal " + Data("canal_curve.txt") + " --first-point -0.5,0.5,2 --length 2", "direct",
+       "closed form"}};
+  for (const auto& [command, solver, method] : cases) {
     const CommandRun r = Gproj(command + " -o " + Path("out.obj") + " --report " + Path("r.json"));
     ASSERT_EQ(r.exit_code, 0) << command << "\n" << r.err;
     const nlohmann::json report = Json("r.json");
     EXPECT_EQ(report["solver"], solver) << command;
+    EXPECT_EQ(report.value("method", ""), method) << command;
     EXPECT_EQ(report["output"], Path("out.obj")) << command;
     for (const char* key : {"command", "converged", "failed", "termination", "iterations",
                             "seconds", "variables", "initial", "final", "history"})

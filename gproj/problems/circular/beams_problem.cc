@@ -8,6 +8,7 @@
 #include "gproj/problems/circular/torsion_free_beams.h"
 #include "gproj/problems/mesh/mesh_outputs.h"
 #include "gproj/problems/run/builtin_problems.h"
+#include "gproj/problems/run/construction.h"
 
 namespace gproj {
 namespace {
@@ -92,16 +93,16 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   context.Headline(line);
   const NamedValues input_measures = MeasureCircularMesh(mesh);
   context.Info(CircularMeasuresLine("input", input_measures));
-  const auto start = std::chrono::steady_clock::now();
+  Construction construction(ConstructionMethod::kClosedForm, "mirror images");
   const BeamLayout layout = TorsionFreeBeams(mesh, options);
-  const double seconds = SecondsSince(start);
+  construction.Stop();
   const NamedValues& m = layout.measures;
   NamedValues initial = input_measures;
   initial.push_back({"max_height_gap", ValueOf(m, "initial_max_height_gap")});
   const bool met =
       settings.gap_tolerance <= 0.0 || ValueOf(m, "max_height_gap") <= settings.gap_tolerance;
   RunResult result;
-  result.report = ConstructionReport("mirror images", initial, m, met, seconds);
+  result.report = construction.Finish(initial, m, met);
   result.tolerance_measure = "max_height_gap";
   result.tolerance = settings.gap_tolerance;
   if (result.report.failed) return result;

@@ -16,6 +16,7 @@
 #include "gproj/problems/circular/cyclidic_surface.h"
 #include "gproj/problems/mesh/mesh_outputs.h"
 #include "gproj/problems/run/builtin_problems.h"
+#include "gproj/problems/run/construction.h"
 
 namespace gproj {
 namespace {
@@ -191,11 +192,10 @@ RunResult RunFromCurves(const RunInputs& inputs, const CanalSettings& s,
   context.Headline(line);
   CanalFromCurvesOptions options;
   options.segments = s.options.segments;
-  const auto start = std::chrono::steady_clock::now();
+  const Construction construction(ConstructionMethod::kClosedForm, "spheres from two curves");
   const CanalFromCurves canal = FitCanalToCurves(curve1, curve2, Point(s.normal), options);
   RunResult result;
-  result.report =
-      ConstructionReport("spheres from two curves", {}, canal.measures, true, SecondsSince(start));
+  result.report = construction.Finish({}, canal.measures, true);
   CheckCanalResult(canal.measures, nullptr, &result.report,
                    "the plane steps between the circles pass each other; fewer `segments` or a "
                    "finer line of curvature");
@@ -246,13 +246,13 @@ RunResult RunCCanal(const RunInputs& inputs, const CanalSettings& s, const RunCo
   options.segments = s.options.segments;
   options.section_scales = s.section_scales;
   options.max_iterations = s.options.smoothing.max_iterations;
-  const auto start = std::chrono::steady_clock::now();
+  const Construction construction(ConstructionMethod::kBfgs, "C-canal lengths");
   const CCanalSurface c = BuildCCanalSurface(input, angles, options);
   NamedValues measures = MeasureCircularMesh(c.mesh);
   measures.push_back({"max_length_error", c.max_length_error});
   RunResult result;
-  result.report = ConstructionReport("ceres-bfgs", {{"max_length_error", c.initial_length_error}},
-                                     measures, c.converged, SecondsSince(start));
+  result.report =
+      construction.Finish({{"max_length_error", c.initial_length_error}}, measures, c.converged);
   result.report.iterations = c.iterations;
   result.report.termination = "ceres-bfgs: " + c.message;
   CheckCanalResult(measures, nullptr, &result.report);
@@ -330,7 +330,7 @@ RunResult RunClosed(const RunInputs& inputs, const CanalSettings& s, const RunCo
                 "unless the end circles are co-spherical)",
                 inputs.Source("curve").c_str(), input.curve.size(), input.curve.size() - 1);
   context.Headline(line);
-  const auto start = std::chrono::steady_clock::now();
+  const Construction construction(ConstructionMethod::kClosedForm, "closing circle");
   FrameAngles angles =
       AnglesFromNormal(NormalOrDefault(s, [&] { return DefaultClosedCanalNormal(input); }));
   angles.psi = s.psi;
@@ -339,7 +339,7 @@ RunResult RunClosed(const RunInputs& inputs, const CanalSettings& s, const RunCo
   const ClosedCanalSurface c = BuildClosedCanalSurface(input, angles, options);
   const std::unique_ptr<CyclidicSurface> smooth = SmoothSurface(s, context, c.net, c.welded);
   RunResult result;
-  result.report = ClosedCanalRunReport(c, options, SecondsSince(start));
+  result.report = ClosedCanalRunReport(c, options, construction);
   if (result.report.converged && smooth) CheckCanalResult(c.measures, smooth.get(), &result.report);
   DescribeClosedCanal(c, s, &result);
   result.facts = ClosedCanalJson(c, options);

@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "gproj/problems/circular/circular_mesh.h"
+#include "gproj/problems/run/construction.h"
 
 namespace gproj {
 
@@ -661,11 +662,9 @@ NamedValues CanalSurface::Measure() const {
 
 RunReport CanalSurface::Run(const RunCallback& callback) {
   if (!options_.smooth) {
-    const auto start = std::chrono::steady_clock::now();
+    const Construction construction(ConstructionMethod::kClosedForm, "circular strip");
     const NamedValues measures = Measure();
-    return ConstructionReport(
-        "none", measures, measures, true,
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    return construction.Finish(measures, measures, true);
   }
   return Smooth(callback);
 }
@@ -673,7 +672,8 @@ RunReport CanalSurface::Run(const RunCallback& callback) {
 RunReport CanalSurface::Smooth(const RunCallback& callback) {
   const auto start = std::chrono::steady_clock::now();
   RunReport report;
-  report.solver = "ceres-bfgs";
+  report.solver = SolverKind::kCeres;
+  report.method = ConstructionMethodName(ConstructionMethod::kBfgs);
   try {
     report.initial = Measure();
   } catch (const InputError&) {

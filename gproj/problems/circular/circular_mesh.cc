@@ -25,19 +25,6 @@ std::string CrossedQuadsFault(const NamedValues& measures, const std::string& hi
          " crossed quads (" + hint + ")";
 }
 
-RunReport ConstructionReport(const std::string& solver, const NamedValues& initial,
-                             const NamedValues& final, bool converged, double seconds) {
-  RunReport report;
-  report.solver = solver;
-  report.converged = converged;
-  report.termination = "constructed directly (" + solver + ")";
-  report.seconds = seconds;
-  report.initial = initial;
-  report.final = final;
-  FailOnNonFiniteMeasures(&report);
-  return report;
-}
-
 nlohmann::json MRevolutionJson(const MRevolutionChoice& choice, double t, int root) {
   nlohmann::json centres = nlohmann::json::array();
   for (const Eigen::Vector3d& c : choice.centres) centres.push_back({c.x(), c.y(), c.z()});

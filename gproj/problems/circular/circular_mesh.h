@@ -18,17 +18,12 @@ namespace gproj {
 // that are not convex: crossed or degenerate).
 NamedValues MeasureCircularMesh(const PolyMesh& mesh);
 
-// The report of a construction without iterations (a propagation, an inversion): `solver`
-// names it, iterations 0, an empty history, `initial` and `final` its measures.
 // "" when MeasureCircularMesh's `measures` have no folded quads, else "the canal mesh has N
 // crossed quads (<hint>)".
 std::string CrossedQuadsFault(const NamedValues& measures, const std::string& hint);
 
 // "<label>: max planarity …, max concyclicity … (…)" from MeasureCircularMesh's values, for logs.
 std::string CircularMeasuresLine(const std::string& label, const NamedValues& measures);
-
-RunReport ConstructionReport(const std::string& solver, const NamedValues& initial,
-                             const NamedValues& final, bool converged, double seconds);
 
 // The report's "m_revolution" object: t, the centres found, the root used, the image's side
 // angle (radians) and diagonals.

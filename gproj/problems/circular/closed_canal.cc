@@ -291,11 +291,10 @@ Eigen::Vector3d DefaultClosedCanalNormal(const CircularStripInput& input) {
 }
 
 RunReport ClosedCanalRunReport(const ClosedCanalSurface& surface, const ClosedCanalOptions& options,
-                               double seconds) {
+                               const Construction& construction) {
   const NamedValues& m = surface.measures;
   const std::string crossed = CrossedQuadsFault(m, kCrossedQuadsHint);
-  RunReport report =
-      ConstructionReport("closing circle", {}, m, surface.welded && crossed.empty(), seconds);
+  RunReport report = construction.Finish({}, m, surface.welded && crossed.empty());
   char why[240];
   if (!surface.frame_closes)
     std::snprintf(why, sizeof(why),

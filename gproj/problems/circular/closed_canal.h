@@ -27,6 +27,7 @@
 #include <string>
 
 #include "gproj/problems/circular/canal_surface.h"
+#include "gproj/problems/run/construction.h"
 
 namespace gproj {
 
@@ -117,10 +118,11 @@ inline constexpr const char* kCrossedQuadsHint =
     "the frame makes the plane steps between the circles pass each other; try another --normal "
     "or --psi";
 
-// The run's report: solver "closing circle", converged when the ring closes (the frame and the
-// curvature lines) and no quad is crossed; the termination says why not.
+// The run's report from `construction` (timed from before the build), converged when the ring
+// closes (the frame and the curvature lines) and no quad is crossed; the termination says why
+// not.
 RunReport ClosedCanalRunReport(const ClosedCanalSurface& surface, const ClosedCanalOptions& options,
-                               double seconds);
+                               const Construction& construction);
 
 // The report's extra keys: frame (λ, θ, ψ, normal), closing_circle (centre, normal, radius),
 // lengths (|P_k Q_k|), mesh (rows, segments, closed).

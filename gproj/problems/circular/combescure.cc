@@ -12,6 +12,7 @@
 #include "gproj/problems/circular/circular_mesh.h"
 #include "gproj/problems/mesh/mesh_variables.h"
 #include "gproj/problems/mesh/planarity_measures.h"
+#include "gproj/problems/run/construction.h"
 
 namespace gproj {
 namespace {
@@ -268,16 +269,15 @@ bool Combescure::WithinTolerance(const NamedValues& m, double tolerance) {
 }
 
 RunReport Combescure::RunPropagation() {
-  const auto start = std::chrono::steady_clock::now();
+  const Construction construction(ConstructionMethod::kPropagation, "propagation");
   const NamedValues initial = Measure();
   const PolyMesh mesh =
       CombescureByPropagation(reference_, shape_, lengths_, options_.reference_tolerance);
   for (auto v : mesh.vertices())
     problem_.x().segment<3>(VertexOffset(v.idx())) = Point(mesh, v.idx());
   const NamedValues final = Measure();
-  return ConstructionReport(
-      "propagation", initial, final, WithinTolerance(final, options_.propagation_tolerance),
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  return construction.Finish(initial, final,
+                             WithinTolerance(final, options_.propagation_tolerance));
 }
 
 }  // namespace gproj

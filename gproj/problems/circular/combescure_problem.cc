@@ -7,13 +7,14 @@
 #include "gproj/problems/circular/combescure.h"
 #include "gproj/problems/mesh/mesh_outputs.h"
 #include "gproj/problems/run/builtin_problems.h"
+#include "gproj/problems/run/shared_options.h"
 
 namespace gproj {
 namespace {
 
 struct CombescureSettings {
   CombescureOptions options;
-  std::string method = "propagation";
+  SolverKind method = SolverKind::kDirect;
   std::vector<double> row, column, origin;  // empty: the reference's (scaled) / unchanged
   double row_scale = 1.0, column_scale = 1.0;
 };
@@ -22,11 +23,13 @@ const OptionSchema<CombescureSettings>& Schema() {
   static const OptionSchema<CombescureSettings> schema = [] {
     using S = CombescureSettings;
     OptionSchema<S> s;
-    s.Field<std::string>("method", OptionType::kChoice,
-                         "propagation (linear time), gp (guided projection, edge-parallelism "
-                         "rows) or ceres (Levenberg-Marquardt on the same rows: the cross-check)",
-                         [](S& x) -> std::string& { return x.method; })
-        .Choices({"propagation", "gp", "ceres"});
+    AddSolverChoice<S>(&s, "method",
+                       "propagation (linear time), gp (guided projection, edge-parallelism "
+                       "rows) or ceres (Levenberg-Marquardt on the same rows: the cross-check)",
+                       [](S& x) -> SolverKind& { return x.method; },
+                       {{"propagation", SolverKind::kDirect},
+                        {"gp", SolverKind::kGuidedProjection},
+                        {"ceres", SolverKind::kCeres}});
     s.Custom("row_lengths", OptionType::kNumbers,
              "Signed lengths of edges (0, j) -> (0, j+1) (not given: the reference's times "
              "row_scale)",
@@ -70,23 +73,22 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   if (!settings.origin.empty())
     lengths.origin = Eigen::Vector3d(settings.origin[0], settings.origin[1], settings.origin[2]);
   Combescure combescure(reference, shape, lengths, settings.options);
-  const std::string& method = settings.method;
-  context.Headline(source + ": " + std::to_string(shape.rows) + " x " + std::to_string(shape.cols) +
-                   " faces; " +
-                   (method == "gp"      ? "guided projection with edge-parallelism rows"
-                    : method == "ceres" ? "Levenberg-Marquardt on the edge-parallelism rows"
-                                        : "propagation (000 eq. 4)"));
+  const SolverKind method = settings.method;
+  context.Headline(
+      source + ": " + std::to_string(shape.rows) + " x " + std::to_string(shape.cols) + " faces; " +
+      (method == SolverKind::kGuidedProjection ? "guided projection with edge-parallelism rows"
+       : method == SolverKind::kCeres          ? "Levenberg-Marquardt on the edge-parallelism rows"
+                                               : "propagation (000 eq. 4)"));
   context.Info(CircularMeasuresLine("reference", combescure.Measure()));
   const RunCallback record = [&context](const RunRecord& r) { return context.Record(r); };
   RunResult result;
-  result.report = method == "gp"      ? combescure.Run(record)
-                  : method == "ceres" ? combescure.RunCeres(200, record)
-                                      : combescure.RunPropagation();
+  result.report = method == SolverKind::kDirect  ? combescure.RunPropagation()
+                  : method == SolverKind::kCeres ? combescure.RunCeres(200, record)
+                                                 : combescure.Run(record);
   result.tolerance_measure = "max_edge_parallelism_angle";
-  result.tolerance =
-      method == "propagation" ? settings.options.propagation_tolerance : settings.options.tolerance;
-  result.facts = {
-      {"method", method}, {"row_lengths", lengths.row}, {"column_lengths", lengths.column}};
+  result.tolerance = method == SolverKind::kDirect ? settings.options.propagation_tolerance
+                                                   : settings.options.tolerance;
+  result.facts = {{"row_lengths", lengths.row}, {"column_lengths", lengths.column}};
   if (result.report.failed) return result;
   const double angle = ValueOf(result.report.final, "max_edge_parallelism_angle");
   char line[256];

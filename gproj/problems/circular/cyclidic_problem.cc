@@ -8,6 +8,7 @@
 #include "gproj/problems/circular/cyclidic_surface.h"
 #include "gproj/problems/mesh/mesh_outputs.h"
 #include "gproj/problems/run/builtin_problems.h"
+#include "gproj/problems/run/construction.h"
 
 namespace gproj {
 namespace {
@@ -73,10 +74,12 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
                 options.given_frame ? "from `normal`"
                                     : "by 000 eq. 5 (sum of 1/R^2 over the arcs, Ceres BFGS)");
   context.Headline(line);
-  const auto start = std::chrono::steady_clock::now();
+  const Construction construction(
+      options.given_frame ? ConstructionMethod::kClosedForm : ConstructionMethod::kBfgs,
+      options.given_frame ? "frame given" : "frame by eq. 5");
   const CyclidicMeshResult r = CyclidicSurfaceOfMesh(mesh, options, source);
   RunResult result;
-  result.report = CyclidicRunReport(r, settings.tangent_tolerance, SecondsSince(start));
+  result.report = CyclidicRunReport(r, settings.tangent_tolerance, construction);
   result.facts = CyclidicJson(r);
   if (result.report.failed) return result;
   const NamedValues& m = result.report.final;

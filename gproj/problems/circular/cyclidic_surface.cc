@@ -789,10 +789,9 @@ std::string CyclidicSurfaceFault(const NamedValues& measures, double tangent_tol
 }
 
 RunReport CyclidicRunReport(const CyclidicMeshResult& result, double tangent_tolerance,
-                            double seconds) {
+                            const Construction& construction) {
   const std::string fault = CyclidicSurfaceFault(result.final, tangent_tolerance);
-  RunReport report = ConstructionReport(result.given_frame ? "none" : "ceres-bfgs", result.initial,
-                                        result.final, fault.empty(), seconds);
+  RunReport report = construction.Finish(result.initial, result.final, fault.empty());
   report.iterations = result.fairing.iterations;
   report.termination =
       fault.empty()

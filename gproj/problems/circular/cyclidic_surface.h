@@ -28,6 +28,7 @@
 #include "gproj/geometry/io/mesh_io.h"
 #include "gproj/geometry/mesh/quad_grid.h"
 #include "gproj/problems/circular/canal_surface.h"
+#include "gproj/problems/run/construction.h"
 #include "gproj/problems/run/guided_problem.h"
 
 namespace gproj {
@@ -189,11 +190,12 @@ CyclidicMeshResult CyclidicSurfaceOfMesh(const PolyMesh& mesh, const CyclidicMes
 // their circles by more than 1e-4 of the mean edge (a point picked wrongly).
 std::string CyclidicSurfaceFault(const NamedValues& measures, double tangent_tolerance);
 
-// The run's report: solver "ceres-bfgs" (the frame minimised) or "none", converged when
-// CyclidicSurfaceFault finds nothing (else the termination gives the fault); and its extra keys
-// "frame" (λ, θ, ψ, normal) and "fine_mesh" (rows, cols).
+// The run's report from `construction` (timed from before the build; method BFGS when the frame
+// is minimised, closed form when given), converged when CyclidicSurfaceFault finds nothing
+// (else the termination gives the fault); and its extra keys "frame" (λ, θ, ψ, normal) and
+// "fine_mesh" (rows, cols).
 RunReport CyclidicRunReport(const CyclidicMeshResult& result, double tangent_tolerance,
-                            double seconds);
+                            const Construction& construction);
 nlohmann::json CyclidicJson(const CyclidicMeshResult& result);
 
 }  // namespace gproj

@@ -8,6 +8,7 @@
 #include "gproj/problems/circular/circular_mesh.h"
 #include "gproj/problems/mesh/mesh_outputs.h"
 #include "gproj/problems/run/builtin_problems.h"
+#include "gproj/problems/run/construction.h"
 
 namespace gproj {
 namespace {
@@ -73,7 +74,7 @@ Eigen::Vector3d MRevolutionCentre(const InvertSettings& s, const RunContext& con
 }
 
 RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunContext& context) {
-  const auto start = std::chrono::steady_clock::now();
+  const Construction construction(ConstructionMethod::kClosedForm, "inversion");
   const InvertSettings settings = Schema().Apply(values);
   if (settings.centre.empty() && settings.m_revolution.empty())
     throw InputError("give `centre` (x, y, z) or `m_revolution` (4 concyclic points)");
@@ -96,8 +97,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
                 centre.y(), centre.z(), settings.ratio);
   context.Headline(line);
   const PolyMesh out = InvertMesh(mesh, centre, settings.ratio);
-  result.report = ConstructionReport("none", MeasureCircularMesh(mesh), MeasureCircularMesh(out),
-                                     true, SecondsSince(start));
+  result.report = construction.Finish(MeasureCircularMesh(mesh), MeasureCircularMesh(out), true);
   result.tolerance_measure = "max_concyclicity";
   if (result.report.failed) return result;
   result.Info(CircularMeasuresLine("input", result.report.initial));

@@ -8,6 +8,7 @@
 #include "gproj/problems/circular/m_revolution.h"
 #include "gproj/problems/mesh/mesh_outputs.h"
 #include "gproj/problems/run/builtin_problems.h"
+#include "gproj/problems/run/construction.h"
 
 namespace gproj {
 namespace {
@@ -85,7 +86,8 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
     if (options.up.norm() == 0.0) throw InputError("`up` must not be zero");
   }
   const std::vector<Eigen::Vector3d>& curve = inputs.Curve("curve");
-  const auto start = std::chrono::steady_clock::now();
+  const Construction construction(ConstructionMethod::kClosedForm,
+                                  "inversion of a surface of revolution");
   const MRevolutionSurface surface =
       BuildMRevolutionSurface(curve, Point(settings.p2), Point(settings.p3), options);
   char line[512];
@@ -100,9 +102,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   measures.push_back({"far_meridian_miss", surface.far_meridian_miss});
   measures.push_back({"arch_planarity", surface.arch_planarity});
   RunResult result;
-  result.report = ConstructionReport("inversion of a surface of revolution",
-                                     MeasureCircularMesh(surface.revolution), measures, true,
-                                     SecondsSince(start));
+  result.report = construction.Finish(MeasureCircularMesh(surface.revolution), measures, true);
   if (result.report.failed) return result;
   Describe(surface, options, &result);
   result.meshes["output"] = surface.mesh;

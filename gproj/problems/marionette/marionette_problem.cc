@@ -6,6 +6,7 @@
 
 #include "gproj/problems/marionette/marionette_run.h"
 #include "gproj/problems/run/builtin_problems.h"
+#include "gproj/problems/run/shared_options.h"
 
 namespace gproj {
 namespace {
@@ -70,13 +71,15 @@ void AddFitOptions(OptionSchema<MarionetteSettings>* s) {
 
 void AddSolveOptions(OptionSchema<MarionetteSettings>* s) {
   using S = MarionetteSettings;
-  s->Field<std::string>("solver", OptionType::kChoice,
-                        "direct: propagation (linear time) or the normal equations of the fit; "
-                        "gp: guided projection (one iteration when vertical, several for other "
-                        "projections; the guides are first checked by propagation); ceres: "
-                        "Levenberg-Marquardt on the same rows (the cross-check)",
-                        [](S& x) -> std::string& { return x.run.solver; })
-      .Choices({"direct", "gp", "ceres"});
+  AddSolverChoice<S>(s, "solver",
+                     "direct: propagation (linear time) or the normal equations of the fit; "
+                     "gp: guided projection (one iteration when vertical, several for other "
+                     "projections; the guides are first checked by propagation); ceres: "
+                     "Levenberg-Marquardt on the same rows (the cross-check)",
+                     [](S& x) -> SolverKind& { return x.run.solver; },
+                     {{"direct", SolverKind::kDirect},
+                      {"gp", SolverKind::kGuidedProjection},
+                      {"ceres", SolverKind::kCeres}});
   s->Field<int>("max_iterations", OptionType::kInt,
                 "gp or ceres with a non-vertical projection: iterations at most",
                 [](S& x) -> int& { return x.run.lift.solver.max_iterations; })

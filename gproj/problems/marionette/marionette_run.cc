@@ -7,11 +7,11 @@
 
 #include "gproj/geometry/io/text_input.h"
 #include "gproj/geometry/mesh/quad_grid.h"
-#include "gproj/problems/circular/circular_mesh.h"
 #include "gproj/problems/marionette/marionette_grid_problem.h"
 #include "gproj/problems/marionette/marionette_inputs.h"
 #include "gproj/problems/marionette/marionette_polygons.h"
 #include "gproj/problems/mesh/planarity_measures.h"
+#include "gproj/problems/run/construction.h"
 
 namespace gproj {
 namespace {
@@ -85,7 +85,7 @@ class GridRun : public MarionetteRun {
     if (!options.constraints.empty() && !full_target && !partial_target)
       throw InputError(
           "`hold`, `volume` and `max_height` constrain a fit (`fit` or `fit_heights`)");
-    if (weights.size() > 0 && options.solver != "direct")
+    if (weights.size() > 0 && options.solver != SolverKind::kDirect)
       throw InputError(
           "a partial target (`fit_heights`) and hard constraints (`hold`, `volume`, "
           "`max_height`) are solved exactly by the KKT system: use `solver` direct");
@@ -111,10 +111,12 @@ class GridRun : public MarionetteRun {
            warning_;
   }
   RunReport Run(const RunCallback& callback) override {
-    if (options_.solver == "gp") return problem_->Run(callback);
-    if (options_.solver == "ceres")
+    if (options_.solver == SolverKind::kGuidedProjection) return problem_->Run(callback);
+    if (options_.solver == SolverKind::kCeres)
       return problem_->RunCeres(options_.lift.solver.max_iterations, callback);
     return problem_->RunDirect(
+        ConstructionMethodName(problem_->fit() ? ConstructionMethod::kLinearSystem
+                                               : ConstructionMethod::kPropagation),
         problem_->constrained() ? "DIRECT: KKT system of the constrained fit (002 §3.3)"
         : problem_->fit()       ? "DIRECT: normal equations of the fit (002 eq. 14)"
                                 : "DIRECT: propagation (002 eq. 2)",
@@ -204,10 +206,11 @@ class MeshRun : public MarionetteRun {
     return text + warning_;
   }
   RunReport Run(const RunCallback& callback) override {
-    if (options_.solver == "gp") return problem_->Run(callback);
-    if (options_.solver == "ceres")
+    if (options_.solver == SolverKind::kGuidedProjection) return problem_->Run(callback);
+    if (options_.solver == SolverKind::kCeres)
       return problem_->RunCeres(options_.lift.solver.max_iterations, callback);
-    return problem_->RunDirect("DIRECT: propagation (002 §2.4)",
+    return problem_->RunDirect(ConstructionMethodName(ConstructionMethod::kPropagation),
+                               "DIRECT: propagation (002 §2.4)",
                                [this] { problem_->SetParameters(lift_.t); });
   }
   PolyMesh Result() const override { return problem_->Result(); }
@@ -259,7 +262,7 @@ class PolygonRun : public MarionetteRun {
       throw InputError(options.plan +
                        ": a plan of polygons is lifted from prescribed heights (`hold` "
                        "VERTEX:HEIGHT) and fairness; guides, rows, columns and fits need quads");
-    if (options.projection != "vertical" || options.solver != "direct")
+    if (options.projection != "vertical" || options.solver != SolverKind::kDirect)
       throw InputError(options.plan + ": a plan of polygons is lifted vertically and directly");
     if (options.constraints.with_volume || options.constraints.with_max_height)
       throw InputError(options.plan + ": `volume` and `max_height` need a quad plan");
@@ -267,14 +270,13 @@ class PolygonRun : public MarionetteRun {
       throw InputError(options.plan +
                        ": a plan of polygons needs prescribed heights (`hold` VERTEX:HEIGHT,...)");
     plan_ = options.plan_mesh ? *options.plan_mesh : ReadMesh(options.plan);
-    const auto start = std::chrono::steady_clock::now();
     try {
       lift_ = LiftPolygonPlan(plan_, options.constraints.heights);
     } catch (const InputError& e) {
       throw InputError(options.plan + ": " + e.what());
     }
     space_ = lift_.space;
-    seconds_ = SecondsSince(start);
+    construction_.Stop();
   }
   std::string Description() const override {
     std::map<int, int> sizes;
@@ -294,9 +296,7 @@ class PolygonRun : public MarionetteRun {
                                   {"max_height_error", lift_.max_height_error},
                                   {"fairness", lift_.fairness}};
     RunReport report =
-        ConstructionReport("direct: planarity rows and fairness (002 §4.2, eq. 17)", {}, measures,
-                           lift_.max_planarity <= options_.lift.tolerance, seconds_);
-    report.solver = "direct";
+        construction_.Finish({}, measures, lift_.max_planarity <= options_.lift.tolerance);
     report.variables = space_.vertices;
     return report;
   }
@@ -320,7 +320,8 @@ class PolygonRun : public MarionetteRun {
   PolyMesh plan_;
   MarionetteDesignSpace space_;
   MarionettePolygonLift lift_;
-  double seconds_ = 0.0;
+  Construction construction_{ConstructionMethod::kLinearSystem,
+                             "planarity rows and fairness (002 §4.2, eq. 17)"};
 };
 
 // Planarity of a lifted closed strip.
@@ -387,13 +388,12 @@ class RingsRun : public MarionetteRun {
  public:
   RingsRun(const MarionetteRunOptions& options, ClosedStripFile file)
       : options_(options), file_(std::move(file)) {
-    const auto start = Clock::now();
     try {
       lift_ = LiftClosedRings(file_.curves, file_.inner_heights);
     } catch (const InputError& e) {
       throw InputError(options.closed_strip + ": " + e.what());
     }
-    seconds_ = SecondsSince(start);
+    construction_.Stop();
     warning_ = CheckPlanView(lift_.mesh, options.closed_strip, options.allow_folded_plan);
   }
   std::string Description() const override {
@@ -413,9 +413,8 @@ class RingsRun : public MarionetteRun {
   RunReport Run(const RunCallback&) override {
     const NamedValues measures = {{"max_planarity", lift_.max_planarity},
                                   {"inner_curve_change", lift_.inner_change}};
-    RunReport report = ConstructionReport("direct: closing rings (002 eq. 8-9)", {}, measures,
-                                          lift_.max_planarity <= options_.lift.tolerance, seconds_);
-    report.solver = "direct";
+    RunReport report =
+        construction_.Finish({}, measures, lift_.max_planarity <= options_.lift.tolerance);
     report.variables = (rings() + 1) * points();
     return report;
   }
@@ -436,7 +435,7 @@ class RingsRun : public MarionetteRun {
   MarionetteRunOptions options_;
   ClosedStripFile file_;
   ClosedRingsLift lift_;
-  double seconds_ = 0.0;
+  Construction construction_{ConstructionMethod::kClosedForm, "closing rings (002 eq. 8-9)"};
   std::string warning_;
 };
 
@@ -444,7 +443,8 @@ class RingsRun : public MarionetteRun {
 RunReport StripRun::Run(const RunCallback&) {
   const auto start = Clock::now();
   RunReport report;
-  report.solver = "direct";
+  report.solver = SolverKind::kDirect;
+  report.method = ConstructionMethodName(ConstructionMethod::kClosedForm);
   report.termination = "DIRECT: closing lift (002 eq. 8)";
   report.variables = 2 * num_quads();
   ClosedStripLift given = lift_;
@@ -484,9 +484,9 @@ std::unique_ptr<MarionetteRun> MakeMarionetteRun(const MarionetteRunOptions& opt
   if (!options.closed_strip.empty()) {
     if (!options.plan.empty() || options.plan_mesh)
       throw InputError("give either a plan or `closed_strip`, not both");
-    if (options.solver != "direct")
-      throw InputError("`closed_strip` is lifted directly (002 eq. 8): `solver` " + options.solver +
-                       " does not apply");
+    if (options.solver != SolverKind::kDirect)
+      throw InputError("`closed_strip` is lifted directly (002 eq. 8): `solver` " +
+                       std::string(SolverKindName(options.solver)) + " does not apply");
     if (!options.row.empty() || !options.column.empty() || !options.guides.empty() ||
         options.guides_text || !options.fit.empty() || options.fit_mesh ||
         !options.fit_heights.empty() || !options.constraints.empty() ||
@@ -503,8 +503,6 @@ std::unique_ptr<MarionetteRun> MakeMarionetteRun(const MarionetteRunOptions& opt
   }
   if (options.plan.empty() && !options.plan_mesh)
     throw InputError("give a plan view (or `closed_strip`)");
-  if (options.solver != "direct" && options.solver != "gp" && options.solver != "ceres")
-    throw InputError("`solver` must be direct, gp or ceres, not '" + options.solver + "'");
   // A plan with a face that is not a quad, or only prescribed heights on a quad plan that is
   // no grid: the polygon lift (002 §4.2).
   if (PlanHasPolygons(options) ||

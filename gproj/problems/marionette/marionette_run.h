@@ -47,7 +47,7 @@ struct MarionetteRunOptions {
   std::vector<double> axis = {0, 0, 0, 0, 0, 1};  // cylindrical: point and direction
   std::vector<double> centre = {0, 0, 0};         // central: the centre
   // direct, gp (guided projection) or ceres (Levenberg–Marquardt on the same rows)
-  std::string solver = "direct";
+  SolverKind solver = SolverKind::kDirect;
   double outer_height = 0.0;  // closed strip with a = 1: height of outer vertex 0
   // A vertical plan view whose quads overlap or are not convex is refused unless this is set;
   // then it is lifted with a warning naming the faces.

@@ -6,6 +6,7 @@
 #include "gproj/geometry/mesh/parametric_grid.h"
 #include "gproj/geometry/mesh/quad_grid.h"
 #include "gproj/problems/run/builtin_problems.h"
+#include "gproj/problems/run/construction.h"
 
 namespace gproj {
 namespace {
@@ -78,7 +79,8 @@ RunResult Run(const RunInputs&, const nlohmann::json& values, const RunContext&)
     result.meshes["output"] = MakeParametricGrid(surface, o);
   }
   result.report.converged = true;
-  result.report.solver = "none";
+  result.report.solver = SolverKind::kDirect;
+  result.report.method = ConstructionMethodName(ConstructionMethod::kClosedForm);
   result.report.termination = "built";
   char line[160];
   std::snprintf(line, sizeof(line), "%s grid: %d x %d vertices, noise %g of the spacing",

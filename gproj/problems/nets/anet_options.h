@@ -14,7 +14,7 @@ namespace gproj {
 // bounds and the vertex control. `star_form` receives "normals" or "quads" (StarFormOf).
 template <typename S>
 void AddANetOptions(OptionSchema<S>* s, std::function<ANetOptions&(S&)> anet,
-                    std::function<std::string&(S&)> method,
+                    std::function<SolverKind&(S&)> method,
                     std::function<std::string&(S&)> star_form) {
   AddMethodOption<S>(s, method);
   s->template Field<std::string>("star_form", OptionType::kChoice,

@@ -12,7 +12,7 @@ namespace {
 
 struct ANetSettings {
   ANetOptions problem;
-  std::string solver = "gp";
+  SolverKind solver = SolverKind::kGuidedProjection;
   std::string star_form = "normals";
 };
 
@@ -22,7 +22,7 @@ const OptionSchema<ANetSettings>& Schema() {
     OptionSchema<S> s;
     AddANetOptions<S>(
         &s, [](S& x) -> ANetOptions& { return x.problem; },
-        [](S& x) -> std::string& { return x.solver; },
+        [](S& x) -> SolverKind& { return x.solver; },
         [](S& x) -> std::string& { return x.star_form; });
     return s;
   }();
@@ -50,8 +50,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
 
   const RunCallback record = [&context](const RunRecord& r) { return context.Record(r); };
   RunResult result;
-  result.report = settings.solver == "ceres" ? anet->RunCeres(options.solver.max_iterations, record)
-                                             : anet->Run(record);
+  result.report = anet->RunWith(settings.solver, record);
   result.tolerance_measure = "max_star_planarity";
   result.tolerance = options.tolerance;
   const PolyMesh net = anet->Result();

@@ -497,11 +497,11 @@ struct VertexUpdateResult {
   std::string message;
 };
 
-// One vertex update: guided projection with `options`, or (use_ceres) Ceres' LM on the same
-// rows with the soft terms at the options' initial soft scale.
-VertexUpdateResult SolveVertexUpdate(const SolverOptions& options, bool use_ceres,
+// One vertex update: guided projection with `options`, or (kCeres) Ceres' LM on the same rows
+// with the soft terms at the options' initial soft scale.
+VertexUpdateResult SolveVertexUpdate(const SolverOptions& options, SolverKind solver,
                                      VertexUpdate* update) {
-  if (!use_ceres) {
+  if (solver != SolverKind::kCeres) {
     const SolverSummary s = gproj::Solve(options, &update->problem);
     return {s.termination == TerminationType::kFailure, s.converged(), s.num_steps(), s.message};
   }
@@ -540,7 +540,7 @@ bool HNet::RunANetStep(const PolyMesh& reference, const IterationCallback& on_it
                        HNetSummary* summary) {
   RunReport& report = summary->report;
   report.initial = ToNamedValues(MeasureStarPlanarity(mesh_, input_));
-  report.solver = "gp";
+  report.solver = options_.solver;
   if (MeasureStarPlanarity(mesh_, mesh_).max_star_planarity <= options_.anet.tolerance) return true;
   ANet anet(mesh_, &reference, options_.anet);
   bool stopped = false;  // the callback asked to stop: the whole run stops, without rounds
@@ -549,9 +549,7 @@ bool HNet::RunANetStep(const PolyMesh& reference, const IterationCallback& on_it
     stopped = stopped || !go;
     return go;
   };
-  const RunReport step = options_.use_ceres
-                             ? anet.RunCeres(options_.anet.solver.max_iterations, tracked)
-                             : anet.Run(tracked);
+  const RunReport step = anet.RunWith(options_.solver, tracked);
   report.history = step.history;
   report.iterations = step.iterations;
   report.summary = step.summary;
@@ -629,7 +627,7 @@ bool HNet::SolveJointly(int round, double soft_scale, const PolyMesh& reference,
   SolverOptions solver_options = options_.anet.solver;
   solver_options.residual_tolerance = options_.residual_tolerance;
   solver_options.initial_soft_scale = soft_scale;
-  const VertexUpdateResult s = SolveVertexUpdate(solver_options, options_.use_ceres, update.get());
+  const VertexUpdateResult s = SolveVertexUpdate(solver_options, options_.solver, update.get());
   if (s.failed) {
     report.failed = true;
     report.termination = "joint vertex and weight update failed: " + s.message;
@@ -681,8 +679,7 @@ void HNet::RunRounds(const PolyMesh& reference, const RoundCallback& on_round,
         return;
       }
       FreezeWeights(w_, update.get());
-      const VertexUpdateResult s =
-          SolveVertexUpdate(solver_options, options_.use_ceres, update.get());
+      const VertexUpdateResult s = SolveVertexUpdate(solver_options, options_.solver, update.get());
       if (s.failed) {
         report.failed = true;
         report.termination = "vertex update failed: " + s.message;

@@ -101,10 +101,10 @@ struct HNetOptions {
   bool allow_not_simply_connected = false;
   double shape_regularity = 1e-2;     // weight of W − 1 and 1/W − 1 (soft, 004 eq. 11)
   double min_shape_parameter = 1e-2;  // W ≥ this (positive weights)
-  // The cross-check: the A-net step and every vertex update by Ceres' Levenberg–Marquardt on
-  // the same rows (the A-net step's soft terms at anet.ceres_soft_scale, the updates' at
-  // round_soft_scale) instead of guided projection.
-  bool use_ceres = false;
+  // kCeres, the cross-check: the A-net step and every vertex update by Ceres'
+  // Levenberg–Marquardt on the same rows (the A-net step's soft terms at anet.ceres_soft_scale,
+  // the updates' at round_soft_scale) instead of guided projection.
+  SolverKind solver = SolverKind::kGuidedProjection;
 };
 
 struct HNetRound {

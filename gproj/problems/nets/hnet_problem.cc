@@ -11,7 +11,7 @@ namespace {
 
 struct HNetSettings {
   HNetOptions options;
-  std::string solver = "gp";
+  SolverKind solver = SolverKind::kGuidedProjection;
   std::string star_form = "normals";
   int samples = 8;
 };
@@ -22,7 +22,7 @@ const OptionSchema<HNetSettings>& Schema() {
     OptionSchema<S> s;
     AddANetOptions<S>(
         &s, [](S& x) -> ANetOptions& { return x.options.anet; },
-        [](S& x) -> std::string& { return x.solver; },
+        [](S& x) -> SolverKind& { return x.solver; },
         [](S& x) -> std::string& { return x.star_form; });
     s.Field<int>("rounds", OptionType::kInt, "Alternations of weight and vertex updates at most",
                  [](S& x) -> int& { return x.options.max_rounds; })
@@ -92,7 +92,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   HNetSettings settings = Schema().Apply(values);
   HNetOptions& options = settings.options;
   options.anet.star_form = StarFormOf(settings.star_form);
-  options.use_ceres = settings.solver == "ceres";
+  options.solver = settings.solver;
   options.anet.vertices.fixed = inputs.VertexIds("fixed");
   const PolyMesh& mesh = inputs.Mesh("mesh");
   const std::string source = inputs.Source("mesh");

@@ -12,14 +12,14 @@ namespace {
 
 struct PlanarizeSettings {
   PQPlanarizationOptions problem;
-  std::string solver = "gp";
+  SolverKind solver = SolverKind::kGuidedProjection;
 };
 
 const OptionSchema<PlanarizeSettings>& Schema() {
   static const OptionSchema<PlanarizeSettings> schema = [] {
     using S = PlanarizeSettings;
     OptionSchema<S> s;
-    AddMethodOption<S>(&s, [](S& x) -> std::string& { return x.solver; });
+    AddMethodOption<S>(&s, [](S& x) -> SolverKind& { return x.solver; });
     s.Field<double>("tolerance", OptionType::kNumber,
                     "Stop when max planarity (diagonal distance / mean edge length) is <= this",
                     [](S& x) -> double& { return x.problem.tolerance; })
@@ -81,7 +81,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   std::string why;
   if (!options.IsValid(&why)) throw InputError("invalid option: " + why);
   PQPlanarization pq(input, options, inputs.OptionalMesh("reference"));
-  const bool ceres = settings.solver == "ceres";
+  const bool ceres = settings.solver == SolverKind::kCeres;
 
   char line[512];
   const PlanarityMeasures initial = pq.Measures();
@@ -97,7 +97,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
 
   const RunCallback record = [&context](const RunRecord& r) { return context.Record(r); };
   RunResult result;
-  result.report = ceres ? pq.RunCeres(options.solver.max_iterations, record) : pq.Run(record);
+  result.report = pq.RunWith(settings.solver, record);
   result.tolerance_measure = "max_planarity";
   result.tolerance = options.tolerance;
   const PolyMesh mesh = pq.Result();

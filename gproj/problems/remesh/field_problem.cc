@@ -9,8 +9,8 @@
 #include "gproj/geometry/mesh/scale_free.h"
 #include "gproj/geometry/render/face_colours.h"
 #include "gproj/geometry/render/svg_render.h"
-#include "gproj/problems/circular/circular_mesh.h"
 #include "gproj/problems/run/builtin_problems.h"
+#include "gproj/problems/run/construction.h"
 
 namespace gproj {
 namespace {
@@ -159,7 +159,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
                 inputs.Source("mesh").c_str(), mesh.n_vertices(), mesh.n_faces(),
                 settings.directions.c_str(), settings.fit.fit_degree, settings.fit.min_points);
   context.Headline(line);
-  const auto start = std::chrono::steady_clock::now();
+  Construction construction(ConstructionMethod::kJetFit, "jet fit");
   if (settings.smooth > 0.0) {
     std::snprintf(line, sizeof(line),
                   "smoothing the principal lines (alignment weight %g; Knöppel et al. 2013)",
@@ -167,13 +167,14 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
     context.Info(line);
   }
   const DirectionField field = EstimateDirectionField(mesh, kind, settings.fit, settings.smooth);
-  const double seconds = SecondsSince(start);
+  construction.Stop();
+  const double seconds = construction.seconds();
   const NamedValues measures = {{"fitted_vertices", static_cast<double>(field.fitted)},
                                 {"negative_area_fraction", field.negative_area_fraction},
                                 {"undefined_area_fraction", field.undefined_area_fraction},
                                 {"singularities", static_cast<double>(field.singularities.size())}};
   RunResult result;
-  result.report = ConstructionReport("jet fit", {}, measures, true, seconds);
+  result.report = construction.Finish({}, measures, true);
   if (result.report.failed) return result;
   Describe(mesh, field, settings, seconds, &result);
   result.texts["output"] = FieldObj(mesh, field, 0.6 * MeanEdgeLength(mesh));

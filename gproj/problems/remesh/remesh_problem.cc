@@ -5,9 +5,9 @@
 #include "gproj/geometry/mesh/scale_free.h"
 #include "gproj/geometry/render/face_colours.h"
 #include "gproj/geometry/render/svg_render.h"
-#include "gproj/problems/circular/circular_mesh.h"
 #include "gproj/problems/remesh/quad_remeshing.h"
 #include "gproj/problems/run/builtin_problems.h"
+#include "gproj/problems/run/construction.h"
 
 namespace gproj {
 namespace {
@@ -138,12 +138,14 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
                 options.edge_length > 0.0 ? options.edge_length : 3.0 * MeanEdgeLength(mesh),
                 settings.directions.c_str());
   context.Headline(line);
+  Construction construction(ConstructionMethod::kIntegerGridMap, "integer-grid map");
   QuadRemeshResult r;
   try {
     r = RemeshAlongField(mesh, options);
   } catch (const InputError& e) {
     throw InputError(source + ": " + e.what());
   }
+  construction.Stop();
   const FieldParametrization& p = r.parametrization;
   const QuadExtraction& x = r.extraction;
   int irregular = 0;
@@ -165,8 +167,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   // Converged when the quads are a valid net (QuadRemeshResult::Problems).
   const std::vector<std::string> problems = r.Problems();
   RunResult result;
-  result.report = ConstructionReport("integer-grid map", {}, measures, problems.empty(),
-                                     r.seconds_field + r.seconds_map + r.seconds_extraction);
+  result.report = construction.Finish({}, measures, problems.empty());
   if (!problems.empty()) {
     result.report.termination = "the quads are not a valid net:";
     for (size_t k = 0; k < problems.size(); ++k)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 namespace gproj {
 namespace {
@@ -71,6 +72,24 @@ RunRecord ToRunRecord(const CeresIterationRecord& s) {
   return record;
 }
 
+const char* SolverKindName(SolverKind kind) {
+  switch (kind) {
+    case SolverKind::kGuidedProjection:
+      return "gp";
+    case SolverKind::kCeres:
+      return "ceres";
+    case SolverKind::kDirect:
+      return "direct";
+  }
+  return "?";
+}
+
+SolverKind SolverKindFromName(const std::string& name) {
+  for (SolverKind kind : {SolverKind::kGuidedProjection, SolverKind::kCeres, SolverKind::kDirect})
+    if (name == SolverKindName(kind)) return kind;
+  throw std::invalid_argument("unknown solver '" + name + "' (gp, ceres or direct)");
+}
+
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -90,7 +109,7 @@ double StartSoftScale(double start_residual, double floor) {
 RunReport GuidedProblem::Run(const RunCallback& callback) {
   const auto start = Clock::now();
   RunReport report;
-  report.solver = "gp";
+  report.solver = SolverKind::kGuidedProjection;
   report.variables = problem().layout().num_variables();
   report.initial = Measure();
   report.summary =
@@ -114,7 +133,7 @@ RunReport GuidedProblem::Run(const RunCallback& callback) {
 RunReport GuidedProblem::RunCeres(int max_iterations, const RunCallback& callback) {
   const auto start = Clock::now();
   RunReport report;
-  report.solver = "ceres";
+  report.solver = SolverKind::kCeres;
   report.variables = problem().layout().num_variables();
   report.initial = Measure();
   bool aborted = false;
@@ -134,11 +153,18 @@ RunReport GuidedProblem::RunCeres(int max_iterations, const RunCallback& callbac
   return report;
 }
 
-RunReport GuidedProblem::RunDirect(const std::string& termination,
+RunReport GuidedProblem::RunWith(SolverKind solver, const RunCallback& callback) {
+  if (solver == SolverKind::kGuidedProjection) return Run(callback);
+  if (solver == SolverKind::kCeres) return RunCeres(solver_options().max_iterations, callback);
+  throw std::invalid_argument("RunWith: a direct solve needs the problem's own (RunDirect)");
+}
+
+RunReport GuidedProblem::RunDirect(const std::string& method, const std::string& termination,
                                    const std::function<void()>& solve) {
   const auto start = Clock::now();
   RunReport report;
-  report.solver = "direct";
+  report.solver = SolverKind::kDirect;
+  report.method = method;
   report.termination = termination;
   report.variables = problem().layout().num_variables();
   report.initial = Measure();

@@ -17,6 +17,20 @@
 
 namespace gproj {
 
+// The solver of a run: the report's "solver", and the values of the option "solver" where a
+// problem offers a choice.
+enum class SolverKind {
+  kGuidedProjection,  // "gp": guided projection, gproj's own solver
+  kCeres,             // "ceres": Ceres on the same definitions (Levenberg-Marquardt on the rows,
+                      // or BFGS on a smooth energy; the report's "method" then says "BFGS")
+  kDirect,            // "direct": no iteration on the constraints: a construction, one linear
+                      // system or a propagation (the report's "method" says which)
+};
+// "gp", "ceres", "direct"
+const char* SolverKindName(SolverKind kind);
+// The kind named `name`; throws std::invalid_argument for any other name.
+SolverKind SolverKindFromName(const std::string& name);
+
 // A measure of an iterate: an identifier (a JSON key, a log column) and its value.
 struct NamedValue {
   std::string name;
@@ -48,7 +62,8 @@ RunRecord ToRunRecord(const CeresIterationRecord& record);
 
 // What a run did: the report every command writes (see docs/command-line.md, "Report JSON").
 struct RunReport {
-  std::string solver;       // "gp" or "ceres"
+  SolverKind solver = SolverKind::kGuidedProjection;
+  std::string method;       // a construction's method (ConstructionMethodName); empty otherwise
   bool converged = false;   // the problem's tolerance is met by the final iterate
   bool failed = false;      // numerical failure: the final iterate must not be used
   std::string termination;  // how the solver stopped, e.g. "CONVERGENCE: step tolerance met"
@@ -105,10 +120,15 @@ class GuidedProblem {
   RunReport Run(const RunCallback& callback = nullptr);
   // Ceres' Levenberg–Marquardt on the same rows, stopping when the tolerance is met.
   RunReport RunCeres(int max_iterations, const RunCallback& callback = nullptr);
+  // Run (kGuidedProjection) or RunCeres for at most solver_options().max_iterations (kCeres);
+  // throws std::invalid_argument for kDirect, which needs the problem's own solve (RunDirect).
+  RunReport RunWith(SolverKind solver, const RunCallback& callback = nullptr);
   // A direct solve (closed form, linear system, propagation) as a run: `solve` sets
-  // problem().x(); the report has solver "direct", no iterations, the measures before and
-  // after, and is judged like the others (failed when x is not finite).
-  RunReport RunDirect(const std::string& termination, const std::function<void()>& solve);
+  // problem().x(); the report has solver "direct", `method` (ConstructionMethodName), no
+  // iterations, the measures before and after, and is judged like the others (failed when x is
+  // not finite).
+  RunReport RunDirect(const std::string& method, const std::string& termination,
+                      const std::function<void()>& solve);
 };
 
 }  // namespace gproj

@@ -41,7 +41,7 @@ nlohmann::json ReportJson(const std::string& command, const RunReport& report,
   nlohmann::json history = nlohmann::json::array();
   for (const RunRecord& r : report.history) history.push_back(RecordJson(r));
   nlohmann::json j = {{"command", command},
-                      {"solver", report.solver},
+                      {"solver", SolverKindName(report.solver)},
                       {"converged", report.converged},
                       {"failed", report.failed},
                       {"termination", report.termination},
@@ -51,6 +51,7 @@ nlohmann::json ReportJson(const std::string& command, const RunReport& report,
                       {"initial", MeasuresJson(report.initial)},
                       {"final", MeasuresJson(report.final)},
                       {"history", history}};
+  if (!report.method.empty()) j["method"] = report.method;
   for (auto it = extra.begin(); it != extra.end(); ++it) j[it.key()] = it.value();
   return j;
 }

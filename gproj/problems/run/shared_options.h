@@ -6,20 +6,44 @@
 // Options.
 
 #include <string>
+#include <utility>
+#include <vector>
 
+#include "gproj/problems/run/guided_problem.h"
 #include "gproj/problems/run/option_schema.h"
 #include "gproj/solver/guided_projection.h"
 
 namespace gproj {
 
+// A choice of solver stored as a SolverKind: `choices` pairs each value's text with its kind
+// (SolverKindName, or a word of the problem's own such as "propagation" for kDirect).
+template <typename S>
+typename OptionSchema<S>::Builder AddSolverChoice(
+    OptionSchema<S>* schema, const std::string& name, const std::string& doc,
+    std::function<SolverKind&(S&)> field, std::vector<std::pair<std::string, SolverKind>> choices) {
+  S defaults{};
+  std::string default_text;
+  std::vector<std::string> texts;
+  for (const auto& [text, kind] : choices) {
+    texts.push_back(text);
+    if (kind == field(defaults)) default_text = text;
+  }
+  return schema
+      ->Custom(name, OptionType::kChoice, doc, default_text,
+               [field, choices](const nlohmann::json& value, S* s) {
+                 for (const auto& choice : choices)
+                   if (choice.first == value.get<std::string>()) field(*s) = choice.second;
+               })
+      .Choices(texts);
+}
+
 // "solver": gp (guided projection) or ceres (Levenberg–Marquardt on the same rows).
 template <typename S>
-void AddMethodOption(OptionSchema<S>* schema, std::function<std::string&(S&)> field) {
-  schema
-      ->template Field<std::string>(
-          "solver", OptionType::kChoice,
-          "gp: guided projection; ceres: Levenberg-Marquardt on the same rows (cross-check)", field)
-      .Choices({"gp", "ceres"});
+void AddMethodOption(OptionSchema<S>* schema, std::function<SolverKind&(S&)> field) {
+  AddSolverChoice<S>(
+      schema, "solver",
+      "gp: guided projection; ceres: Levenberg-Marquardt on the same rows (cross-check)", field,
+      {{"gp", SolverKind::kGuidedProjection}, {"ceres", SolverKind::kCeres}});
 }
 
 // max_iterations, fairness, soft_decay, soft_floor, soft_residual, epsilon, epsilon_min,

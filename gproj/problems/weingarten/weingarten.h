@@ -332,13 +332,13 @@ struct WeingartenRun {
   bool folds() const { return normals_after.min_cosine < 0.0; }
 };
 
-// Optimises `input` with `options` (guided projection, or Ceres' LM with `use_ceres`), then
+// Optimises `input` with `options` by `solver` (guided projection or Ceres' LM), then
 // for every refinement level inserts a knot in every span and optimises again. on_level(level,
 // problem) is called before each level's solve, on_iteration with every record; returning
 // false from it stops the run. molds > 0: the result's samples are clustered into at most that
 // many molds (003 §4.2).
 WeingartenRun RunWeingarten(
-    const BSplineSurface& input, const WeingartenOptions& options, bool use_ceres, int molds = 0,
+    const BSplineSurface& input, const WeingartenOptions& options, SolverKind solver, int molds = 0,
     const RunCallback& on_iteration = nullptr,
     const std::function<void(int, const WeingartenProblem&)>& on_level = nullptr);
 

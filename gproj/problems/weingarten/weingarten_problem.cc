@@ -4,6 +4,7 @@
 
 #include "gproj/geometry/render/svg_render.h"
 #include "gproj/problems/run/builtin_problems.h"
+#include "gproj/problems/run/shared_options.h"
 #include "gproj/problems/weingarten/weingarten.h"
 #include "gproj/problems/weingarten/weingarten_paneling.h"
 
@@ -12,7 +13,7 @@ namespace {
 
 struct WeingartenCommandSettings {
   WeingartenSettings settings;
-  std::string solver = "gp";
+  SolverKind solver = SolverKind::kGuidedProjection;
   PanelSettings panels;
 };
 
@@ -41,11 +42,11 @@ void AddProblemOptions(OptionSchema<S>* schema) {
   s.Field<std::string>("preset", OptionType::kChoice, "Weights of 003 Table 1",
                        [](S& x) -> std::string& { return x.settings.preset; })
       .Choices(WeingartenPresetNames());
-  s.Field<std::string>("solver", OptionType::kChoice,
-                       "gp: guided projection; ceres: Levenberg-Marquardt on the same rows (soft "
-                       "terms at their final weights)",
-                       [](S& x) -> std::string& { return x.solver; })
-      .Choices({"gp", "ceres"});
+  AddSolverChoice<S>(&s, "solver",
+                     "gp: guided projection; ceres: Levenberg-Marquardt on the same rows (soft "
+                     "terms at their final weights)",
+                     [](S& x) -> SolverKind& { return x.solver; },
+                     {{"gp", SolverKind::kGuidedProjection}, {"ceres", SolverKind::kCeres}});
   s.Custom("samples", OptionType::kInts,
            "Samples NU,NV (not given: 2 per control point and direction, as in Table 2)", nullptr,
            [](const nlohmann::json& v, S* x) { x->settings.samples = v.get<std::vector<int>>(); })
@@ -216,7 +217,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   WeingartenRun run;
   try {
     run = RunWeingarten(
-        input, options, s.solver != "gp", s.settings.molds,
+        input, options, s.solver, s.settings.molds,
         [&context](const RunRecord& r) { return context.Record(r); }, on_level);
   } catch (const InputError& e) {  // a property of the surface read from the input
     throw InputError(source + ": " + e.what());

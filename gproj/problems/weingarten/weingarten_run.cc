@@ -80,7 +80,7 @@ WeingartenDenseCheck DenseCheck(const BSplineSurface& surface, const BSplineSurf
 }
 
 WeingartenRun RunWeingarten(const BSplineSurface& input, const WeingartenOptions& options,
-                            bool use_ceres, int molds, const RunCallback& on_iteration,
+                            SolverKind solver, int molds, const RunCallback& on_iteration,
                             const std::function<void(int, const WeingartenProblem&)>& on_level) {
   std::string why;
   if (!options.IsValid(&why)) throw InputError("invalid Weingarten options: " + why);
@@ -110,8 +110,7 @@ WeingartenRun RunWeingarten(const BSplineSurface& input, const WeingartenOptions
     run.su = problem.maps().su;
     run.sv = problem.maps().sv;
     if (on_level) on_level(level, problem);
-    const RunReport level_report =
-        use_ceres ? problem.RunCeres(options.solver.max_iterations, record) : problem.Run(record);
+    const RunReport level_report = problem.RunWith(solver, record);
     AppendLevel(level, level_report, &run);
     if (run.report.failed) return run;
     current = problem.Result();

@@ -102,7 +102,8 @@ TEST(CanalSurfaceTest, RunReportsTheSmoothingWithNamedMeasures) {
   CanalSurface canal(Input(), AnglesFromNormal(Eigen::Vector3d(0.2, -0.5, 1.0)), options);
   int calls = 0;
   const RunReport report = canal.Run([&](const RunRecord&) { return ++calls, true; });
-  EXPECT_EQ(report.solver, "ceres-bfgs");
+  EXPECT_EQ(report.solver, SolverKind::kCeres);
+  EXPECT_EQ(report.method, "BFGS");
   EXPECT_TRUE(report.converged) << report.termination;
   EXPECT_FALSE(report.failed);
   EXPECT_EQ(calls, static_cast<int>(report.history.size()));
@@ -164,7 +165,8 @@ TEST(CanalSurfaceTest, SmoothingCutShortIsNotConvergedAndWithoutSmoothingNothing
   options.smooth = false;
   CanalSurface plain(Input(), angles, options);
   const RunReport none = plain.Run();
-  EXPECT_EQ(none.solver, "none");
+  EXPECT_EQ(none.solver, SolverKind::kDirect);
+  EXPECT_EQ(none.method, "closed form");
   EXPECT_TRUE(none.converged);
   EXPECT_EQ(none.iterations, 0);
   EXPECT_DOUBLE_EQ(ValueOf(none.final, "smoothness_energy"), plain.Net().energy);

@@ -109,7 +109,8 @@ TEST(CombescureTest, PropagationReportsTheSameMeasuresWithoutIterations) {
   const CombescureLengths lengths = Varied(mesh, shape);
   Combescure combescure(mesh, shape, lengths, CombescureOptions());
   const RunReport report = combescure.RunPropagation();
-  EXPECT_EQ(report.solver, "propagation");
+  EXPECT_EQ(report.solver, SolverKind::kDirect);
+  EXPECT_EQ(report.method, "propagation");
   EXPECT_EQ(report.iterations, 0);
   EXPECT_TRUE(report.converged);
   EXPECT_LT(MaxVertexDistance(combescure.Result(), CombescureByPropagation(mesh, shape, lengths)),
@@ -144,7 +145,7 @@ TEST(CombescureTest, CeresCrossCheckReachesTheGuidedProjectionResult) {
   ASSERT_TRUE(gp.Run().converged);
   Combescure ceres(mesh, shape, lengths, CombescureOptions());
   const RunReport report = ceres.RunCeres(50);
-  EXPECT_EQ(report.solver, "ceres");
+  EXPECT_EQ(report.solver, SolverKind::kCeres);
   EXPECT_TRUE(report.converged) << report.termination;
   EXPECT_LT(MaxVertexDistance(ceres.Result(), gp.Result()), 1e-9);
 }

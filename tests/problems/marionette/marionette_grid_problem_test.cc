@@ -44,8 +44,9 @@ TEST(MarionetteGridProblemTest, GuidedProjectionReachesTheDirectLiftInOneIterati
   EXPECT_LE(ValueOf(report.final, "max_guide_error"), 1e-12);
   EXPECT_LE(ValueOf(report.final, "max_planarity"), 1e-12);
   const RunReport d =
-      direct.RunDirect("direct", [&] { direct.SetHeights(direct.DirectHeights()); });
-  EXPECT_EQ(d.solver, "direct");
+      direct.RunDirect("propagation", "direct", [&] { direct.SetHeights(direct.DirectHeights()); });
+  EXPECT_EQ(d.solver, SolverKind::kDirect);
+  EXPECT_EQ(d.method, "propagation");
   EXPECT_EQ(d.iterations, 0);
   EXPECT_TRUE(d.converged);
   EXPECT_LE((gp.problem().x() - direct.problem().x()).lpNorm<Eigen::Infinity>(), 1e-10);
@@ -54,7 +55,7 @@ TEST(MarionetteGridProblemTest, GuidedProjectionReachesTheDirectLiftInOneIterati
 TEST(MarionetteGridProblemTest, CeresCrossCheckSolvesTheSameRows) {
   MarionetteGridProblem ceres = Lift(), direct = Lift();
   const RunReport report = ceres.RunCeres(50);
-  EXPECT_EQ(report.solver, "ceres");
+  EXPECT_EQ(report.solver, SolverKind::kCeres);
   EXPECT_TRUE(report.converged) << report.termination;
   EXPECT_LE((ceres.problem().x() - direct.DirectHeights()).lpNorm<Eigen::Infinity>(), 1e-8);
 }
@@ -63,13 +64,14 @@ TEST(MarionetteGridProblemTest, MissedToleranceAndNonFiniteHeightsAreReported) {
   MarionetteOptions strict;
   strict.tolerance = 1e-300;  // below the round-off of any lift
   MarionetteGridProblem lift = Lift(strict);
-  const RunReport missed = lift.RunDirect("direct", [&] { lift.SetHeights(lift.DirectHeights()); });
+  const RunReport missed =
+      lift.RunDirect("propagation", "direct", [&] { lift.SetHeights(lift.DirectHeights()); });
   EXPECT_FALSE(missed.converged);
   EXPECT_FALSE(missed.failed);
   EXPECT_GT(ValueOf(missed.final, "max_planarity"), 0.0);
 
   MarionetteGridProblem broken = Lift();
-  const RunReport failed = broken.RunDirect("direct", [&] {
+  const RunReport failed = broken.RunDirect("propagation", "direct", [&] {
     broken.SetHeights(Eigen::VectorXd::Constant(42, std::numeric_limits<double>::quiet_NaN()));
   });
   EXPECT_TRUE(failed.failed);

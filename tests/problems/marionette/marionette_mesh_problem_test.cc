@@ -50,7 +50,7 @@ TEST(MarionetteMeshProblemTest, CeresCrossCheckFindsTheSameCylinder) {
   const Tower tower;
   MarionetteMeshProblem problem(tower.lines, tower.prescribed, {});
   const RunReport report = problem.RunCeres(200);
-  EXPECT_EQ(report.solver, "ceres");
+  EXPECT_EQ(report.solver, SolverKind::kCeres);
   EXPECT_FALSE(report.failed) << report.termination;
   EXPECT_LE(ValueOf(report.final, "max_guide_error"), 1e-8);
   EXPECT_LE((problem.Parameters().array() - 7.5).abs().maxCoeff(), 1e-6);
@@ -72,7 +72,8 @@ TEST(MarionetteMeshProblemTest, DirectPropagationIsReportedAsARun) {
   MarionetteMeshProblem problem(tower.lines, tower.prescribed, {});
   const MarionetteMeshLift lift =
       LiftMarionetteMesh(tower.lines, DecomposeIntoPatches(tower.lines.mesh), tower.prescribed);
-  const RunReport report = problem.RunDirect("propagation", [&] { problem.SetParameters(lift.t); });
+  const RunReport report =
+      problem.RunDirect("propagation", "propagation", [&] { problem.SetParameters(lift.t); });
   EXPECT_TRUE(report.converged);
   EXPECT_EQ(report.iterations, 0);
   EXPECT_GT(ValueOf(report.initial, "max_relative_det"), 1e-3);

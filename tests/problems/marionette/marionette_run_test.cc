@@ -133,7 +133,7 @@ TEST(MarionetteRunTest, ValenceSixGuidesLiftThePlanDirectlyAndByGuidedProjection
   MarionetteRunOptions options;
   options.plan = kData + "marionette_plan_valence6.obj";
   options.guides = kData + "marionette_valence6_guides.txt";
-  for (const char* solver : {"direct", "gp"}) {
+  for (const SolverKind solver : {SolverKind::kDirect, SolverKind::kGuidedProjection}) {
     options.solver = solver;
     const std::unique_ptr<MarionetteRun> run = MakeMarionetteRun(options);
     EXPECT_NE(run->Description().find("6 patches"), std::string::npos);
@@ -151,7 +151,7 @@ TEST(MarionetteRunTest, ClosedStripReportsItsClosingLift) {
   options.closed_strip = kData + "marionette_closed_strip.txt";
   const std::unique_ptr<MarionetteRun> run = MakeMarionetteRun(options);
   const RunReport report = run->Run(nullptr);
-  EXPECT_EQ(report.solver, "direct");
+  EXPECT_EQ(report.solver, SolverKind::kDirect);
   EXPECT_TRUE(report.converged);
   EXPECT_LE(ValueOf(report.final, "max_planarity"), 1e-12);
   options.lift.tolerance = 1e-300;

@@ -172,7 +172,7 @@ TEST(PQPlanarizationTest, GuidedProjectionAndCeresReachTheSameObjective) {
   EXPECT_FALSE(report.converged);
   const RunReport cs = ceres.RunCeres(500);
   ASSERT_FALSE(cs.failed) << cs.termination;
-  EXPECT_EQ(cs.solver, "ceres");
+  EXPECT_EQ(cs.solver, SolverKind::kCeres);
 
   const double e_gp =
       EvaluateObjective(&gp.problem(), options.solver.fairness_weight, gp.problem().x());

@@ -88,9 +88,9 @@ TEST(WeingartenTest, MultiresolutionByKnotInsertionAndByRefit) {
   WeingartenOptions o = WeingartenPreset("fig1");
   o.refine_levels = 1;
   o.solver.max_iterations = 4;
-  const WeingartenRun inserted = RunWeingarten(input, o, false);
+  const WeingartenRun inserted = RunWeingarten(input, o, SolverKind::kGuidedProjection);
   o.refine_by_refit = true;
-  const WeingartenRun refitted = RunWeingarten(input, o, false);
+  const WeingartenRun refitted = RunWeingarten(input, o, SolverKind::kGuidedProjection);
   EXPECT_EQ(inserted.result.nu, 9 + 5);  // one knot in each of the 5 spans of a degree-4 net
   EXPECT_EQ(refitted.result.nu, 13);     // ⌈1.4 × 9⌉: knots at ninths, not nested in fifths
   for (const WeingartenRun* run : {&inserted, &refitted}) {
@@ -138,7 +138,7 @@ TEST(WeingartenTest, RunNeedingMoreThanTheMachineIsRefusedBeforeItStarts) {
   o.refine_levels = 10;  // 20 x 20 control points become about 17000 x 17000
   int levels_started = 0;
   try {
-    RunWeingarten(Freeform(20, 20, 3), o, false, 0, nullptr,
+    RunWeingarten(Freeform(20, 20, 3), o, SolverKind::kGuidedProjection, 0, nullptr,
                   [&](int, const WeingartenProblem&) { ++levels_started; });
     FAIL() << "no error";
   } catch (const InputError& e) {
@@ -238,9 +238,12 @@ TEST(WeingartenTest, Fig2AlignmentAloneApproximatesTheShapeBest) {
   const Case cases[] = {{"wavy 12x9", MakeWavyBSpline(12, 9, 4, 0.6)},
                         {"bump 12x12", MakeBumpBSpline(12)}};
   for (const Case& c : cases) {
-    const WeingartenRun b = RunWeingarten(c.surface, WeingartenPreset("fig2b"), false);
-    const WeingartenRun curve = RunWeingarten(c.surface, WeingartenPreset("fig2c"), false);
-    const WeingartenRun line = RunWeingarten(c.surface, WeingartenPreset("fig2d"), false);
+    const WeingartenRun b =
+        RunWeingarten(c.surface, WeingartenPreset("fig2b"), SolverKind::kGuidedProjection);
+    const WeingartenRun curve =
+        RunWeingarten(c.surface, WeingartenPreset("fig2c"), SolverKind::kGuidedProjection);
+    const WeingartenRun line =
+        RunWeingarten(c.surface, WeingartenPreset("fig2d"), SolverKind::kGuidedProjection);
     std::printf(
         "%s: deviation max/mean (%% of the bbox diagonal) alignment %.2f/%.2f, B-spline "
         "relation %.2f/%.2f, linear relation %.2f/%.2f; misalignment %.3f -> %.3f (B-spline "
@@ -598,7 +601,7 @@ TEST(WeingartenTest, CeresAndGuidedProjectionReachTheSameObjectiveFromTheSameSta
   const RunReport cs = ceres.RunCeres(500);
   ASSERT_FALSE(cs.failed) << cs.termination;
   EXPECT_TRUE(cs.converged) << cs.termination;
-  EXPECT_EQ(cs.solver, "ceres");
+  EXPECT_EQ(cs.solver, SolverKind::kCeres);
   const double gp_value =
       EvaluateObjective(&gp.problem(), o.solver.fairness_weight, gp.problem().x());
   const double ceres_value =
