@@ -565,6 +565,132 @@ std::string PatchName(int i, int j) {
   return "patch (" + std::to_string(i) + ", " + std::to_string(j) + ")";
 }
 
+// Per patch (row-major), the samples on its arc a-b (xs) and a-d (zs), and its evaluated grid
+// grid[u][v]; neighbours share the samples of their common arc.
+struct PatchGrids {
+  std::vector<std::vector<Eigen::Vector3d>> xs, zs;
+  std::vector<std::vector<std::vector<Eigen::Vector3d>>> grids;
+};
+
+PatchGrids EvaluatePatches(const CyclidicNet& net, int s) {
+  const int rows = net.shape.rows, cols = net.shape.cols;
+  PatchGrids g;
+  g.xs.resize(rows * cols);
+  g.zs.resize(rows * cols);
+  g.grids.resize(rows * cols);
+  for (int i = 0; i < rows; ++i)
+    for (int j = 0; j < cols; ++j) {
+      const int k = i * cols + j;
+      const CyclidicPatch p = net.Patch(i, j);
+      const std::string name = PatchName(i, j);
+      if (i == 0)
+        g.xs[k] = Samples(ArcsOf(p, name).ab, p.corners[1], s);
+      else
+        for (const auto& row : g.grids[k - cols]) g.xs[k].push_back(row.back());
+      if (j == 0)
+        g.zs[k] = Samples(ArcsOf(p, name).ad, p.corners[3], s);
+      else
+        g.zs[k] = g.grids[k - 1].back();
+      g.grids[k] = EvaluateCyclidicPatch(p, g.xs[k], g.zs[k], name);
+    }
+  return g;
+}
+
+// The angle at m, a point of the arc shared as `near_arc` of the near patch and `far_arc` of the
+// far one, between the near patch's plane (the arc and its curvature circle from `from`, which
+// leaves along `leave`) and the far patch's (the arc and `far_vector` carried from its corner).
+double TangentJump(const Arc& near_arc, const Eigen::Vector3d& from, const Eigen::Vector3d& leave,
+                   const Eigen::Vector3d& m, const Arc& far_arc, const Eigen::Vector3d& far_vector,
+                   const Eigen::Vector3d& far_corner) {
+  const Arc circle = ArcFrom(from, leave, m, "");
+  return AngleDeg(near_arc.Tangent(m).cross(circle.Tangent(m)),
+                  far_arc.Tangent(m).cross(Carry(far_vector, far_corner, m)));
+}
+
+// Tangent planes across shared arcs, at the arc's inner fine vertices: on each side the plane of
+// the arc's tangent and the tangent of that patch's curvature circle crossing it (the arriving
+// circle's on the near side, the leaving circle's frame vector on the far side), in coordinates
+// about the near patch's corner. The largest angle between them (degrees).
+double MaxTangentAngle(const CyclidicNet& net, const PatchGrids& g, int s) {
+  const GridShape& shape = net.shape;
+  const int rows = shape.rows, cols = shape.cols;
+  double worst = 0.0;
+  for (int i = 0; i < rows; ++i)
+    for (int j = 0; j < cols; ++j) {
+      const int k = i * cols + j;
+      const Eigen::Vector3d shift = -net.points[shape.Vertex(i, j)];
+      const CyclidicPatch p = Shifted(net.Patch(i, j), shift);
+      const Eigen::Vector3d& a = p.corners[0];
+      const PatchArcs arcs = ArcsOf(p, "");
+      if (i + 1 < rows) {  // arc d-c, shared with patch (i + 1, j) as its arc a-b
+        const CyclidicPatch q = Shifted(net.Patch(i + 1, j), shift);
+        for (int u = 1; u < s; ++u) {
+          const Eigen::Vector3d x = g.xs[k][u] + shift;
+          worst = std::max(
+              worst, TangentJump(arcs.dc, x, Mirror(p.frame.t2, x - a), g.grids[k][u][s] + shift,
+                                 ArcsOf(q, "").ab, q.frame.t2, q.corners[0]));
+        }
+      }
+      if (j + 1 < cols) {  // arc b-c, shared with patch (i, j + 1) as its arc a-d
+        const CyclidicPatch q = Shifted(net.Patch(i, j + 1), shift);
+        for (int v = 1; v < s; ++v) {
+          const Eigen::Vector3d z = g.zs[k][v] + shift;
+          worst = std::max(
+              worst, TangentJump(arcs.bc, z, Mirror(p.frame.t1, z - a), g.grids[k][s][v] + shift,
+                                 ArcsOf(q, "").ad, q.frame.t1, q.corners[0]));
+        }
+      }
+    }
+  return worst;
+}
+
+// The mesh of the fine grid (out->fine_shape), with the last fine column welded onto the first
+// when the net is closed around and they coincide (out->welded). Returns the seam's gap per
+// mean row edge of the net.
+double MeshFineGrid(const CyclidicNet& net, const std::vector<Eigen::Vector3d>& fine,
+                    bool weld_closed, CyclidicSurface* out) {
+  const GridShape& shape = net.shape;
+  double edge = 0.0;
+  int edges = 0;
+  for (int i = 0; i <= shape.rows; ++i)
+    for (int j = 0; j < shape.cols; ++j, ++edges)
+      edge += (net.points[shape.Vertex(i, j + 1)] - net.points[shape.Vertex(i, j)]).norm();
+  edge /= std::max(edges, 1);
+  double seam = 0.0;
+  const GridShape& fs = out->fine_shape;
+  for (int r = 0; r <= fs.rows; ++r)
+    seam = std::max(seam, (fine[fs.Vertex(r, fs.cols)] - fine[fs.Vertex(r, 0)]).norm());
+  out->welded = weld_closed && seam <= kSurfaceWeldTolerance * edge;
+  std::vector<PolyMesh::VertexHandle> v(fine.size());
+  for (int r = 0; r <= fs.rows; ++r)
+    for (int q = 0; q <= fs.cols; ++q) {
+      const int id = fs.Vertex(r, q);
+      if (out->welded && q == fs.cols) {
+        v[id] = v[fs.Vertex(r, 0)];
+        continue;
+      }
+      v[id] = out->mesh.add_vertex(PolyMesh::Point(fine[id].x(), fine[id].y(), fine[id].z()));
+    }
+  for (int r = 0; r < fs.rows; ++r)
+    for (int q = 0; q < fs.cols; ++q)
+      out->mesh.add_face(
+          std::vector<PolyMesh::VertexHandle>{v[fs.Vertex(r, q)], v[fs.Vertex(r + 1, q)],
+                                              v[fs.Vertex(r + 1, q + 1)], v[fs.Vertex(r, q + 1)]});
+  return seam / edge;
+}
+
+// Arcs that run the long way round (beyond 225°: semicircles are a canal's own).
+int LongArcs(const CyclidicNet& net) {
+  int long_arcs = 0;
+  for (int i = 0; i < net.shape.rows; ++i)
+    for (int j = 0; j < net.shape.cols; ++j) {
+      const PatchArcs arcs = ArcsOf(net.Patch(i, j), "");
+      for (const Arc* arc : {&arcs.ab, &arcs.ad, &arcs.bc, &arcs.dc})
+        if (!arc->straight && arc->angle > 1.25 * M_PI) ++long_arcs;
+    }
+  return long_arcs;
+}
+
 }  // namespace
 
 CyclidicSurface MeshCyclidicSurface(const CyclidicNet& net, const CyclidicSurfaceOptions& options) {
@@ -582,24 +708,7 @@ CyclidicSurface MeshCyclidicSurface(const CyclidicNet& net, const CyclidicSurfac
                   fine_vertices, rows, cols, s, kMaxFineVertices);
     throw InputError(text);
   }
-  // Per patch, the samples on its arc a-b (xs) and a-d (zs), and its evaluated grid.
-  std::vector<std::vector<Eigen::Vector3d>> xs(rows * cols), zs(rows * cols);
-  std::vector<std::vector<std::vector<Eigen::Vector3d>>> grids(rows * cols);
-  for (int i = 0; i < rows; ++i)
-    for (int j = 0; j < cols; ++j) {
-      const int k = i * cols + j;
-      const CyclidicPatch p = net.Patch(i, j);
-      const std::string name = PatchName(i, j);
-      if (i == 0)
-        xs[k] = Samples(ArcsOf(p, name).ab, p.corners[1], s);
-      else
-        for (const auto& row : grids[k - cols]) xs[k].push_back(row.back());
-      if (j == 0)
-        zs[k] = Samples(ArcsOf(p, name).ad, p.corners[3], s);
-      else
-        zs[k] = grids[k - 1].back();
-      grids[k] = EvaluateCyclidicPatch(p, xs[k], zs[k], name);
-    }
+  const PatchGrids g = EvaluatePatches(net, s);
   // The fine grid: vertex (i s + v, j s + u) = patch (i, j)'s grid[u][v].
   CyclidicSurface out;
   out.fine_shape.rows = rows * s;
@@ -609,93 +718,17 @@ CyclidicSurface MeshCyclidicSurface(const CyclidicNet& net, const CyclidicSurfac
     for (int j = 0; j < cols; ++j)
       for (int u = 0; u <= s; ++u)
         for (int v = 0; v <= s; ++v)
-          fine[out.fine_shape.Vertex(i * s + v, j * s + u)] = grids[i * cols + j][u][v];
-
-  // Tangent planes across shared arcs, at the arc's inner fine vertices: on each side the
-  // plane of the arc's tangent and the tangent of that patch's curvature circle crossing it (the
-  // arriving circle's on the near side, the leaving circle's frame vector on the far side), in
-  // coordinates about the near patch's corner.
-  // The angle at m, a point of the arc shared as `near_arc` of the near patch and `far_arc` of the
-  // far one, between the near patch's plane (the arc and its curvature circle from `from`, which
-  // leaves along `leave`) and the far patch's (the arc and `far_vector` carried from its corner).
-  const auto jump = [](const Arc& near_arc, const Eigen::Vector3d& from,
-                       const Eigen::Vector3d& leave, const Eigen::Vector3d& m, const Arc& far_arc,
-                       const Eigen::Vector3d& far_vector, const Eigen::Vector3d& far_corner) {
-    const Arc circle = ArcFrom(from, leave, m, "");
-    return AngleDeg(near_arc.Tangent(m).cross(circle.Tangent(m)),
-                    far_arc.Tangent(m).cross(Carry(far_vector, far_corner, m)));
-  };
-  double worst = 0.0;
-  for (int i = 0; i < rows; ++i)
-    for (int j = 0; j < cols; ++j) {
-      const int k = i * cols + j;
-      const Eigen::Vector3d shift = -net.points[shape.Vertex(i, j)];
-      const CyclidicPatch p = Shifted(net.Patch(i, j), shift);
-      const Eigen::Vector3d& a = p.corners[0];
-      const PatchArcs arcs = ArcsOf(p, "");
-      if (i + 1 < rows) {  // arc d-c, shared with patch (i + 1, j) as its arc a-b
-        const CyclidicPatch q = Shifted(net.Patch(i + 1, j), shift);
-        for (int u = 1; u < s; ++u) {
-          const Eigen::Vector3d x = xs[k][u] + shift;
-          worst =
-              std::max(worst, jump(arcs.dc, x, Mirror(p.frame.t2, x - a), grids[k][u][s] + shift,
-                                   ArcsOf(q, "").ab, q.frame.t2, q.corners[0]));
-        }
-      }
-      if (j + 1 < cols) {  // arc b-c, shared with patch (i, j + 1) as its arc a-d
-        const CyclidicPatch q = Shifted(net.Patch(i, j + 1), shift);
-        for (int v = 1; v < s; ++v) {
-          const Eigen::Vector3d z = zs[k][v] + shift;
-          worst =
-              std::max(worst, jump(arcs.bc, z, Mirror(p.frame.t1, z - a), grids[k][s][v] + shift,
-                                   ArcsOf(q, "").ad, q.frame.t1, q.corners[0]));
-        }
-      }
-    }
-
-  // A net closed around: weld the last fine column onto the first when they coincide.
-  double edge = 0.0;
-  int edges = 0;
-  for (int i = 0; i <= rows; ++i)
-    for (int j = 0; j < cols; ++j, ++edges)
-      edge += (net.points[shape.Vertex(i, j + 1)] - net.points[shape.Vertex(i, j)]).norm();
-  edge /= std::max(edges, 1);
-  double seam = 0.0;
-  const GridShape& fs = out.fine_shape;
-  for (int r = 0; r <= fs.rows; ++r)
-    seam = std::max(seam, (fine[fs.Vertex(r, fs.cols)] - fine[fs.Vertex(r, 0)]).norm());
-  out.welded = options.weld_closed && seam <= kSurfaceWeldTolerance * edge;
-  std::vector<PolyMesh::VertexHandle> v(fine.size());
-  for (int r = 0; r <= fs.rows; ++r)
-    for (int q = 0; q <= fs.cols; ++q) {
-      const int id = fs.Vertex(r, q);
-      if (out.welded && q == fs.cols) {
-        v[id] = v[fs.Vertex(r, 0)];
-        continue;
-      }
-      v[id] = out.mesh.add_vertex(PolyMesh::Point(fine[id].x(), fine[id].y(), fine[id].z()));
-    }
-  for (int r = 0; r < fs.rows; ++r)
-    for (int q = 0; q < fs.cols; ++q)
-      out.mesh.add_face(
-          std::vector<PolyMesh::VertexHandle>{v[fs.Vertex(r, q)], v[fs.Vertex(r + 1, q)],
-                                              v[fs.Vertex(r + 1, q + 1)], v[fs.Vertex(r, q + 1)]});
-  // Arcs that run the long way round (beyond 225°: semicircles are a canal's own).
-  int long_arcs = 0;
-  for (int i = 0; i < rows; ++i)
-    for (int j = 0; j < cols; ++j) {
-      const PatchArcs arcs = ArcsOf(net.Patch(i, j), "");
-      for (const Arc* arc : {&arcs.ab, &arcs.ad, &arcs.bc, &arcs.dc})
-        if (!arc->straight && arc->angle > 1.25 * M_PI) ++long_arcs;
-    }
+          fine[out.fine_shape.Vertex(i * s + v, j * s + u)] = g.grids[i * cols + j][u][v];
+  const double worst = MaxTangentAngle(net, g, s);
+  const double seam_gap = MeshFineGrid(net, fine, options.weld_closed, &out);
   const CircularityMeasures fine_measures = MeasureCircularity(out.mesh);
   out.measures = {{"patches", static_cast<double>(rows * cols)},
                   {"max_tangent_angle_deg", worst},
                   {"max_face_frame_closure_deg", MaxFaceFrameClosure(net)},
                   {"fine_max_concyclicity", fine_measures.max_concyclicity},
                   {"folded_fine_quads", static_cast<double>(fine_measures.folded_quads)},
-                  {"long_arcs", static_cast<double>(long_arcs)}};
-  if (options.weld_closed) out.measures.push_back({"seam_gap", seam / edge});
+                  {"long_arcs", static_cast<double>(LongArcs(net))}};
+  if (options.weld_closed) out.measures.push_back({"seam_gap", seam_gap});
   return out;
 }
 

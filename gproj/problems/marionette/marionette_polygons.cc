@@ -1,5 +1,6 @@
 #include "gproj/problems/marionette/marionette_polygons.h"
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <Eigen/OrderingMethods>
 #include <Eigen/SPQRSupport>

@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <memory>
 #include <queue>
 #include <string>
 
@@ -298,16 +300,11 @@ bool QuadRemeshOptions::IsValid(std::string* why) const {
   return fit.IsValid(why);
 }
 
-FieldParametrization ParametrizeAlongField(const PolyMesh& triangles, const DirectionField& field,
-                                           const QuadRemeshOptions& options) {
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError(why);
-  if (triangles.n_faces() == 0) throw InputError("the mesh has no faces");
-  if (field.curvature.size() != triangles.n_vertices())
-    throw InputError("the direction field does not belong to the mesh");
-  CheckTriangulatedDisk(triangles);
-  UnitFrame unit;
-  const PolyMesh m = UnitScaleCopy(triangles, &unit);
+namespace {
+
+// The quads' edge length in mean edges of the unit-scaled mesh; throws InputError outside
+// [kMinEdgeLength, kMaxEdgeLength].
+double UnitEdgeLength(const QuadRemeshOptions& options, const UnitFrame& unit) {
   const double h = options.edge_length > 0.0 ? options.edge_length / unit.length : 3.0;
   // Quads much smaller than the triangles only interpolate them (and a tiny h asks for
   // millions of quads): at least a quarter of a mean triangle edge.
@@ -321,11 +318,11 @@ FieldParametrization ParametrizeAlongField(const PolyMesh& triangles, const Dire
                   kMaxEdgeLength * unit.length);
     throw InputError(text);
   }
-  Surface s = Frames(m, field, options);
-  FieldParametrization out;
-  out.edge_length = h * unit.length;
-  out.singularities = FrameSingularities(s);
-  for (const FrameSingularity& sg : out.singularities)
+  return h;
+}
+
+void RefuseSingularitiesNoQuadCanFollow(const std::vector<FrameSingularity>& singularities) {
+  for (const FrameSingularity& sg : singularities)
     if (sg.index >= 1.0) {
       char text[300];
       std::snprintf(text, sizeof(text),
@@ -335,17 +332,38 @@ FieldParametrization ParametrizeAlongField(const PolyMesh& triangles, const Dire
                     sg.index, sg.vertex);
       throw InputError(text);
     }
-  const std::vector<std::vector<int>> paths = CutPaths(m, out.singularities);
-  std::vector<char> cut(m.n_edges(), 0);
-  std::vector<int> path_of_vertex(m.n_vertices(), -1);
-  for (size_t p = 0; p < paths.size(); ++p)
-    for (size_t i = 0; i + 1 < paths[p].size(); ++i) {
-      const auto hh = HalfedgeBetween(m, paths[p][i], paths[p][i + 1]);
-      cut[m.edge_handle(hh).idx()] = 1;
-      out.cut_edges.push_back(m.edge_handle(hh).idx());
-      path_of_vertex[paths[p][i + 1]] = static_cast<int>(p);
+}
+
+// The cut of the mesh into a disk along paths from the singularities, and how the map jumps
+// across it.
+struct Cuts {
+  std::vector<std::vector<int>> paths;  // vertex paths, each from its singularity
+  std::vector<char> cut;                // per edge: on a path
+  std::vector<int> path_of_vertex;      // the path a vertex is an inner or end vertex of, or −1
+  std::vector<int> path_turns;          // per path: the quarter turns of the frames across it
+  // Per face and corner: on the right of a path (the map there is R u(v) + (I − R) u(s_p)).
+  std::vector<std::array<char, 3>> right_side;
+};
+
+Cuts CutAlongPaths(const PolyMesh& m, const std::vector<FrameSingularity>& singularities,
+                   std::vector<int>* cut_edges) {
+  Cuts c;
+  c.paths = CutPaths(m, singularities);
+  c.cut.assign(m.n_edges(), 0);
+  c.path_of_vertex.assign(m.n_vertices(), -1);
+  for (size_t p = 0; p < c.paths.size(); ++p)
+    for (size_t i = 0; i + 1 < c.paths[p].size(); ++i) {
+      const auto hh = HalfedgeBetween(m, c.paths[p][i], c.paths[p][i + 1]);
+      c.cut[m.edge_handle(hh).idx()] = 1;
+      cut_edges->push_back(m.edge_handle(hh).idx());
+      c.path_of_vertex[c.paths[p][i + 1]] = static_cast<int>(p);
     }
-  // Comb the frames across the uncut edges (breadth first from face 0).
+  return c;
+}
+
+// Combs the frames across the uncut edges (breadth first from face 0); throws InputError when
+// an uncut edge still has a matching.
+void CombFrames(const PolyMesh& m, const Cuts& cuts, Surface* s) {
   std::vector<char> combed(m.n_faces(), 0);
   std::queue<int> queue;
   queue.push(0);
@@ -355,34 +373,42 @@ FieldParametrization ParametrizeAlongField(const PolyMesh& triangles, const Dire
     queue.pop();
     for (auto hh : m.fh_range(f)) {
       const auto g = m.opposite_face_handle(hh);
-      if (!g.is_valid() || combed[g.idx()] || cut[m.edge_handle(hh).idx()]) continue;
-      s.frame[g.idx()].Turn(Matching(s, hh, nullptr));
+      if (!g.is_valid() || combed[g.idx()] || cuts.cut[m.edge_handle(hh).idx()]) continue;
+      s->frame[g.idx()].Turn(Matching(*s, hh, nullptr));
       combed[g.idx()] = 1;
       queue.push(g.idx());
     }
   }
   for (auto e : m.edges()) {
-    if (m.is_boundary(e) || cut[e.idx()]) continue;
-    if (Matching(s, m.halfedge_handle(e, 0), nullptr) != 0)
+    if (m.is_boundary(e) || cuts.cut[e.idx()]) continue;
+    if (Matching(*s, m.halfedge_handle(e, 0), nullptr) != 0)
       throw InputError("the frame field does not comb across edge " + std::to_string(e.idx()) +
                        " (a singularity below the detection threshold): smooth the field more");
   }
-  // Across a path the combed frames turn by k quarter turns (the same k along the path: its
-  // inner vertices are regular); a frame turned by a quarter turn has the target gradient
-  // turned by −π/2, so the map jumps by R = Rot(kπ/2) from the left faces to the right.
-  std::vector<int> path_turns(paths.size(), 0);
+}
+
+// Across a path the combed frames turn by k quarter turns (the same k along the path: its inner
+// vertices are regular); a frame turned by a quarter turn has the target gradient turned by
+// −π/2, so the map jumps by R = Rot(kπ/2) from the left faces to the right.
+void FindPathTurns(const PolyMesh& m, const Surface& s, Cuts* cuts) {
+  const auto& paths = cuts->paths;
+  cuts->path_turns.assign(paths.size(), 0);
   for (size_t p = 0; p < paths.size(); ++p)
     for (size_t i = 0; i + 1 < paths[p].size(); ++i) {
       const int k = Matching(s, HalfedgeBetween(m, paths[p][i], paths[p][i + 1]), nullptr);
-      if (i == 0) path_turns[p] = k;
-      if (k != path_turns[p])
+      if (i == 0) cuts->path_turns[p] = k;
+      if (k != cuts->path_turns[p])
         throw InputError("the frame field turns differently along the cut from vertex " +
                          std::to_string(paths[p][0]) + " (at vertex " +
                          std::to_string(paths[p][i]) + "): smooth the field more");
     }
-  // Corners on the right of a path: flooded around the vertex from the path's right face
-  // across uncut edges.
-  std::vector<std::array<char, 3>> right_side(m.n_faces(), {0, 0, 0});
+}
+
+// Corners on the right of a path: flooded around the vertex from the path's right face across
+// uncut edges.
+void FindRightSides(const PolyMesh& m, const Surface& s, Cuts* cuts) {
+  const auto& paths = cuts->paths;
+  cuts->right_side.assign(m.n_faces(), {0, 0, 0});
   for (size_t p = 0; p < paths.size(); ++p)
     for (size_t i = 1; i < paths[p].size(); ++i) {
       const int v = paths[p][i];
@@ -395,122 +421,189 @@ FieldParametrization ParametrizeAlongField(const PolyMesh& triangles, const Dire
         stack.pop_back();
         if (std::find(seen.begin(), seen.end(), f) != seen.end()) continue;
         seen.push_back(f);
-        right_side[f][s.basis[f].Corner(v)] = 1;
+        cuts->right_side[f][s.basis[f].Corner(v)] = 1;
         for (auto fh : m.fh_range(m.face_handle(f))) {
           if (m.from_vertex_handle(fh).idx() != v && m.to_vertex_handle(fh).idx() != v) continue;
           const auto g = m.opposite_face_handle(fh);
-          if (g.is_valid() && !cut[m.edge_handle(fh).idx()]) stack.push_back(g.idx());
+          if (g.is_valid() && !cuts->cut[m.edge_handle(fh).idx()]) stack.push_back(g.idx());
         }
       }
     }
-  // Unknowns: u(v) ∈ R² per vertex (on the left of a cut); the right corners of path p are
-  // R u(v) + (I − R) u(s_p). The singularities' u are rounded after a first solve.
-  const int n = 2 * static_cast<int>(m.n_vertices());
-  std::vector<double> fixed(n, std::numeric_limits<double>::quiet_NaN());
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
-  std::unique_ptr<SparseCholesky> solver = CreateSparseCholesky(options.linear_solver, 1);
-  auto corner_terms = [&](int f, int k, int component, std::vector<std::pair<int, double>>* terms) {
+}
+
+// The least-squares map. Unknowns: u(v) ∈ R² per vertex (on the left of a cut); the right
+// corners of path p are R u(v) + (I − R) u(s_p). Unknowns can be fixed (the singularities' u,
+// rounded after a first solve).
+class MapSystem {
+ public:
+  MapSystem(const PolyMesh& m, const Surface& s, const Cuts& cuts, double h,
+            const QuadRemeshOptions& options)
+      : m_(m),
+        s_(s),
+        cuts_(cuts),
+        h_(h),
+        options_(options),
+        n_(2 * static_cast<int>(m.n_vertices())),
+        fixed_(n_, std::numeric_limits<double>::quiet_NaN()),
+        x_(Eigen::VectorXd::Zero(n_)),
+        solver_(CreateSparseCholesky(options.linear_solver, 1)) {}
+
+  // The map at corner k of face f, component `component`: Σ coeff x[var] over *terms.
+  void CornerTerms(int f, int k, int component, std::vector<std::pair<int, double>>* terms) const {
     terms->clear();
-    const int v = s.basis[f].vertex[k];
-    if (!right_side[f][k]) {
+    const int v = s_.basis[f].vertex[k];
+    if (!cuts_.right_side[f][k]) {
       terms->push_back({2 * v + component, 1.0});
       return;
     }
-    const int p = path_of_vertex[v];
-    const int sv = paths[p][0];
-    const Eigen::Matrix2d r = QuarterTurns(path_turns[p]);
+    const int p = cuts_.path_of_vertex[v];
+    const int sv = cuts_.paths[p][0];
+    const Eigen::Matrix2d r = QuarterTurns(cuts_.path_turns[p]);
     const Eigen::Matrix2d c = Eigen::Matrix2d::Identity() - r;
     for (int j = 0; j < 2; ++j) {
       if (r(component, j) != 0.0) terms->push_back({2 * v + j, r(component, j)});
       if (c(component, j) != 0.0) terms->push_back({2 * sv + j, c(component, j)});
     }
-  };
-  auto solve = [&]() {
-    std::vector<int> column(n, -1);
+  }
+
+  void Fix(int var, double value) { fixed_[var] = value; }
+  const Eigen::VectorXd& x() const { return x_; }
+
+  // x: the least-squares solution with the fixed unknowns at their values.
+  void Solve() {
+    std::vector<int> column(n_, -1);
     int free = 0;
-    for (int i = 0; i < n; ++i)
-      if (std::isnan(fixed[i])) column[i] = free++;
+    for (int i = 0; i < n_; ++i)
+      if (std::isnan(fixed_[i])) column[i] = free++;
     std::vector<Eigen::Triplet<double>> entries;
-    Eigen::VectorXd b = Eigen::VectorXd::Zero(4 * m.n_faces());
-    std::vector<std::pair<int, double>> terms;
-    for (auto fh : m.faces()) {
-      const int f = fh.idx();
-      const double w = std::sqrt(s.basis[f].area);
-      const Eigen::Matrix<double, 2, 3> g = s.basis[f].Gradient();
-      const Frame& fr = s.frame[f];
-      const Eigen::Vector2d along[2] = {Direction(fr.gamma - fr.theta),
-                                        Direction(fr.gamma + fr.theta)};
-      for (int c = 0; c < 2; ++c)
-        for (int d = 0; d < 2; ++d) {
-          // Row (c, c): ∇u_c along its own direction is 1 / h (the size, weighted σ); row
-          // (c, 1 − c): ∇u_c along the other direction is 0 (the alignment).
-          const int row = 4 * f + 2 * c + d;
-          const double weight = w * (d == c ? options.size_weight : 1.0);
-          const Eigen::Vector3d probe = weight * (along[d].transpose() * g).transpose();
-          double rhs = d == c ? weight / h : 0.0;
-          for (int k = 0; k < 3; ++k) {
-            corner_terms(f, k, c, &terms);
-            for (const auto& [var, coeff] : terms) {
-              const double value = probe[k] * coeff;
-              if (column[var] >= 0)
-                entries.emplace_back(column[var], row, value);
-              else
-                rhs -= value * fixed[var];
-            }
-          }
-          b[row] = rhs;
-        }
-    }
-    Eigen::SparseMatrix<double> at(free, 4 * m.n_faces());
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(4 * m_.n_faces());
+    for (auto fh : m_.faces()) AddFaceRows(fh.idx(), column, &entries, &b);
+    Eigen::SparseMatrix<double> at(free, 4 * m_.n_faces());
     at.setFromTriplets(entries.begin(), entries.end());
     at.makeCompressed();
     const CscMatrix a = ToCsc(at);
     std::string message;
     const Eigen::VectorXd rhs = at * b;
     Eigen::VectorXd y(free);
-    if (!solver->Analyze(a, MatrixForm::kAAt, &message) || !solver->Factorize(a, 1e-9, &message) ||
-        !solver->Solve(rhs.data(), y.data(), &message) || !y.allFinite())
+    if (!solver_->Analyze(a, MatrixForm::kAAt, &message) ||
+        !solver_->Factorize(a, 1e-9, &message) || !solver_->Solve(rhs.data(), y.data(), &message) ||
+        !y.allFinite())
       throw InputError("the parametrisation system could not be solved: " + message);
-    for (int i = 0; i < n; ++i) x[i] = column[i] >= 0 ? y[column[i]] : fixed[i];
-  };
-  solve();
-  if (!out.singularities.empty()) {
-    for (const FrameSingularity& sg : out.singularities)
-      for (int j = 0; j < 2; ++j) fixed[2 * sg.vertex + j] = std::round(x[2 * sg.vertex + j]);
-    solve();
+    for (int i = 0; i < n_; ++i) x_[i] = column[i] >= 0 ? y[column[i]] : fixed_[i];
   }
-  // The map at the corners, the quarter turns across the cuts, the frames in 3D.
-  out.map.corner_uv.resize(m.n_faces());
-  out.map.halfedge_rotation.assign(m.n_halfedges(), 0);
-  out.frame_a.resize(m.n_faces());
-  out.frame_b.resize(m.n_faces());
+
+ private:
+  // The four rows of face f (columns of Aᵀ in `entries`, right-hand sides in b).
+  void AddFaceRows(int f, const std::vector<int>& column,
+                   std::vector<Eigen::Triplet<double>>* entries, Eigen::VectorXd* b) const {
+    std::vector<std::pair<int, double>> terms;
+    const double w = std::sqrt(s_.basis[f].area);
+    const Eigen::Matrix<double, 2, 3> g = s_.basis[f].Gradient();
+    const Frame& fr = s_.frame[f];
+    const Eigen::Vector2d along[2] = {Direction(fr.gamma - fr.theta),
+                                      Direction(fr.gamma + fr.theta)};
+    for (int c = 0; c < 2; ++c)
+      for (int d = 0; d < 2; ++d) {
+        // Row (c, c): ∇u_c along its own direction is 1 / h (the size, weighted σ); row
+        // (c, 1 − c): ∇u_c along the other direction is 0 (the alignment).
+        const int row = 4 * f + 2 * c + d;
+        const double weight = w * (d == c ? options_.size_weight : 1.0);
+        const Eigen::Vector3d probe = weight * (along[d].transpose() * g).transpose();
+        double rhs = d == c ? weight / h_ : 0.0;
+        for (int k = 0; k < 3; ++k) {
+          CornerTerms(f, k, c, &terms);
+          for (const auto& [var, coeff] : terms) {
+            const double value = probe[k] * coeff;
+            if (column[var] >= 0)
+              entries->emplace_back(column[var], row, value);
+            else
+              rhs -= value * fixed_[var];
+          }
+        }
+        (*b)[row] = rhs;
+      }
+  }
+
+  const PolyMesh& m_;
+  const Surface& s_;
+  const Cuts& cuts_;
+  const double h_;
+  const QuadRemeshOptions& options_;
+  const int n_;
+  std::vector<double> fixed_;
+  Eigen::VectorXd x_;
+  std::unique_ptr<SparseCholesky> solver_;
+};
+
+// The map at the corners, the quarter turns across the cuts, the frames in 3D.
+void WriteMap(const PolyMesh& m, const Surface& s, const Cuts& cuts, const MapSystem& system,
+              FieldParametrization* out) {
+  out->map.corner_uv.resize(m.n_faces());
+  out->map.halfedge_rotation.assign(m.n_halfedges(), 0);
+  out->frame_a.resize(m.n_faces());
+  out->frame_b.resize(m.n_faces());
   std::vector<std::pair<int, double>> terms;
   for (auto fh : m.faces()) {
     const int f = fh.idx();
     for (int k = 0; k < 3; ++k)
       for (int c = 0; c < 2; ++c) {
-        corner_terms(f, k, c, &terms);
+        system.CornerTerms(f, k, c, &terms);
         double value = 0.0;
-        for (const auto& [var, coeff] : terms) value += coeff * x[var];
+        for (const auto& [var, coeff] : terms) value += coeff * system.x()[var];
         // Within rounding of an integer, exactly on it (an iso-line through a vertex, as on
         // grids aligned with the field): the transitions map integers to integers, so every
         // chart of the vertex agrees, and the extraction sees the exact case, not a near miss.
         if (std::abs(value - std::round(value)) < kSnapToInteger) value = std::round(value);
-        out.map.corner_uv[f][k][c] = value;
+        out->map.corner_uv[f][k][c] = value;
       }
-    if (MappedArea(out.map, f) <= 0.0) ++out.folded_faces;
+    if (MappedArea(out->map, f) <= 0.0) ++out->folded_faces;
     const FaceBasis& b = s.basis[f];
     const Frame& fr = s.frame[f];
     const Eigen::Vector2d a2 = Direction(fr.gamma - fr.theta), b2 = Direction(fr.gamma + fr.theta);
-    out.frame_a[f] = a2.x() * b.e1 + a2.y() * b.e2;
-    out.frame_b[f] = b2.x() * b.e1 + b2.y() * b.e2;
+    out->frame_a[f] = a2.x() * b.e1 + a2.y() * b.e2;
+    out->frame_b[f] = b2.x() * b.e1 + b2.y() * b.e2;
   }
+  const auto& paths = cuts.paths;
   for (size_t p = 0; p < paths.size(); ++p)
     for (size_t i = 0; i + 1 < paths[p].size(); ++i) {
       const auto hh = HalfedgeBetween(m, paths[p][i], paths[p][i + 1]);
-      out.map.halfedge_rotation[hh.idx()] = path_turns[p];
-      out.map.halfedge_rotation[m.opposite_halfedge_handle(hh).idx()] = (4 - path_turns[p]) & 3;
+      out->map.halfedge_rotation[hh.idx()] = cuts.path_turns[p];
+      out->map.halfedge_rotation[m.opposite_halfedge_handle(hh).idx()] =
+          (4 - cuts.path_turns[p]) & 3;
     }
+}
+
+}  // namespace
+
+FieldParametrization ParametrizeAlongField(const PolyMesh& triangles, const DirectionField& field,
+                                           const QuadRemeshOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError(why);
+  if (triangles.n_faces() == 0) throw InputError("the mesh has no faces");
+  if (field.curvature.size() != triangles.n_vertices())
+    throw InputError("the direction field does not belong to the mesh");
+  CheckTriangulatedDisk(triangles);
+  UnitFrame unit;
+  const PolyMesh m = UnitScaleCopy(triangles, &unit);
+  const double h = UnitEdgeLength(options, unit);
+  Surface s = Frames(m, field, options);
+  FieldParametrization out;
+  out.edge_length = h * unit.length;
+  out.singularities = FrameSingularities(s);
+  RefuseSingularitiesNoQuadCanFollow(out.singularities);
+  Cuts cuts = CutAlongPaths(m, out.singularities, &out.cut_edges);
+  CombFrames(m, cuts, &s);
+  FindPathTurns(m, s, &cuts);
+  FindRightSides(m, s, &cuts);
+  MapSystem system(m, s, cuts, h, options);
+  system.Solve();
+  if (!out.singularities.empty()) {
+    for (const FrameSingularity& sg : out.singularities)
+      for (int j = 0; j < 2; ++j)
+        system.Fix(2 * sg.vertex + j, std::round(system.x()[2 * sg.vertex + j]));
+    system.Solve();
+  }
+  WriteMap(m, s, cuts, system, &out);
   return out;
 }
 

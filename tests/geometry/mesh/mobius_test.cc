@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include "gproj/geometry/mesh/circle.h"
 #include "gproj/geometry/mesh/parametric_grid.h"
 
