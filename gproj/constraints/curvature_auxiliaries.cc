@@ -15,6 +15,16 @@ Eigen::Matrix3d CrossMatrix(const Eigen::Vector3d& a) {
   return m;
 }
 
+// Rows r of phi and of the row-major jac (dim columns) times scale[r]; rows of scale 1 are left.
+void ScaleRows(const std::array<double, 12>& scale, int dim, double* phi, double* jac) {
+  for (int r = 0; r < 12; ++r) {
+    const double f = scale[r];
+    if (f == 1.0) continue;
+    phi[r] *= f;
+    for (int l = 0; l < dim; ++l) jac[r * dim + l] *= f;
+  }
+}
+
 }  // namespace
 
 int CurvatureAuxiliaries::AddSample(int forms, int curvature, const std::vector<int>& control_items,
@@ -106,12 +116,7 @@ void CurvatureAuxiliaries::EvaluateElement(int e, const double* x, double* phi, 
   J(11, kF) = 2.0 * M;
   J(11, kNn) = -E;
   J(11, kE) = -N;
-  for (int r = 0; r < 12; ++r) {
-    const double f = inverse_scale_[e][r];
-    if (f == 1.0) continue;
-    phi[r] *= f;
-    for (int l = 0; l < dim; ++l) J(r, l) *= f;
-  }
+  ScaleRows(inverse_scale_[e], dim, phi, jac);
 }
 
 std::array<double, 12> CurvatureAuxiliaries::RowMagnitudes(const Eigen::Matrix<double, 12, 1>& a,

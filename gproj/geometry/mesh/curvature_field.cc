@@ -327,6 +327,53 @@ std::vector<Eigen::Vector3d> SmoothPrincipalField(const PolyMesh& mesh,
   return SmoothAtUnitScale(UnitScaled(mesh, &unit), curvature, alignment_weight, symmetry);
 }
 
+namespace {
+
+// Per vertex, a third of the area of its triangles.
+std::vector<double> VertexAreas(const PolyMesh& mesh) {
+  std::vector<double> area(mesh.n_vertices(), 0.0);
+  for (auto f : mesh.faces()) {
+    std::vector<Eigen::Vector3d> p;
+    for (auto fv = mesh.cfv_iter(f); fv.is_valid(); ++fv) p.push_back(At(mesh, *fv));
+    const double third = (p[1] - p[0]).cross(p[2] - p[0]).norm() / 6.0;
+    for (auto fv = mesh.cfv_iter(f); fv.is_valid(); ++fv) area[fv->idx()] += third;
+  }
+  return area;
+}
+
+// The field's two directions at every fitted vertex (principal, or asymptotic), the fitted
+// count and the area fractions of negative and of undefined curvature. Throws InputError for
+// asymptotic directions on a surface with K >= 0 everywhere.
+void SetDirections(const PolyMesh& scaled, DirectionField* field) {
+  const size_t n = scaled.n_vertices();
+  field->first.assign(n, Eigen::Vector3d::Zero());
+  field->second.assign(n, Eigen::Vector3d::Zero());
+  const std::vector<double> area = VertexAreas(scaled);
+  double total = 0.0, negative = 0.0, undefined = 0.0;
+  for (size_t v = 0; v < n; ++v) {
+    const VertexCurvature& c = field->curvature[v];
+    if (!c.fitted) continue;
+    ++field->fitted;
+    total += area[v];
+    if (c.gaussian() < 0.0) negative += area[v];
+    if (c.k1 - c.k2 < kFlatCurvature) undefined += area[v];
+    if (field->kind == DirectionKind::kPrincipal) {
+      field->first[v] = c.d1;
+      field->second[v] = c.d2;
+    } else {
+      c.Asymptotic(&field->first[v], &field->second[v]);
+    }
+  }
+  field->negative_area_fraction = total > 0.0 ? negative / total : 0.0;
+  field->undefined_area_fraction = total > 0.0 ? undefined / total : 0.0;
+  if (field->kind == DirectionKind::kAsymptotic && !(negative > 0.0))
+    throw InputError(
+        "K >= 0 at every fitted vertex: asymptotic directions exist only where the "
+        "Gaussian curvature is negative (use the principal directions)");
+}
+
+}  // namespace
+
 DirectionField EstimateDirectionField(const PolyMesh& mesh, DirectionKind kind,
                                       const CurvatureFitOptions& options, double smoothing) {
   for (auto f : mesh.faces())
@@ -368,36 +415,7 @@ DirectionField EstimateDirectionField(const PolyMesh& mesh, DirectionKind kind,
       c.d2 = c.normal.cross(c.d1).normalized();
     }
   }
-  field.first.assign(n, Eigen::Vector3d::Zero());
-  field.second.assign(n, Eigen::Vector3d::Zero());
-  std::vector<double> area(n, 0.0);
-  for (auto f : scaled.faces()) {
-    std::vector<Eigen::Vector3d> p;
-    for (auto fv = scaled.cfv_iter(f); fv.is_valid(); ++fv) p.push_back(At(scaled, *fv));
-    const double third = (p[1] - p[0]).cross(p[2] - p[0]).norm() / 6.0;
-    for (auto fv = scaled.cfv_iter(f); fv.is_valid(); ++fv) area[fv->idx()] += third;
-  }
-  double total = 0.0, negative = 0.0, undefined = 0.0;
-  for (size_t v = 0; v < n; ++v) {
-    const VertexCurvature& c = field.curvature[v];
-    if (!c.fitted) continue;
-    ++field.fitted;
-    total += area[v];
-    if (c.gaussian() < 0.0) negative += area[v];
-    if (c.k1 - c.k2 < kFlatCurvature) undefined += area[v];
-    if (kind == DirectionKind::kPrincipal) {
-      field.first[v] = c.d1;
-      field.second[v] = c.d2;
-    } else {
-      c.Asymptotic(&field.first[v], &field.second[v]);
-    }
-  }
-  field.negative_area_fraction = total > 0.0 ? negative / total : 0.0;
-  field.undefined_area_fraction = total > 0.0 ? undefined / total : 0.0;
-  if (kind == DirectionKind::kAsymptotic && !(negative > 0.0))
-    throw InputError(
-        "K >= 0 at every fitted vertex: asymptotic directions exist only where the "
-        "Gaussian curvature is negative (use the principal directions)");
+  SetDirections(scaled, &field);
   // The principal line field carries the singularities of both nets (it bisects the
   // asymptotic pair).
   std::vector<Eigen::Vector3d> principal(n, Eigen::Vector3d::Zero());

@@ -80,10 +80,9 @@ double MeanEdge(const CircularStrip& strip) {
   return sum / (3 * count);
 }
 
-}  // namespace
-
-ClosedCircularStrip BuildClosedCircularStrip(const CircularStripInput& input,
-                                             double cospherical_tolerance) {
+// Throws InputError for fewer than three curve points, lengths not one per point, a negative
+// tolerance, non-finite points or two consecutive points that are the same.
+void CheckClosedStripInput(const CircularStripInput& input, double cospherical_tolerance) {
   const int count = static_cast<int>(input.curve.size());
   if (count < 3) throw InputError("a closed strip needs at least three curve points");
   if (static_cast<int>(input.lengths.size()) != count)
@@ -100,6 +99,32 @@ ClosedCircularStrip BuildClosedCircularStrip(const CircularStripInput& input,
           (next == 0 ? " (list a closed curve's points once, without repeating P_0)" : ""));
   }
   if (!input.first_point.allFinite()) throw InputError("the first point is not finite");
+}
+
+// Throws InputError when the closing circle folds quad 0, the one before the last, or the
+// last (the others are the open strip's).
+void CheckClosingQuads(const CircularStrip& strip, const ClosedCircularStrip& result) {
+  const int count = static_cast<int>(strip.p.size());
+  const std::array<int, 3> checked = {0, count - 2, count - 1};
+  for (int k : checked) {
+    const int next = (k + 1) % count;
+    if (!IsConvexQuad({strip.p[k], strip.p[next], strip.q[next], strip.q[k]})) {
+      char shift[96] = "";
+      if (result.closing_case == 2)
+        std::snprintf(shift, sizeof(shift), " (case 2 moves Q_0 by %.4g)", result.start_shift);
+      throw InputError("the closing circle folds quad " + std::to_string(k) + " (" + Name("P", k) +
+                       ", " + Name("P", next) + ", " + Name("Q", next) + ", " + Name("Q", k) + ")" +
+                       shift + ": change the first point or the lengths");
+    }
+  }
+}
+
+}  // namespace
+
+ClosedCircularStrip BuildClosedCircularStrip(const CircularStripInput& input,
+                                             double cospherical_tolerance) {
+  CheckClosedStripInput(input, cospherical_tolerance);
+  const int count = static_cast<int>(input.curve.size());
   // The construction runs about P_0 (spheres and planes of far-away points lose digits).
   const Eigen::Vector3d origin = input.curve[0];
   CircularStripInput open = input;
@@ -152,18 +177,7 @@ ClosedCircularStrip BuildClosedCircularStrip(const CircularStripInput& input,
   strip.q[last] = SecondIntersection(gammal, pl, plane_normal, &closing,
                                      "the circle Γ_" + std::to_string(before), scale);
   result.start_shift = (strip.q[0] - asked_q0).norm();
-  const std::array<int, 3> checked = {0, before, last};
-  for (int k : checked) {
-    const int next = (k + 1) % count;
-    if (!IsConvexQuad({strip.p[k], strip.p[next], strip.q[next], strip.q[k]})) {
-      char shift[96] = "";
-      if (result.closing_case == 2)
-        std::snprintf(shift, sizeof(shift), " (case 2 moves Q_0 by %.4g)", result.start_shift);
-      throw InputError("the closing circle folds quad " + std::to_string(k) + " (" + Name("P", k) +
-                       ", " + Name("P", next) + ", " + Name("Q", next) + ", " + Name("Q", k) + ")" +
-                       shift + ": change the first point or the lengths");
-    }
-  }
+  CheckClosingQuads(strip, result);
   result.strip.p = input.curve;
   result.strip.q = strip.q;
   for (Eigen::Vector3d& q : result.strip.q) q += origin;

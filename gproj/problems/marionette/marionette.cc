@@ -291,6 +291,48 @@ Eigen::RowVectorXd MarionetteVolumeRow(const MarionettePlan& plan) {
   return total < 0.0 ? Eigen::RowVectorXd(-row) : row;
 }
 
+namespace {
+
+// The KKT system of the fit min ½ gᵀ H g − bᵀ g with the equality rows `rows` = `values` and
+// the heights of the `active` vertices (rows of A) at max_height: the guide heights g, then
+// the multipliers. Throws InputError when the system is singular or its constraints
+// contradict each other.
+Eigen::VectorXd SolveFitKkt(const Eigen::MatrixXd& h, const Eigen::VectorXd& b,
+                            const Eigen::MatrixXd& a, const std::vector<Eigen::RowVectorXd>& rows,
+                            const std::vector<double>& values, const std::vector<int>& active,
+                            double max_height, bool first_round) {
+  const int g = static_cast<int>(a.cols());
+  const int fixed = static_cast<int>(rows.size());
+  const int m = fixed + static_cast<int>(active.size());
+  Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(g + m, g + m);
+  Eigen::VectorXd rhs(g + m);
+  kkt.topLeftCorner(g, g) = h;
+  rhs.head(g) = b;
+  for (int r = 0; r < m; ++r) {
+    const Eigen::RowVectorXd row =
+        r < fixed ? rows[r] : Eigen::RowVectorXd(a.row(active[r - fixed]));
+    kkt.block(g + r, 0, 1, g) = row;
+    kkt.block(0, g + r, g, 1) = row.transpose();
+    rhs[g + r] = r < fixed ? values[r] : max_height;
+  }
+  const Eigen::FullPivLU<Eigen::MatrixXd> lu(kkt);
+  if (lu.rank() < g + m) {
+    if (first_round || active.empty())
+      throw InputError(
+          "the fit's targets and hard constraints do not determine the lift: " +
+          std::to_string(g + m - lu.rank()) + " of its " + std::to_string(g) +
+          " guide heights stay free, or constraints repeat each other (give targets at more "
+          "vertices or fewer constraints)");
+    throw InputError("the max height contradicts the prescribed heights or volume");
+  }
+  const Eigen::VectorXd solution = lu.solve(rhs);
+  if ((kkt * solution - rhs).norm() > 1e-8 * (rhs.norm() + 1.0))
+    throw InputError("the hard constraints contradict each other");
+  return solution;
+}
+
+}  // namespace
+
 Eigen::VectorXd FitMarionette(const MarionettePlan& plan, const Eigen::VectorXd& z0,
                               const Eigen::VectorXd& weights,
                               const MarionetteConstraints& constraints) {
@@ -322,31 +364,8 @@ Eigen::VectorXd FitMarionette(const MarionettePlan& plan, const Eigen::VectorXd&
   std::vector<int> active;  // vertices held at the max height
   const double scale = 1.0 + z0.cwiseAbs().maxCoeff() + std::abs(constraints.max_height);
   for (int round = 0; round <= 2 * n + 2; ++round) {
-    const int m = fixed + static_cast<int>(active.size());
-    Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(g + m, g + m);
-    Eigen::VectorXd rhs(g + m);
-    kkt.topLeftCorner(g, g) = h;
-    rhs.head(g) = b;
-    for (int r = 0; r < m; ++r) {
-      const Eigen::RowVectorXd row =
-          r < fixed ? rows[r] : Eigen::RowVectorXd(a.row(active[r - fixed]));
-      kkt.block(g + r, 0, 1, g) = row;
-      kkt.block(0, g + r, g, 1) = row.transpose();
-      rhs[g + r] = r < fixed ? values[r] : constraints.max_height;
-    }
-    const Eigen::FullPivLU<Eigen::MatrixXd> lu(kkt);
-    if (lu.rank() < g + m) {
-      if (round == 0 || active.empty())
-        throw InputError(
-            "the fit's targets and hard constraints do not determine the lift: " +
-            std::to_string(g + m - lu.rank()) + " of its " + std::to_string(g) +
-            " guide heights stay free, or constraints repeat each other (give targets at more "
-            "vertices or fewer constraints)");
-      throw InputError("the max height contradicts the prescribed heights or volume");
-    }
-    const Eigen::VectorXd solution = lu.solve(rhs);
-    if ((kkt * solution - rhs).norm() > 1e-8 * (rhs.norm() + 1.0))
-      throw InputError("the hard constraints contradict each other");
+    const Eigen::VectorXd solution =
+        SolveFitKkt(h, b, a, rows, values, active, constraints.max_height, round == 0);
     const Eigen::VectorXd z = a * solution.head(g);
     if (!constraints.with_max_height) return z;
     // Release the active bound with the most negative multiplier, else add the worst violation.

@@ -203,6 +203,75 @@ std::vector<std::array<int, 3>> StraightTriples(const PolyMesh& plan, double max
   return out;
 }
 
+namespace {
+
+// Throws InputError when [A; F] (the constraints over the fairness rows) leaves directions of
+// the heights free.
+void CheckDetermined(const std::vector<Eigen::Triplet<double>>& a_entries, int m,
+                     const std::vector<Eigen::Triplet<double>>& f_entries, int fairness_rows, int n,
+                     size_t prescribed, int planar_dimension) {
+  std::vector<Eigen::Triplet<double>> stacked = a_entries;
+  for (const auto& e : f_entries) stacked.emplace_back(m + e.row(), e.col(), e.value());
+  Eigen::SparseMatrix<double> s(m + fairness_rows, n);
+  s.setFromTriplets(stacked.begin(), stacked.end());
+  s.makeCompressed();
+  const int rank = SparseRank(s);
+  if (rank < n)
+    throw InputError(std::to_string(n - rank) + " direction(s) of the heights stay free with " +
+                     std::to_string(prescribed) +
+                     " prescribed heights and the fairness energy: prescribe more heights (at "
+                     "least three not on a line; the planarity leaves " +
+                     std::to_string(planar_dimension) + " free)");
+}
+
+// Throws InputError when z misses a constraint A z = b, naming the face or the prescribed
+// height of the worst row (the least-squares compromise spreads a conflict, largest where it
+// is).
+void CheckConstraintsMet(const std::vector<Eigen::Triplet<double>>& a_entries,
+                         const std::vector<double>& b, const Eigen::VectorXd& z,
+                         const std::vector<PlanarityRow>& rows,
+                         const std::vector<std::pair<int, double>>& heights) {
+  const int m = static_cast<int>(b.size()), n = static_cast<int>(z.size());
+  Eigen::SparseMatrix<double> a(m, n);
+  a.setFromTriplets(a_entries.begin(), a_entries.end());
+  const Eigen::VectorXd residual = a * z - Eigen::Map<const Eigen::VectorXd>(b.data(), m);
+  double scale = 1.0;
+  for (double x : b) scale = std::max(scale, std::abs(x));
+  int worst = 0;
+  residual.cwiseAbs().maxCoeff(&worst);
+  if (m > 0 && std::abs(residual[worst]) > 1e-8 * scale) {
+    if (worst < static_cast<int>(rows.size()))
+      throw InputError("the prescribed heights cannot all be met by planar faces (face " +
+                       std::to_string(rows[worst].face) +
+                       " would bend most): they over-determine the lift; prescribe fewer");
+    throw InputError("the prescribed height at vertex " +
+                     std::to_string(heights[worst - rows.size()].first) +
+                     " contradicts the others through the planar faces; prescribe fewer");
+  }
+}
+
+// Planarity: each face's vertices against the plane of its most spread-out triple, per `unit`.
+double MaxPlanarity(const PolyMesh& mesh, double unit) {
+  double worst = 0.0;
+  for (auto face : mesh.faces()) {
+    std::vector<Eigen::Vector3d> p;
+    for (auto fv : mesh.fv_range(face)) p.emplace_back(mesh.point(fv).data());
+    if (p.size() <= 3) continue;
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    for (size_t i = 1; i < p.size(); ++i)
+      for (size_t j = i + 1; j < p.size(); ++j) {
+        const Eigen::Vector3d c = (p[i] - p[0]).cross(p[j] - p[0]);
+        if (c.norm() > normal.norm()) normal = c;
+      }
+    normal.normalize();
+    for (const Eigen::Vector3d& x : p)
+      worst = std::max(worst, std::abs(normal.dot(x - p[0])) / unit);
+  }
+  return worst;
+}
+
+}  // namespace
+
 MarionettePolygonLift LiftPolygonPlan(const PolyMesh& plan,
                                       const std::vector<std::pair<int, double>>& heights) {
   const int n = static_cast<int>(plan.n_vertices());
@@ -233,45 +302,13 @@ MarionettePolygonLift LiftPolygonPlan(const PolyMesh& plan,
     f_entries.emplace_back(static_cast<int>(t), triples[t][1], -2.0);
     f_entries.emplace_back(static_cast<int>(t), triples[t][2], 1.0);
   }
-  // Determined only if [A; F] has full column rank.
-  {
-    std::vector<Eigen::Triplet<double>> stacked = a_entries;
-    for (const auto& e : f_entries) stacked.emplace_back(m + e.row(), e.col(), e.value());
-    Eigen::SparseMatrix<double> s(m + static_cast<int>(triples.size()), n);
-    s.setFromTriplets(stacked.begin(), stacked.end());
-    s.makeCompressed();
-    const int rank = SparseRank(s);
-    if (rank < n)
-      throw InputError(std::to_string(n - rank) + " direction(s) of the heights stay free with " +
-                       std::to_string(heights.size()) +
-                       " prescribed heights and the fairness energy: prescribe more heights (at "
-                       "least three not on a line; the planarity leaves " +
-                       std::to_string(out.space.dimension) + " free)");
-  }
+  CheckDetermined(a_entries, m, f_entries, static_cast<int>(triples.size()), n, heights.size(),
+                  out.space.dimension);
   Eigen::SparseMatrix<double> f(static_cast<int>(triples.size()), n);
   f.setFromTriplets(f_entries.begin(), f_entries.end());
-  const Eigen::VectorXd solution =
+  const Eigen::VectorXd z =
       SolveRegularisedKkt(Eigen::SparseMatrix<double>(f.transpose() * f), a_entries, b, n);
-  const Eigen::VectorXd z = solution;
-  // The constraints must hold: otherwise the prescribed heights contradict planarity.
-  Eigen::SparseMatrix<double> a(m, n);
-  a.setFromTriplets(a_entries.begin(), a_entries.end());
-  const Eigen::VectorXd residual = a * z - Eigen::Map<const Eigen::VectorXd>(b.data(), m);
-  double scale = 1.0;
-  for (double x : b) scale = std::max(scale, std::abs(x));
-  // The worst row names the conflict (the least-squares compromise spreads it, largest where
-  // it is).
-  int worst = 0;
-  residual.cwiseAbs().maxCoeff(&worst);
-  if (m > 0 && std::abs(residual[worst]) > 1e-8 * scale) {
-    if (worst < static_cast<int>(rows.size()))
-      throw InputError("the prescribed heights cannot all be met by planar faces (face " +
-                       std::to_string(rows[worst].face) +
-                       " would bend most): they over-determine the lift; prescribe fewer");
-    throw InputError("the prescribed height at vertex " +
-                     std::to_string(heights[worst - rows.size()].first) +
-                     " contradicts the others through the planar faces; prescribe fewer");
-  }
+  CheckConstraintsMet(a_entries, b, z, rows, heights);
   out.mesh = plan;
   for (auto v : out.mesh.vertices()) {
     auto p = out.mesh.point(v);
@@ -283,21 +320,7 @@ MarionettePolygonLift LiftPolygonPlan(const PolyMesh& plan,
         out.max_height_error, std::abs(out.mesh.point(out.mesh.vertex_handle(vertex))[2] - height));
   const Eigen::VectorXd fz = f * z;
   out.fairness = fz.squaredNorm() * unit * unit;
-  // Planarity: each face's vertices against the plane of its most spread-out triple.
-  for (auto face : out.mesh.faces()) {
-    std::vector<Eigen::Vector3d> p;
-    for (auto fv : out.mesh.fv_range(face)) p.emplace_back(out.mesh.point(fv).data());
-    if (p.size() <= 3) continue;
-    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-    for (size_t i = 1; i < p.size(); ++i)
-      for (size_t j = i + 1; j < p.size(); ++j) {
-        const Eigen::Vector3d c = (p[i] - p[0]).cross(p[j] - p[0]);
-        if (c.norm() > normal.norm()) normal = c;
-      }
-    normal.normalize();
-    for (const Eigen::Vector3d& x : p)
-      out.max_planarity = std::max(out.max_planarity, std::abs(normal.dot(x - p[0])) / unit);
-  }
+  out.max_planarity = MaxPlanarity(out.mesh, unit);
   return out;
 }
 

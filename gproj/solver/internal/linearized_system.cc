@@ -3,8 +3,77 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <utility>
+#include <vector>
 
 namespace gproj {
+
+namespace {
+
+// Scratch of the pattern pass, reused across elements.
+struct PatternScratch {
+  std::vector<std::pair<int, int>> used;  // (global index, local index)
+  std::vector<double> x_local;
+  std::unique_ptr<bool[]> touches;
+  size_t touches_capacity = 0;
+};
+
+// Per scalar: whether it belongs to a held item. Scalars of held items get no derivative: their
+// rows of A stay empty, so the step leaves them.
+std::vector<bool> HeldScalars(const Problem& problem) {
+  const VariableLayout& layout = problem.layout();
+  std::vector<bool> held(layout.num_variables(), false);
+  for (int item = 0; item < layout.num_items(); ++item)
+    if (problem.IsConstant(item))
+      for (int c = 0; c < layout.ItemDim(item); ++c) held[layout.ItemOffset(item) + c] = true;
+  return held;
+}
+
+// Element e of `fam`: its scalars' global indices appended to *index (and its end to *begin),
+// and one column of A per row of the element, with the sorted, unique row indices it touches;
+// *scatter gets, for every (row, local scalar), the position in A's values (or −1).
+void AddElementColumns(const ConstraintFamily& fam, int e, const VariableLayout& layout,
+                       const Eigen::VectorXd& x, const std::vector<bool>& held,
+                       std::vector<int>* begin, std::vector<int>* index, std::vector<int>* scatter,
+                       CscMatrix* a, PatternScratch* scratch) {
+  const int* items = fam.element_items(e);
+  for (int k = 0; k < fam.element_num_items(e); ++k)
+    for (int c = 0; c < layout.ItemDim(items[k]); ++c)
+      index->push_back(layout.ItemOffset(items[k]) + c);
+  begin->push_back(static_cast<int>(index->size()));
+  const int first = (*begin)[e];
+  const int local_dim = (*begin)[e + 1] - first;
+  scratch->x_local.resize(local_dim);
+  for (int l = 0; l < local_dim; ++l)
+    scratch->x_local[l] = x.size() == layout.num_variables() ? x[(*index)[first + l]] : 0.0;
+  const size_t pattern_size = static_cast<size_t>(fam.rows_per_element()) * local_dim;
+  if (pattern_size > scratch->touches_capacity) {
+    scratch->touches_capacity = pattern_size;
+    scratch->touches = std::make_unique<bool[]>(pattern_size);
+  }
+  fam.RowPattern(e, scratch->x_local.data(), local_dim, scratch->touches.get());
+  auto& used = scratch->used;
+  for (int row = 0; row < fam.rows_per_element(); ++row) {
+    used.clear();
+    for (int l = 0; l < local_dim; ++l)
+      if (scratch->touches[row * local_dim + l] && !held[(*index)[first + l]])
+        used.emplace_back((*index)[first + l], l);
+    std::sort(used.begin(), used.end());
+    const size_t row_scatter = scatter->size();
+    scatter->resize(row_scatter + local_dim, -1);
+    int last = -1;
+    for (const auto& [global, l] : used) {
+      if (global != last) {
+        a->row_index.push_back(global);
+        last = global;
+      }
+      (*scatter)[row_scatter + l] = static_cast<int>(a->row_index.size()) - 1;
+    }
+    a->col_begin.push_back(static_cast<int>(a->row_index.size()));
+  }
+}
+
+}  // namespace
 
 LinearizedSystem::LinearizedSystem(Problem* problem) : problem_(problem) {
   const VariableLayout& layout = problem->layout();
@@ -18,60 +87,20 @@ LinearizedSystem::LinearizedSystem(Problem* problem) : problem_(problem) {
 
   // Pass 1: local indices and the column pattern (sorted, unique row indices per column).
   a_.col_begin.assign(1, 0);
-  std::vector<std::pair<int, int>> used;  // (global index, local index)
-  std::vector<double> x_local;
-  std::unique_ptr<bool[]> touches;
-  size_t touches_capacity = 0;
-  // Scalars of held items get no derivative: their rows of A stay empty, so the step leaves them.
-  std::vector<bool> held(layout.num_variables(), false);
-  for (int item = 0; item < layout.num_items(); ++item)
-    if (problem->IsConstant(item))
-      for (int c = 0; c < layout.ItemDim(item); ++c) held[layout.ItemOffset(item) + c] = true;
+  PatternScratch scratch;
+  const std::vector<bool> held = HeldScalars(*problem);
   const Eigen::VectorXd& x = problem->x();
   for (int f = 0; f < num_families; ++f) {
     problem->family(f).Prepare();
     const ConstraintFamily& fam = problem->family(f);
     family_row_begin_[f + 1] = family_row_begin_[f] + fam.num_rows();
     auto& begin = local_begin_[f];
-    auto& index = local_index_[f];
-    auto& scatter = scatter_[f];
     begin.assign(1, 0);
     for (int e = 0; e < fam.num_elements(); ++e) {
-      const int* items = fam.element_items(e);
-      for (int k = 0; k < fam.element_num_items(e); ++k)
-        for (int c = 0; c < layout.ItemDim(items[k]); ++c)
-          index.push_back(layout.ItemOffset(items[k]) + c);
-      begin.push_back(static_cast<int>(index.size()));
-      const int local_dim = begin[e + 1] - begin[e];
-      max_local = std::max(max_local, local_dim);
+      AddElementColumns(fam, e, layout, x, held, &begin, &local_index_[f], &scatter_[f], &a_,
+                        &scratch);
+      max_local = std::max(max_local, begin[e + 1] - begin[e]);
       max_rows = std::max(max_rows, fam.rows_per_element());
-      x_local.resize(local_dim);
-      for (int l = 0; l < local_dim; ++l)
-        x_local[l] = x.size() == layout.num_variables() ? x[index[begin[e] + l]] : 0.0;
-      const size_t pattern_size = static_cast<size_t>(fam.rows_per_element()) * local_dim;
-      if (pattern_size > touches_capacity) {
-        touches_capacity = pattern_size;
-        touches = std::make_unique<bool[]>(pattern_size);
-      }
-      fam.RowPattern(e, x_local.data(), local_dim, touches.get());
-      for (int row = 0; row < fam.rows_per_element(); ++row) {
-        used.clear();
-        for (int l = 0; l < local_dim; ++l)
-          if (touches[row * local_dim + l] && !held[index[begin[e] + l]])
-            used.emplace_back(index[begin[e] + l], l);
-        std::sort(used.begin(), used.end());
-        const size_t row_scatter = scatter.size();
-        scatter.resize(row_scatter + local_dim, -1);
-        int last = -1;
-        for (const auto& [global, l] : used) {
-          if (global != last) {
-            a_.row_index.push_back(global);
-            last = global;
-          }
-          scatter[row_scatter + l] = static_cast<int>(a_.row_index.size()) - 1;
-        }
-        a_.col_begin.push_back(static_cast<int>(a_.row_index.size()));
-      }
     }
   }
   // The arrays grew by appending: give back their slack (a third of their size on average).
