@@ -4,7 +4,9 @@
 // constraint elements name the items they touch, and the Ceres adapter makes each item one
 // parameter block.
 
+#include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace gproj {
@@ -45,6 +47,30 @@ class VariableLayout {
  private:
   std::vector<VariableBlock> blocks_;
   std::vector<int> item_offsets_ = {0};  // #items + 1
+};
+
+// The global item ids of one block, named by element: items[i] for item i, items[h] for anything
+// with idx() (a mesh handle: items[vertex], items[face]), items(i, j, ...) for several at once,
+// in the spirit of TinyAD's element.variables(handle). A term's Add refuses ids outside the
+// layout, so no check is made here.
+class BlockItems {
+ public:
+  BlockItems(const VariableLayout& layout, int block)
+      : first_(layout.block(block).first_item), size_(layout.block(block).num_items) {}
+
+  int operator[](int i) const { return first_ + i; }
+  template <typename Handle, typename = decltype(std::declval<const Handle&>().idx())>
+  int operator[](const Handle& h) const {
+    return first_ + h.idx();
+  }
+  template <typename... Index>
+  std::array<int, sizeof...(Index)> operator()(const Index&... i) const {
+    return {(*this)[i]...};
+  }
+  int size() const { return size_; }
+
+ private:
+  int first_, size_;
 };
 
 }  // namespace gproj

@@ -50,10 +50,10 @@ void StoreVertices(const Eigen::VectorXd& x, const VariableLayout& layout, int v
 int AddMeshFairness(const PolyMesh& mesh, int order, int vertex_block, Problem* problem) {
   const VariableLayout& layout = problem->layout();
   auto* fairness = problem->AddFamily<PolylineFairness>(order, 3);
-  auto item = [&](int v) { return layout.Item(vertex_block, v); };
+  const BlockItems vertex(layout, vertex_block);
   if (order == 2) {
     ForEachPolylineTriple(mesh, [&](int a, int b, int c) {
-      fairness->AddElement({item(a), item(b), item(c)});
+      fairness->AddElement({vertex[a], vertex[b], vertex[c]});
     });
     return fairness->num_elements();
   }
@@ -66,7 +66,7 @@ int AddMeshFairness(const PolyMesh& mesh, int order, int vertex_block, Problem* 
       for (const auto& [p, q] : through[c]) {
         if (p != static_cast<int>(b) && q != static_cast<int>(b)) continue;
         const int d = p == static_cast<int>(b) ? q : p;
-        fairness->AddElement({item(a), item(static_cast<int>(b)), item(c), item(d)});
+        fairness->AddElement({vertex[a], vertex[static_cast<int>(b)], vertex[c], vertex[d]});
       }
     }
   }

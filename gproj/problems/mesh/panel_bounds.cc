@@ -48,7 +48,7 @@ PanelBounds AddPanelBounds(const PolyMesh& mesh, const MeshNormalization& norm, 
                            const PanelBoundsOptions& options, Problem* problem) {
   PanelBounds out;
   const VariableLayout& layout = problem->layout();
-  auto item = [&](int v) { return layout.Item(vertex_block, v); };
+  const BlockItems vertex(layout, vertex_block);
   if (options.corners) {
     const double min_sine = std::sin(options.min_angle_deg * M_PI / 180.0);
     std::vector<std::pair<std::array<int, 4>, QuadCornerBounds>> quads;
@@ -58,7 +58,7 @@ PanelBounds AddPanelBounds(const PolyMesh& mesh, const MeshNormalization& norm, 
       const std::array<double, 4> sines = CornerSinesAt(problem->x(), layout, vertex_block, v);
       QuadCornerBounds bounds;
       for (int i = 0; i < 4; ++i) bounds.min_sine[i] = std::min(min_sine, sines[i]);
-      quads.push_back({{item(v[0]), item(v[1]), item(v[2]), item(v[3])}, bounds});
+      quads.push_back({{vertex[v[0]], vertex[v[1]], vertex[v[2]], vertex[v[3]]}, bounds});
       out.corner_bounds.push_back(bounds);
     }
     out.corners = AddInequalities<QuadCornerBounds, 4, 3, 3, 3, 3>(
@@ -80,7 +80,7 @@ PanelBounds AddPanelBounds(const PolyMesh& mesh, const MeshNormalization& norm, 
         if (!(length > 0.0)) continue;  // no direction to bound along
         for (int c = 0; c < 3; ++c) bound.direction[c] = edge[c] / length;
       }
-      edges.push_back({{item(a), item(b)}, bound});
+      edges.push_back({{vertex[a], vertex[b]}, bound});
     }
     return AddInequalities<EdgeLengthBound, 1, 3, 3>(problem, name, EdgeLengthResidual{}, edges,
                                                      [](const auto& e) { return e; });

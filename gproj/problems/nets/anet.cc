@@ -178,7 +178,7 @@ void AddANetFamilies(const PolyMesh& mesh, const ANetOptions& options, int verte
                      const ANetFamilies& layout_info, const PolyMesh* reference,
                      const MeshNormalization& norm, Problem* problem) {
   const VariableLayout& layout = problem->layout();
-  auto item = [&](int v) { return layout.Item(vertex_block, v); };
+  const BlockItems vertex(layout, vertex_block);
   if (options.star_form == StarPlanarityForm::kNormals) {
     auto* star =
         problem->AddFamily<EdgeNormalOrthogonality>("star_planarity", options.planarity_weight);
@@ -188,7 +188,7 @@ void AddANetFamilies(const PolyMesh& mesh, const ANetOptions& options, int verte
       const int normal = layout.Item(layout_info.normal_block, static_cast<int>(k));
       unit->AddElement({normal});
       for (int w : Ring(mesh, PolyMesh::VertexHandle(v)))
-        star->AddElement({normal, item(v), item(w)});
+        star->AddElement({normal, vertex[v], vertex[w]});
     }
   } else {
     auto* quads =
@@ -199,8 +199,8 @@ void AddANetFamilies(const PolyMesh& mesh, const ANetOptions& options, int verte
     for (int v : layout_info.star_vertices) {
       const std::vector<int> r = Ring(mesh, PolyMesh::VertexHandle(v));
       for (size_t i = 2; i + 1 < r.size(); ++i)
-        quads->AddElement({item(r[0]), item(r[1]), item(r[i]), item(r[i + 1])});
-      quads->AddElement({item(r[0]), item(r[1]), item(r[2]), item(v)});
+        quads->AddElement({vertex[r[0]], vertex[r[1]], vertex[r[i]], vertex[r[i + 1]]});
+      quads->AddElement({vertex[r[0]], vertex[r[1]], vertex[r[2]], vertex[v]});
     }
   }
   if (reference != nullptr)
@@ -210,7 +210,7 @@ void AddANetFamilies(const PolyMesh& mesh, const ANetOptions& options, int verte
     auto* anchor = problem->AddFamily<Closeness>(3, options.anchor_weight, "anchor");
     for (auto v : mesh.vertices()) {
       const Eigen::Vector3d p = norm.ToProblem(ToEigen(mesh.point(v)));
-      anchor->AddTarget(item(v.idx()), p.data());
+      anchor->AddTarget(vertex[v.idx()], p.data());
     }
   }
   if (options.solver.fairness_weight > 0.0)
@@ -234,34 +234,26 @@ void LoadANetNormals(const PolyMesh& mesh, int vertex_block, const ANetFamilies&
 }
 
 ANet::ANet(const PolyMesh& mesh, const PolyMesh* reference, const ANetOptions& options)
-    : options_(options), input_(mesh), current_(mesh) {
+    : MeshProblem(mesh), options_(options) {
   std::string why;
   if (!options.IsValid(&why)) throw InputError("invalid A-net options: " + why);
   if (mesh.n_faces() == 0) throw InputError("the mesh has no faces");
   CheckANetTopology(mesh, "");
-  norm_ = MeshNormalization::Of(mesh);
-  vertex_block_ = problem_.layout().AddBlock("vertices", static_cast<int>(mesh.n_vertices()), 3);
   families_ = AddANetLayout(mesh, options, &problem_);
-  problem_.ResizeToLayout();
-  LoadVertices(mesh, norm_, vertex_block_, &problem_);
+  LoadInputVertices();
   LoadANetNormals(mesh, vertex_block_, families_, &problem_);
   AddANetFamilies(mesh, options, vertex_block_, families_, reference != nullptr ? reference : &mesh,
                   norm_, &problem_);
-  bounds_ = AddPanelBounds(mesh, norm_, vertex_block_, options.panels, &problem_);
-  control_ = ApplyVertexControl(mesh, norm_, vertex_block_, options.vertices, &problem_);
+  AddBoundsAndControl(options.panels, options.vertices);
   start_planarity_ = MeasureStarPlanarity(mesh, mesh).max_star_planarity;
 }
 
 SolverOptions ANet::solver_options() const {
-  SolverOptions s = options_.solver;
-  s.fairness_weight *= std::sqrt(StartSoftScale(start_planarity_, s.soft_weight_floor));
-  return s;
+  return WithStartSoftScale(options_.solver, start_planarity_);
 }
 
 StarPlanarityMeasures ANet::MeasuresAt(const Eigen::VectorXd& x) const {
-  StoreVertices(x, problem_.layout(), vertex_block_, norm_, &current_);
-  control_.RestoreHeld(input_, &current_);
-  StarPlanarityMeasures m = MeasureStarPlanarity(current_, input_);
+  StarPlanarityMeasures m = MeasureStarPlanarity(MeshAt(x), input_);
   if (control_.glide != nullptr)
     m.max_glide_distance = control_.MaxGlideDistance(problem_.layout(), x);
   return m;
@@ -271,13 +263,6 @@ CeresOptions ANet::ceres_options(int max_iterations) const {
   return CeresOptionsFor(
       options_.solver, max_iterations,
       options_.ceres_soft_scale > 0.0 ? options_.ceres_soft_scale : options_.tolerance / 100.0);
-}
-
-PolyMesh ANet::Result() const {
-  PolyMesh out = input_;
-  StoreVertices(problem_, vertex_block_, norm_, &out);
-  control_.RestoreHeld(input_, &out);
-  return out;
 }
 
 }  // namespace gproj

@@ -11,6 +11,7 @@
 #include "gproj/geometry/io/mesh_io.h"
 #include "gproj/geometry/mesh/closest_point.h"
 #include "gproj/geometry/render/face_colours.h"
+#include "gproj/problems/mesh/mesh_problem.h"
 #include "gproj/problems/mesh/mesh_variables.h"
 #include "gproj/problems/mesh/panel_bounds.h"
 #include "gproj/problems/mesh/vertex_control.h"
@@ -115,12 +116,11 @@ void LoadANetNormals(const PolyMesh& mesh, int vertex_block, const ANetFamilies&
 
 // Run() is guided projection to the tolerance; RunCeres() minimises the same rows with fixed
 // weights (soft terms × ceres_soft_scale) by Ceres LM.
-class ANet : public GuidedProblem {
+class ANet : public MeshProblem {
  public:
   // `reference` may be null: the input itself is the reference surface.
   ANet(const PolyMesh& mesh, const PolyMesh* reference, const ANetOptions& options);
 
-  Problem& problem() override { return problem_; }
   // The options with ω_f² scaled by StartSoftScale of the start's star planarity.
   SolverOptions solver_options() const override;
   CeresOptions ceres_options(int max_iterations) const override;
@@ -131,21 +131,13 @@ class ANet : public GuidedProblem {
     return ValueOf(m, "max_star_planarity") <= options_.tolerance;
   }
 
-  PolyMesh Result() const;
   StarPlanarityMeasures Measures() const { return MeasuresAt(problem_.x()); }
 
  private:
   StarPlanarityMeasures MeasuresAt(const Eigen::VectorXd& x) const;
 
   ANetOptions options_;
-  PolyMesh input_;
-  mutable PolyMesh current_;  // the iterate as a mesh, rewritten in place by MeasuresAt
-  MeshNormalization norm_;
-  Problem problem_;
-  int vertex_block_ = -1;
   ANetFamilies families_;
-  PanelBounds bounds_;
-  VertexControl control_;
   double start_planarity_ = 0.0;
 };
 

@@ -95,7 +95,7 @@ bool PQPlanarizationOptions::IsValid(std::string* why) const {
 
 PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOptions& options,
                                  const PolyMesh* reference)
-    : options_(options), input_(mesh), current_(mesh) {
+    : MeshProblem(mesh), options_(options) {
   std::string why;
   if (!options.IsValid(&why)) throw InputError("invalid planarisation options: " + why);
   for (auto f : mesh.faces())
@@ -104,18 +104,15 @@ PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOpti
                        std::to_string(mesh.valence(f)) + " vertices; a quad mesh is required");
   if (mesh.n_faces() == 0) throw InputError("the mesh has no faces");
 
-  norm_ = MeshNormalization::Of(mesh);
-
   VariableLayout& layout = problem_.layout();
-  vertex_block_ = layout.AddBlock("vertices", static_cast<int>(mesh.n_vertices()), 3);
   normal_block_ = options.circular
                       ? layout.AddBlock("face_circles", static_cast<int>(mesh.n_faces()),
                                         CircularQuad::kAuxiliaryDim, /*eliminable=*/true)
                       : layout.AddBlock("face_normals", static_cast<int>(mesh.n_faces()), 3,
                                         /*eliminable=*/true);
-  problem_.ResizeToLayout();
-  LoadVertices(mesh, norm_, vertex_block_, &problem_);
+  LoadInputVertices();
   Eigen::VectorXd& x = problem_.x();
+  const BlockItems vertex = vertices(), aux = BlockItems(layout, normal_block_);
 
   QuadPlanarity* planarity = nullptr;
   CircularQuad* circularity = nullptr;
@@ -128,17 +125,14 @@ PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOpti
     for (auto fv : mesh.fv_range(f)) v[k++] = fv.idx();
     Eigen::Vector3d p[4];
     for (int j = 0; j < 4; ++j) p[j] = x.segment<3>(layout.Index(vertex_block_, v[j], 0));
-    const int aux = layout.Item(normal_block_, f.idx());
-    const int items[4] = {layout.Item(vertex_block_, v[0]), layout.Item(vertex_block_, v[1]),
-                          layout.Item(vertex_block_, v[2]), layout.Item(vertex_block_, v[3])};
     if (circularity) {
       x.segment<CircularQuad::kAuxiliaryDim>(layout.Index(normal_block_, f.idx(), 0)) =
           CircularQuad::InitialAuxiliary({p[0], p[1], p[2], p[3]});
-      circularity->AddQuad(aux, items[0], items[1], items[2], items[3]);
+      circularity->AddQuad(aux[f], vertex[v[0]], vertex[v[1]], vertex[v[2]], vertex[v[3]]);
     } else {
       x.segment<3>(layout.Index(normal_block_, f.idx(), 0)) =
           QuadPlanarity::InitialNormal(p[0], p[1], p[2], p[3]);
-      planarity->AddQuad(aux, items[0], items[1], items[2], items[3]);
+      planarity->AddQuad(aux[f], vertex[v[0]], vertex[v[1]], vertex[v[2]], vertex[v[3]]);
     }
   }
   if (reference != nullptr) {
@@ -149,22 +143,19 @@ PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOpti
     auto* closeness = problem_.AddFamily<Closeness>(3, options.closeness_weight);
     for (auto v : mesh.vertices()) {
       const int index = layout.Index(vertex_block_, v.idx(), 0);
-      closeness->AddTarget(layout.Item(vertex_block_, v.idx()), x.data() + index);
+      closeness->AddTarget(vertex[v], x.data() + index);
     }
   }
   if (options.solver.fairness_weight > 0.0)
     AddMeshFairness(mesh, options.fairness_order, vertex_block_, &problem_);
-  bounds_ = AddPanelBounds(mesh, norm_, vertex_block_, options.panels, &problem_);
-  control_ = ApplyVertexControl(mesh, norm_, vertex_block_, options.vertices, &problem_);
+  AddBoundsAndControl(options.panels, options.vertices);
   start_planarity_ = MeasurePlanarity(mesh, mesh).max_planarity;
   if (options.circular)
     start_planarity_ = std::max(start_planarity_, MeasureCircularity(mesh).max_concyclicity);
 }
 
 SolverOptions PQPlanarization::solver_options() const {
-  SolverOptions s = options_.solver;
-  s.fairness_weight *= std::sqrt(StartSoftScale(start_planarity_, s.soft_weight_floor));
-  return s;
+  return WithStartSoftScale(options_.solver, start_planarity_);
 }
 
 std::vector<int> PQPlanarization::FacesAboveTolerance() const {
@@ -182,21 +173,10 @@ std::vector<int> PQPlanarization::FacesAboveTolerance() const {
   return faces;
 }
 
-std::vector<int> PQPlanarization::FacesAtAngleBound() const {
-  StoreVertices(problem_, vertex_block_, norm_, &current_);
-  return FacesAtCornerBound(current_, bounds_);
-}
-
-std::vector<std::array<int, 2>> PQPlanarization::EdgesAtLengthBound() const {
-  StoreVertices(problem_, vertex_block_, norm_, &current_);
-  return gproj::EdgesAtLengthBound(input_, current_, bounds_);
-}
-
 PlanarityMeasures PQPlanarization::MeasuresAt(const Eigen::VectorXd& x) const {
-  StoreVertices(x, problem_.layout(), vertex_block_, norm_, &current_);
-  control_.RestoreHeld(input_, &current_);
-  PlanarityMeasures m = MeasurePlanarity(current_, input_);
-  if (options_.circular) m.max_concyclicity = MeasureCircularity(current_).max_concyclicity;
+  const PolyMesh& mesh = MeshAt(x);
+  PlanarityMeasures m = MeasurePlanarity(mesh, input_);
+  if (options_.circular) m.max_concyclicity = MeasureCircularity(mesh).max_concyclicity;
   if (control_.glide != nullptr)
     m.max_glide_distance = control_.MaxGlideDistance(problem_.layout(), x);
   return m;
@@ -212,13 +192,6 @@ CeresOptions PQPlanarization::ceres_options(int max_iterations) const {
                          options_.ceres_soft_scale > 0.0
                              ? options_.ceres_soft_scale
                              : std::min(1.0, options_.tolerance * 1e-2));
-}
-
-PolyMesh PQPlanarization::Result() const {
-  PolyMesh out = input_;
-  StoreVertices(problem_, vertex_block_, norm_, &out);
-  control_.RestoreHeld(input_, &out);
-  return out;
 }
 
 }  // namespace gproj

@@ -9,6 +9,7 @@
 
 #include "gproj/geometry/io/mesh_io.h"
 #include "gproj/geometry/render/face_colours.h"
+#include "gproj/problems/mesh/mesh_problem.h"
 #include "gproj/problems/mesh/mesh_variables.h"
 #include "gproj/problems/mesh/panel_bounds.h"
 #include "gproj/problems/mesh/planarity_measures.h"
@@ -73,7 +74,7 @@ nlohmann::json PlanarizationFacts(const PolyMesh& input, const PolyMesh& result,
 
 // Run() is guided projection to the tolerance; RunCeres() minimises the same rows with fixed
 // weights (closeness and fairness × ceres_soft_scale) by Ceres LM.
-class PQPlanarization : public GuidedProblem {
+class PQPlanarization : public MeshProblem {
  public:
   // `mesh` must be a valid quad mesh (ReadMesh with quads_only). Throws InputError otherwise.
   // With `reference` (a triangle or polygon mesh), vertices keep close to that surface through
@@ -81,7 +82,6 @@ class PQPlanarization : public GuidedProblem {
   PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOptions& options,
                   const PolyMesh* reference = nullptr);
 
-  Problem& problem() override { return problem_; }
   // The options with ω_f² scaled by StartSoftScale of the start's planarity.
   SolverOptions solver_options() const override;
   CeresOptions ceres_options(int max_iterations) const override;
@@ -91,14 +91,8 @@ class PQPlanarization : public GuidedProblem {
   // Planarity, and concyclicity when circular, within the tolerance.
   bool MeetsTolerance(const NamedValues& m) const override;
 
-  // Current vertices, in input units.
-  PolyMesh Result() const;
   PlanarityMeasures Measures() const { return MeasuresAt(problem_.x()); }
   const PQPlanarizationOptions& options() const { return options_; }
-  // The faces whose corners sit on their angle bound in the current iterate.
-  std::vector<int> FacesAtAngleBound() const;
-  // The edges of the current mesh on their length bound (vertex pairs).
-  std::vector<std::array<int, 2>> EdgesAtLengthBound() const;
   // The faces whose planarity measure exceeds the tolerance, worst first.
   std::vector<int> FacesAboveTolerance() const;
 
@@ -106,14 +100,7 @@ class PQPlanarization : public GuidedProblem {
   PlanarityMeasures MeasuresAt(const Eigen::VectorXd& x) const;
 
   PQPlanarizationOptions options_;
-  PolyMesh input_;
-  mutable PolyMesh current_;  // the iterate as a mesh, rewritten in place by MeasuresAt
-  MeshNormalization norm_;
-  Problem problem_;
-  int vertex_block_ = -1;
   int normal_block_ = -1;
-  PanelBounds bounds_;
-  VertexControl control_;
   double start_planarity_ = 0.0;
 };
 

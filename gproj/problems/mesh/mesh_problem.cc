@@ -1,0 +1,51 @@
+#include "gproj/problems/mesh/mesh_problem.h"
+
+#include <cmath>
+
+namespace gproj {
+
+MeshProblem::MeshProblem(const PolyMesh& mesh)
+    : input_(mesh), current_(mesh), norm_(MeshNormalization::Of(mesh)) {
+  vertex_block_ = problem_.layout().AddBlock("vertices", static_cast<int>(mesh.n_vertices()), 3);
+}
+
+void MeshProblem::LoadInputVertices() {
+  problem_.ResizeToLayout();
+  LoadVertices(input_, norm_, vertex_block_, &problem_);
+}
+
+void MeshProblem::AddBoundsAndControl(const PanelBoundsOptions& panels,
+                                      const VertexControlOptions& vertices) {
+  bounds_ = AddPanelBounds(input_, norm_, vertex_block_, panels, &problem_);
+  control_ = ApplyVertexControl(input_, norm_, vertex_block_, vertices, &problem_);
+}
+
+PolyMesh MeshProblem::Result() const {
+  PolyMesh out = input_;
+  StoreVertices(problem_, vertex_block_, norm_, &out);
+  control_.RestoreHeld(input_, &out);
+  return out;
+}
+
+const PolyMesh& MeshProblem::MeshAt(const Eigen::VectorXd& x) const {
+  StoreVertices(x, problem_.layout(), vertex_block_, norm_, &current_);
+  control_.RestoreHeld(input_, &current_);
+  return current_;
+}
+
+std::vector<int> MeshProblem::FacesAtAngleBound() const {
+  StoreVertices(problem_, vertex_block_, norm_, &current_);
+  return FacesAtCornerBound(current_, bounds_);
+}
+
+std::vector<std::array<int, 2>> MeshProblem::EdgesAtLengthBound() const {
+  StoreVertices(problem_, vertex_block_, norm_, &current_);
+  return gproj::EdgesAtLengthBound(input_, current_, bounds_);
+}
+
+SolverOptions MeshProblem::WithStartSoftScale(SolverOptions solver, double start_residual) {
+  solver.fairness_weight *= std::sqrt(StartSoftScale(start_residual, solver.soft_weight_floor));
+  return solver;
+}
+
+}  // namespace gproj
