@@ -5,12 +5,6 @@
 
 namespace gproj {
 
-int MarionettePlanarity::AddQuad(int a, int b, int c, int d, double alpha, double beta) {
-  alpha_.push_back(alpha);
-  beta_.push_back(beta);
-  return AddElement({a, b, c, d});
-}
-
 bool MarionettePlanarity::PlanCoefficients(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
                                            const Eigen::Vector2d& c, const Eigen::Vector2d& d,
                                            double* alpha, double* beta, double tolerance) {
@@ -32,15 +26,6 @@ bool MarionettePlanarity::PlanCoefficients(const Eigen::Vector2d& a, const Eigen
   *alpha = cross(ac, ad) / det;
   *beta = cross(ab, ac) / det;
   return true;
-}
-
-void MarionettePlanarity::EvaluateElement(int e, const double* z, double* phi, double* jac) const {
-  const double al = alpha_[e], be = beta_[e];
-  jac[0] = -1.0 + al + be;
-  jac[1] = -al;
-  jac[2] = 1.0;
-  jac[3] = -be;
-  phi[0] = jac[0] * z[0] + jac[1] * z[1] + jac[2] * z[2] + jac[3] * z[3];
 }
 
 }  // namespace gproj

@@ -13,6 +13,7 @@ namespace {
 TEST(EdgeParallelismTest, GradientMatchesFiniteDifferences) {
   EdgeParallelism family;
   family.AddEdge(0, 1, Eigen::Vector3d(0.3, -1.0, 0.7));
+  family.Prepare();  // the term declared quadratic: evaluated from its coefficients
   std::mt19937 rng(2);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int trial = 0; trial < 4; ++trial) {
@@ -26,6 +27,7 @@ TEST(EdgeParallelismTest, ZeroOnParallelAndAntiParallelEdgesOnly) {
   EdgeParallelism family;
   const Eigen::Vector3d d(0.3, -1.0, 0.7);
   family.AddEdge(0, 1, d);
+  family.Prepare();
   std::vector<double> phi(3), jac(18);
   for (double s : {2.5, -0.4}) {
     const std::vector<double> x = {1, 2, 3, 1 + s * d.x(), 2 + s * d.y(), 3 + s * d.z()};
@@ -41,6 +43,7 @@ TEST(EdgeParallelismTest, ZeroOnParallelAndAntiParallelEdgesOnly) {
 TEST(EdgeVectorTest, GradientAndResidual) {
   EdgeVector family;
   family.AddEdge(0, 1, Eigen::Vector3d(1, 2, 3));
+  family.Prepare();
   ExpectGradientMatchesFiniteDifferences(family, 0, {0.1, 0.2, 0.3, 0.5, -0.4, 2.0});
   std::vector<double> phi(3), jac(18);
   const std::vector<double> x = {1, 1, 1, 2, 3, 4};

@@ -16,11 +16,9 @@
 #include "gproj/constraints/closeness.h"
 #include "gproj/constraints/control_net.h"
 #include "gproj/constraints/curvature_auxiliaries.h"
-#include "gproj/constraints/edge_parallelism.h"
 #include "gproj/constraints/frame_point_planarity.h"
 #include "gproj/constraints/isoline_alignment.h"
 #include "gproj/constraints/line_quad_planarity.h"
-#include "gproj/constraints/marionette_planarity.h"
 #include "gproj/constraints/normal_orthogonality.h"
 #include "gproj/constraints/quad_diagonal_planarity.h"
 
@@ -121,31 +119,6 @@ TEST(HandWrittenJacobianTest, LineQuadPlanarityOnItsLines) {
     auto p = [&](int j) -> Vec3<T> { return o[j].cast<T>() + x[3 + j] * d[j].cast<T>(); };
     for (int j = 0; j < 4; ++j) r[j] = n.dot(p((j + 1) % 4) - p(j));
     r[4] = n.squaredNorm() - 1.0;
-  });
-}
-
-TEST(HandWrittenJacobianTest, MarionettePlanarityOverThePlan) {
-  const double alpha = 0.7, beta = 1.3;
-  MarionettePlanarity family;
-  family.AddQuad(0, 1, 2, 3, alpha, beta);
-  ExpectMatchesAutomatic<4, 1>(family, 0, RandomLocal<4>(6), [&](const auto* z, auto* r) {
-    r[0] = z[2] - z[0] - alpha * (z[1] - z[0]) - beta * (z[3] - z[0]);
-  });
-}
-
-TEST(HandWrittenJacobianTest, EdgeParallelismAndEdgeVector) {
-  const Eigen::Vector3d direction(0.3, -1.2, 0.5), vector(0.2, 0.1, -0.4);
-  EdgeParallelism parallel;
-  parallel.AddEdge(0, 1, direction);
-  ExpectMatchesAutomatic<6, 3>(parallel, 0, RandomLocal<6>(7), [&](const auto* x, auto* r) {
-    using T = std::decay_t<decltype(x[0])>;
-    const Vec3<T> cross = direction.normalized().cast<T>().cross(At(x, 3) - At(x, 0));
-    for (int c = 0; c < 3; ++c) r[c] = cross[c];
-  });
-  EdgeVector edge;
-  edge.AddEdge(0, 1, vector);
-  ExpectMatchesAutomatic<6, 3>(edge, 0, RandomLocal<6>(8), [&](const auto* x, auto* r) {
-    for (int c = 0; c < 3; ++c) r[c] = x[3 + c] - x[c] - vector[c];
   });
 }
 
