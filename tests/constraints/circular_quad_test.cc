@@ -41,6 +41,7 @@ double MaxResidual(const CircularQuad& family, const std::vector<double>& x) {
 TEST(CircularQuadTest, GradientMatchesFiniteDifferences) {
   CircularQuad family;
   family.AddQuad(0, 1, 2, 3, 4);
+  family.Prepare();  // the term declared quadratic: evaluated from its coefficients
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int trial = 0; trial < 5; ++trial) {
@@ -53,6 +54,7 @@ TEST(CircularQuadTest, GradientMatchesFiniteDifferences) {
 TEST(CircularQuadTest, ZeroResidualOnConcyclicQuadWithItsAuxiliary) {
   CircularQuad family;
   family.AddQuad(0, 1, 2, 3, 4);
+  family.Prepare();  // the term declared quadratic: evaluated from its coefficients
   const double angles[4] = {0.1, 1.2, 2.9, 4.4};
   const auto q = CircularQuadAt(angles);
   EXPECT_LT(MaxResidual(family, Local(CircularQuad::InitialAuxiliary(q), q)), 1e-13);
@@ -61,6 +63,7 @@ TEST(CircularQuadTest, ZeroResidualOnConcyclicQuadWithItsAuxiliary) {
 TEST(CircularQuadTest, PlanarButNotConcyclicQuadHasResidual) {
   CircularQuad family;
   family.AddQuad(0, 1, 2, 3, 4);
+  family.Prepare();  // the term declared quadratic: evaluated from its coefficients
   const double angles[4] = {0.1, 1.2, 2.9, 4.4};
   auto q = CircularQuadAt(angles);
   q[2] += 0.1 * (q[2] - q[0]);  // stays in the plane, leaves the circle

@@ -12,13 +12,11 @@
 #include <cmath>
 #include <random>
 
-#include "gproj/constraints/circular_quad.h"
 #include "gproj/constraints/closeness.h"
 #include "gproj/constraints/control_net.h"
 #include "gproj/constraints/curvature_auxiliaries.h"
 #include "gproj/constraints/frame_point_planarity.h"
 #include "gproj/constraints/isoline_alignment.h"
-#include "gproj/constraints/line_quad_planarity.h"
 #include "gproj/constraints/normal_orthogonality.h"
 #include "gproj/constraints/quad_diagonal_planarity.h"
 
@@ -106,22 +104,6 @@ TEST(HandWrittenJacobianTest, QuadDiagonalPlanarityWithTheExactNormal) {
   });
 }
 
-TEST(HandWrittenJacobianTest, LineQuadPlanarityOnItsLines) {
-  const std::array<Eigen::Vector3d, 4> o = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0.1),
-                                            Eigen::Vector3d(1, 1, 0), Eigen::Vector3d(0, 1, -0.2)};
-  const std::array<Eigen::Vector3d, 4> d = {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(0.1, 0, 1),
-                                            Eigen::Vector3d(0, 0.3, 1), Eigen::Vector3d(0, 0, 1)};
-  LineQuadPlanarity family;
-  family.AddQuad(0, {1, 2, 3, 4}, o, d);
-  ExpectMatchesAutomatic<7, 5>(family, 0, RandomLocal<7>(5), [&](const auto* x, auto* r) {
-    using T = std::decay_t<decltype(x[0])>;
-    const Vec3<T> n = At(x, 0);
-    auto p = [&](int j) -> Vec3<T> { return o[j].cast<T>() + x[3 + j] * d[j].cast<T>(); };
-    for (int j = 0; j < 4; ++j) r[j] = n.dot(p((j + 1) % 4) - p(j));
-    r[4] = n.squaredNorm() - 1.0;
-  });
-}
-
 TEST(HandWrittenJacobianTest, FramePointPlanarityWithFrozenShapeParameters) {
   const double wl = 1.7, wr = 0.6;
   FramePointPlanarity family;
@@ -135,20 +117,6 @@ TEST(HandWrittenJacobianTest, FramePointPlanarityWithFrozenShapeParameters) {
     r[1] = n.dot(b(3) - b(0));
     r[2] = n.dot(f4 - b(0));
     r[3] = n.squaredNorm() - 1.0;
-  });
-}
-
-TEST(HandWrittenJacobianTest, CircularQuadPlanarConcyclicAndCentred) {
-  CircularQuad family;
-  family.AddQuad(0, 1, 2, 3, 4);
-  ExpectMatchesAutomatic<19, 10>(family, 0, RandomLocal<19>(10), [](const auto* x, auto* r) {
-    const auto n = At(x, 0), m = At(x, 3);
-    const auto rho = x[6];
-    auto v = [&](int j) { return At(x, 7 + 3 * j); };
-    for (int j = 0; j < 4; ++j) r[j] = n.dot(v((j + 1) % 4) - v(j));
-    r[4] = n.squaredNorm() - 1.0;
-    for (int j = 0; j < 4; ++j) r[5 + j] = (v(j) - m).squaredNorm() - rho;
-    r[9] = n.dot(m - v(0));
   });
 }
 

@@ -20,6 +20,7 @@ TEST(LineQuadPlanarityTest, GradientMatchesFiniteDifferences) {
   }
   LineQuadPlanarity family;
   family.AddQuad(0, {1, 2, 3, 4}, o, d);
+  family.Prepare();  // the term declared quadratic: evaluated from its coefficients
   for (int trial = 0; trial < 5; ++trial) {
     std::vector<double> x(7);
     for (double& v : x) v = u(rng);
@@ -41,6 +42,7 @@ TEST(LineQuadPlanarityTest, ZeroResidualWhenThePointsOnTheLinesAreCoplanar) {
   for (int c = 0; c < 3; ++c) x[c] = n[c];
   LineQuadPlanarity family;
   family.AddQuad(0, {1, 2, 3, 4}, o, d);
+  family.Prepare();  // the term declared quadratic: evaluated from its coefficients
   std::vector<double> phi(5), jac(35);
   family.EvaluateElement(0, x.data(), phi.data(), jac.data());
   for (double r : phi) EXPECT_NEAR(r, 0.0, 1e-14);
