@@ -151,7 +151,7 @@ echo "                                canal_closed_smooth.obj, .svg its smooth c
 echo "  beams.obj, beams.svg          torsion-free beams on the canal mesh; beam_axes.obj the node axes,"
 echo "                                beam_offset.obj the parallel offset mesh"
 echo "  combescure.obj, .svg          parallel mesh of the surface of revolution (still circular)"
-echo "  weingarten.json               the optimised B-spline (SPEC §4 JSON); weingarten_surface.obj sampled"
+echo "  weingarten.json               the optimised B-spline (JSON, docs/formats.md); weingarten_surface.obj sampled"
 echo "  weingarten_diagram.svg        curvature diagram (H, K) before and after: a curve after"
 echo "  weingarten_curvature.csv      H, K per sample before/after and the mold of each sample"
 echo "  weingarten_panels.svg         the result paneled 10 x 10, one colour per mold (003 §4.2)"

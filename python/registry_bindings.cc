@@ -90,7 +90,7 @@ std::vector<Eigen::Vector3d> CurveFromPython(const std::string& name, const py::
   return points;
 }
 
-// A B-spline surface: a dict with the keys of its JSON (SPEC §4); arrays are accepted.
+// A B-spline surface: a dict with the keys of its JSON (docs/formats.md); arrays are accepted.
 BSplineSurface BSplineFromPython(const std::string& name, const py::handle& value) {
   if (!py::isinstance<py::dict>(value))
     TypeError(name +

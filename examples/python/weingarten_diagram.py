@@ -7,7 +7,7 @@ surface H and K are functionally related, so the cloud of the input collapses on
         [SURFACE.json] [--preset fig1] [--max-iterations N] [-o weingarten_diagram.png]
 
 SURFACE defaults to the shipped examples/data/freeform_10x10.json (the B-spline JSON of
-SPEC §4). The script prints the misalignment of the curvature isolines before and after and
+docs/formats.md). The script prints the misalignment of the curvature isolines before and after and
 exits 1 when the run failed.
 """
 import argparse

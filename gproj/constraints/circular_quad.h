@@ -1,5 +1,5 @@
 #pragma once
-// Circular quad (000 §2; SPEC §2): the four vertices are coplanar and concyclic. One auxiliary
+// Circular quad (000 §2): the four vertices are coplanar and concyclic. One auxiliary
 // item c = (n, m, ρ) per face (dimension 7: unit normal n, centre m, squared radius ρ):
 //   n · (v_{j+1} − v_j) = 0   (j = 0..3, indices mod 4)      planarity
 //   n · n − 1 = 0

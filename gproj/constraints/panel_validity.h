@@ -1,5 +1,5 @@
 #pragma once
-// Valid panels (SPEC §3 inequalities, Tang et al. 2014 §4): bounds that keep a quad mesh
+// Valid panels (Tang et al. 2014 §4; docs/method.md, "Inequalities"): bounds that keep a quad mesh
 // buildable while other rows make it planar, circular or asymptotic.
 //   Corner angles: for corner i of quad (v0, v1, v2, v3)
 //     sin∠_i = ((v_{i+1} − v_i) × (v_{i−1} − v_i)) · N / (|v_{i+1} − v_i| |v_{i−1} − v_i| |N|),

@@ -1,6 +1,6 @@
 #pragma once
 // Rows that are polynomials of degree ≤ 2 in an element's local scalars (the form of every
-// guided-projection constraint, SPEC §1), stored by their coefficients
+// guided-projection constraint, docs/method.md), stored by their coefficients
 //   φ_r(x) = c_r + Σ_i b_i x_i + Σ_{i<j} h_ij x_i x_j + Σ_i ½ h_ii x_i²,
 // so that evaluating a value and gradient costs about what a hand-written Jacobian does. The
 // coefficients are read off a differentiable evaluation at 0 and at the unit vectors, and

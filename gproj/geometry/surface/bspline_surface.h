@@ -3,7 +3,7 @@
 //   s(u, v) = Σ_i Σ_j N_i^{d_u}(u) N_j^{d_v}(v) c_ij,
 // any bi-degree, clamped knot vectors. Points and derivatives up to second order are linear in
 // the control points; SampleMaps builds those linear maps once for a grid of parameter samples.
-// JSON format (SPEC §4): {"degree": [du, dv], "knots_u": [...], "knots_v": [...],
+// JSON format (docs/formats.md): {"degree": [du, dv], "knots_u": [...], "knots_v": [...],
 //                         "control_points": [[[x, y, z], ... nv], ... nu]}, control_points[i][j]
 // with i along u.
 

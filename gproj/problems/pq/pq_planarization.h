@@ -1,6 +1,6 @@
 #pragma once
 // PQ planarisation: every face of a quad mesh planar, the shape kept by closeness to the
-// input and fairness along the mesh polylines (SPEC §3; 004 §3.2). The mesh is centred and
+// input and fairness along the mesh polylines (docs/method.md; 004 §3.2). The mesh is centred and
 // scaled to mean edge length 1 inside the problem, so weights do not depend on units.
 
 #include <functional>

@@ -30,7 +30,7 @@ enum class InputKind {
   kVertexIds,  // 0-based vertex ids of the first mesh input
   kCurve,      // a polyline: at least two points, none repeating the one before (a text file of
                // x y z lines; an (n, 3) array in Python)
-  kBSpline,    // a tensor-product B-spline surface (the JSON of SPEC §4; a dict in Python)
+  kBSpline,    // a tensor-product B-spline surface (the JSON of docs/formats.md; a dict in Python)
   kText,       // a text document the run parses (a file on the command line; a str in Python),
                // its messages naming the file and line
 };
