@@ -30,27 +30,25 @@ struct CanalSettings {
   ClosedCanalOptions closed_options;
 };
 
-template <typename S>
-std::function<void(const nlohmann::json&, S*)> Numbers(std::vector<double> S::*member) {
-  return [member](const nlohmann::json& v, S* x) { x->*member = v.get<std::vector<double>>(); };
-}
-
 void AddStripOptions(OptionSchema<CanalSettings>* s) {
   using S = CanalSettings;
-  s->Custom("first_point", OptionType::kNumbers,
-            "The point that fixes the first circle (with P_0 and P_1)", nullptr,
-            Numbers(&S::first_point))
+  s->Optional<std::vector<double>>(
+       "first_point", OptionType::kNumbers,
+       "The point that fixes the first circle (with P_0 and P_1)",
+       [](S & x) -> auto& { return x.first_point; })
       .Count(3, "X,Y,Z");
-  s->Custom("lengths", OptionType::kNumbers, "|P_k Q_k| for every curve point", nullptr,
-            Numbers(&S::lengths))
+  s->Optional<std::vector<double>>(
+       "lengths", OptionType::kNumbers, "|P_k Q_k| for every curve point",
+       [](S & x) -> auto& { return x.lengths; })
       .Positive();
   s->Custom("length", OptionType::kNumber, "The same |P_k Q_k| for every curve point", nullptr,
             [](const nlohmann::json& v, S* x) { x->length = v.get<double>(); })
       .Positive();
-  s->Custom("normal", OptionType::kNumbers,
-            "Normal of the cyclidic net at P_0 (not given: in the first quad's plane, across the "
-            "curve; with second_curve: the surface normal at P_0, required)",
-            nullptr, Numbers(&S::normal))
+  s->Optional<std::vector<double>>(
+       "normal", OptionType::kNumbers,
+       "Normal of the cyclidic net at P_0 (not given: in the first quad's plane, across the "
+       "curve; with second_curve: the surface normal at P_0, required)",
+       [](S & x) -> auto& { return x.normal; })
       .Count(3, "X,Y,Z");
   s->Field<double>("psi", OptionType::kNumber,
                    "Rotation of the frame's first tangent about the normal",
@@ -64,10 +62,11 @@ void AddStripOptions(OptionSchema<CanalSettings>* s) {
 
 void AddModeOptions(OptionSchema<CanalSettings>* s) {
   using S = CanalSettings;
-  s->Custom("section_scales", OptionType::kNumbers,
-            "C-canal surface (000 §5.2): one factor per segment scaling the first arc's edges "
-            "into a planar cross-section; the lengths are then the C-canal's",
-            nullptr, Numbers(&S::section_scales))
+  s->Optional<std::vector<double>>(
+       "section_scales", OptionType::kNumbers,
+       "C-canal surface (000 §5.2): one factor per segment scaling the first arc's edges "
+       "into a planar cross-section; the lengths are then the C-canal's",
+       [](S & x) -> auto& { return x.section_scales; })
       .Positive();
   s->Field<bool>("closed", OptionType::kBool,
                  "Close the curve by the edge P_n -> P_0 (000 §4.2): the closing circle sets the "

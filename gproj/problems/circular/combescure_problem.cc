@@ -30,16 +30,17 @@ const OptionSchema<CombescureSettings>& Schema() {
                        {{"propagation", SolverKind::kDirect},
                         {"gp", SolverKind::kGuidedProjection},
                         {"ceres", SolverKind::kCeres}});
-    s.Custom("row_lengths", OptionType::kNumbers,
-             "Signed lengths of edges (0, j) -> (0, j+1) (not given: the reference's times "
-             "row_scale)",
-             nullptr, [](const nlohmann::json& v, S* x) { x->row = v.get<std::vector<double>>(); })
+    s.Optional<std::vector<double>>(
+         "row_lengths", OptionType::kNumbers,
+         "Signed lengths of edges (0, j) -> (0, j+1) (not given: the reference's times "
+         "row_scale)",
+         [](S & x) -> auto& { return x.row; })
         .Count(0, "L,L,...");
-    s.Custom("column_lengths", OptionType::kNumbers,
-             "Signed lengths of edges (i, 0) -> (i+1, 0) (not given: the reference's times "
-             "column_scale)",
-             nullptr,
-             [](const nlohmann::json& v, S* x) { x->column = v.get<std::vector<double>>(); })
+    s.Optional<std::vector<double>>(
+         "column_lengths", OptionType::kNumbers,
+         "Signed lengths of edges (i, 0) -> (i+1, 0) (not given: the reference's times "
+         "column_scale)",
+         [](S & x) -> auto& { return x.column; })
         .Count(0, "L,L,...");
     s.Field<double>("row_scale", OptionType::kNumber, "Scale of the reference's row lengths",
                     [](S& x) -> double& { return x.row_scale; })
@@ -47,9 +48,9 @@ const OptionSchema<CombescureSettings>& Schema() {
     s.Field<double>("column_scale", OptionType::kNumber, "Scale of the reference's column lengths",
                     [](S& x) -> double& { return x.column_scale; })
         .Positive();
-    s.Custom("origin", OptionType::kNumbers, "Position of vertex (0, 0) (not given: unchanged)",
-             nullptr,
-             [](const nlohmann::json& v, S* x) { x->origin = v.get<std::vector<double>>(); })
+    s.Optional<std::vector<double>>(
+         "origin", OptionType::kNumbers, "Position of vertex (0, 0) (not given: unchanged)",
+         [](S & x) -> auto& { return x.origin; })
         .Count(3, "X,Y,Z");
     s.Field<double>("tolerance", OptionType::kNumber,
                     "Largest reference planarity accepted (diagonal distance / mean edge)",

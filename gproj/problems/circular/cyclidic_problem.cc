@@ -23,9 +23,10 @@ const OptionSchema<CyclidicSettings>& Schema() {
   static const OptionSchema<CyclidicSettings> schema = [] {
     using S = CyclidicSettings;
     OptionSchema<S> s;
-    s.Custom("normal", OptionType::kNumbers,
-             "Normal of the frame at vertex 0 (not given: the frame minimising 000 eq. 5)", nullptr,
-             [](const nlohmann::json& v, S* x) { x->normal = v.get<std::vector<double>>(); })
+    s.Optional<std::vector<double>>(
+         "normal", OptionType::kNumbers,
+         "Normal of the frame at vertex 0 (not given: the frame minimising 000 eq. 5)",
+         [](S & x) -> auto& { return x.normal; })
         .Count(3, "X,Y,Z");
     s.Field<double>("psi", OptionType::kNumber,
                     "Turn of the frame's first tangent about the normal (the start of the "

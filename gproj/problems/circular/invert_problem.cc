@@ -24,8 +24,9 @@ const OptionSchema<InvertSettings>& Schema() {
   static const OptionSchema<InvertSettings> schema = [] {
     using S = InvertSettings;
     OptionSchema<S> s;
-    s.Custom("centre", OptionType::kNumbers, "Centre of inversion", nullptr,
-             [](const nlohmann::json& v, S* x) { x->centre = v.get<std::vector<double>>(); })
+    s.Optional<std::vector<double>>(
+         "centre", OptionType::kNumbers, "Centre of inversion",
+         [](S & x) -> auto& { return x.centre; })
         .Count(3, "X,Y,Z");
     s.Field<double>("ratio", OptionType::kNumber, "Ratio k of the inversion (non-zero)",
                     [](S& x) -> double& { return x.ratio; });

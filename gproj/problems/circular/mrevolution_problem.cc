@@ -22,14 +22,13 @@ const OptionSchema<MRevolutionSettings>& Schema() {
   static const OptionSchema<MRevolutionSettings> schema = [] {
     using S = MRevolutionSettings;
     OptionSchema<S> s;
-    const auto point = [](std::vector<double> S::*member) {
-      return [member](const nlohmann::json& v, S* x) { x->*member = v.get<std::vector<double>>(); };
-    };
-    s.Custom("p2", OptionType::kNumbers, "P2: on the circle through P1 and P4 (drawing plane)",
-             nullptr, point(&S::p2))
+    s.Optional<std::vector<double>>(
+         "p2", OptionType::kNumbers, "P2: on the circle through P1 and P4 (drawing plane)",
+         [](S & x) -> auto& { return x.p2; })
         .Count(3, "X,Y,Z")
         .Required();
-    s.Custom("p3", OptionType::kNumbers, "P3: on the same circle", nullptr, point(&S::p3))
+    s.Optional<std::vector<double>>(
+         "p3", OptionType::kNumbers, "P3: on the same circle", [](S & x) -> auto& { return x.p3; })
         .Count(3, "X,Y,Z")
         .Required();
     s.Field<double>("t", OptionType::kNumber, "Ratio P1'P2' / P4'P3' of the trapezoid",
@@ -41,10 +40,11 @@ const OptionSchema<MRevolutionSettings>& Schema() {
     s.Field<int>("arch_segments", OptionType::kInt, "Quads along each arch", [](S& x) -> int& {
        return x.options.arch_segments;
      }).Range(2, 100000);
-    s.Custom("up", OptionType::kNumbers,
-             "The arches rise to this side of the drawing plane, which it must not lie in (not "
-             "given: +z, or the side of (P2 - P1) x (P4 - P1) when +z lies in the plane)",
-             nullptr, point(&S::up))
+    s.Optional<std::vector<double>>(
+         "up", OptionType::kNumbers,
+         "The arches rise to this side of the drawing plane, which it must not lie in (not "
+         "given: +z, or the side of (P2 - P1) x (P4 - P1) when +z lies in the plane)",
+         [](S & x) -> auto& { return x.up; })
         .Count(3, "X,Y,Z");
     return s;
   }();

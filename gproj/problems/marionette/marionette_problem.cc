@@ -15,20 +15,15 @@ struct MarionetteSettings {
   MarionetteRunOptions run;
 };
 
-template <typename S>
-std::function<void(const nlohmann::json&, S*)> Numbers(
-    std::vector<double> MarionetteRunOptions::*m) {
-  return [m](const nlohmann::json& v, S* x) { x->run.*m = v.get<std::vector<double>>(); };
-}
-
 void AddGuideOptions(OptionSchema<MarionetteSettings>* s) {
   using S = MarionetteSettings;
-  s->Custom("row", OptionType::kNumbers,
-            "Guide values of vertices (0, j), j = 0..cols of a grid plan", nullptr,
-            Numbers<S>(&MarionetteRunOptions::row));
-  s->Custom("column", OptionType::kNumbers,
-            "Guide values of vertices (i, 0), i = 0..rows; its first value must equal row's",
-            nullptr, Numbers<S>(&MarionetteRunOptions::column));
+  s->Optional<std::vector<double>>(
+      "row", OptionType::kNumbers, "Guide values of vertices (0, j), j = 0..cols of a grid plan",
+      [](S & x) -> auto& { return x.run.row; });
+  s->Optional<std::vector<double>>(
+      "column", OptionType::kNumbers,
+      "Guide values of vertices (i, 0), i = 0..rows; its first value must equal row's",
+      [](S & x) -> auto& { return x.run.column; });
   s->Field<std::string>("projection", OptionType::kChoice,
                         "Lines of the vertices: vertical (values are heights), cylindrical "
                         "(through the plan vertex, perpendicular to axis; values are distances "
@@ -36,12 +31,13 @@ void AddGuideOptions(OptionSchema<MarionetteSettings>* s) {
                         "are distances from it)",
                         [](S& x) -> std::string& { return x.run.projection; })
       .Choices({"vertical", "cylindrical", "central"});
-  const MarionetteRunOptions d;
-  s->Custom("axis", OptionType::kNumbers, "Cylindrical axis: a point and a direction", d.axis,
-            Numbers<S>(&MarionetteRunOptions::axis))
+  s->Field<std::vector<double>>(
+       "axis", OptionType::kNumbers, "Cylindrical axis: a point and a direction",
+       [](S & x) -> auto& { return x.run.axis; })
       .Count(6, "PX,PY,PZ,DX,DY,DZ");
-  s->Custom("centre", OptionType::kNumbers, "Centre of the central projection", d.centre,
-            Numbers<S>(&MarionetteRunOptions::centre))
+  s->Field<std::vector<double>>(
+       "centre", OptionType::kNumbers, "Centre of the central projection",
+       [](S & x) -> auto& { return x.run.centre; })
       .Count(3, "X,Y,Z");
 }
 

@@ -144,6 +144,13 @@ class OptionSchema {
     return Custom(name, type, doc, nlohmann::json(field(defaults)),
                   [field](const nlohmann::json& value, S* s) { field(*s) = value.get<T>(); });
   }
+  // An option without a default (null: not set unless given) stored in `field` of S.
+  template <typename T>
+  Builder Optional(const std::string& name, OptionType type, const std::string& doc,
+                   std::function<T&(S&)> field) {
+    return Custom(name, type, doc, nullptr,
+                  [field](const nlohmann::json& value, S* s) { field(*s) = value.get<T>(); });
+  }
   Builder Custom(const std::string& name, OptionType type, const std::string& doc,
                  nlohmann::json default_value, Setter set) {
     OptionSpec spec;
