@@ -13,6 +13,7 @@
 
 #include "bench/solver_counters.h"
 #include "gproj/problems/weingarten/weingarten.h"
+#include "gproj/problems/weingarten/weingarten_options.h"
 
 namespace gproj {
 namespace {

@@ -1,4 +1,4 @@
-// gproj.bspline_curvature: H and K of a B-spline given as a dict (the JSON of SPEC §4) at the
+// gproj.bspline_curvature: H and K of a B-spline given as a dict (the JSON of docs/formats.md) at the
 // samples `gproj weingarten` uses (gproj.weingarten comes from the registry).
 #include <pybind11/stl.h>
 
@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gproj/problems/weingarten/weingarten.h"
+#include "gproj/problems/weingarten/weingarten_options.h"
 #include "python/conversions.h"
 #include "python/module.h"
 #include "python/run_bridge.h"

@@ -6,7 +6,10 @@
 #include "gproj/problems/run/builtin_problems.h"
 #include "gproj/problems/run/shared_options.h"
 #include "gproj/problems/weingarten/weingarten.h"
+#include "gproj/problems/weingarten/weingarten_options.h"
 #include "gproj/problems/weingarten/weingarten_paneling.h"
+#include "gproj/problems/weingarten/weingarten_run.h"
+#include "gproj/problems/weingarten/weingarten_settings.h"
 
 namespace gproj {
 namespace {
@@ -261,7 +264,7 @@ ProblemSpec WeingartenSpec() {
   ProblemSpec spec;
   spec.name = "weingarten";
   spec.summary =
-      "Weingarten surface (003): moves a B-spline's control points (JSON, SPEC §4) so that the "
+      "Weingarten surface (003): moves a B-spline's control points (JSON, docs/formats.md) so that the "
       "isolines of H and K align, close to the input; optionally a fixed or fitted curvature "
       "relation, multiresolution, mold clustering and paneling.";
   spec.inputs = {{"surface", InputKind::kBSpline, "B-spline surface", true}};

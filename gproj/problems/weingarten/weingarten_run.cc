@@ -1,5 +1,7 @@
 // The multiresolution Weingarten run (003 §4.1.1): optimise, insert a knot in every span,
 // optimise again, for every level.
+#include "gproj/problems/weingarten/weingarten_run.h"
+
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -7,7 +9,6 @@
 #include "gproj/common/input_error.h"
 #include "gproj/geometry/io/mesh_io.h"
 #include "gproj/geometry/render/svg_render.h"
-#include "gproj/problems/weingarten/weingarten.h"
 
 namespace gproj {
 namespace {

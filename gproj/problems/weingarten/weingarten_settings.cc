@@ -1,5 +1,7 @@
 // A Weingarten preset with the user's overrides.
-#include "gproj/problems/weingarten/weingarten.h"
+#include "gproj/problems/weingarten/weingarten_settings.h"
+
+#include "gproj/common/input_error.h"
 
 namespace gproj {
 namespace {

@@ -6,6 +6,7 @@
 
 #include "gproj/common/input_error.h"
 #include "gproj/problems/weingarten/weingarten.h"
+#include "gproj/problems/weingarten/weingarten_options.h"
 
 namespace gproj {
 namespace {

@@ -9,6 +9,8 @@
 
 #include "gproj/constraints/curvature_relations.h"
 #include "gproj/problems/weingarten/helical_fit.h"
+#include "gproj/problems/weingarten/weingarten_options.h"
+#include "gproj/problems/weingarten/weingarten_run.h"
 #include "gproj/solver/ceres_adapter.h"
 
 namespace gproj {
