@@ -1,5 +1,5 @@
-// gproj.bspline_curvature: H and K of a B-spline given as a dict (the JSON of docs/formats.md) at the
-// samples `gproj weingarten` uses (gproj.weingarten comes from the registry).
+// gproj.bspline_curvature: H and K of a B-spline given as a dict (the JSON of docs/formats.md) at
+// the samples `gproj weingarten` uses (gproj.weingarten comes from the registry).
 #include <pybind11/stl.h>
 
 #include <cstdint>

@@ -1,5 +1,6 @@
 #pragma once
-// Inequalities g(x) ≥ 0 for any term (Tang et al. 2014; docs/method.md, "Inequalities"): each row becomes the equality
+// Inequalities g(x) ≥ 0 for any term (Tang et al. 2014; docs/method.md, "Inequalities"): each row
+// becomes the equality
 //   g(x) − s² = 0
 // with one slack unknown s per row. Guided projection sets every slack to √max(g(x), 0) at the
 // start and at each trial point (Project): the row's residual is then min(g, 0), it pulls only

@@ -156,9 +156,9 @@ class CanalSurface {
 
   // With options.smooth: SmoothCanalStrip (solver ceres, method BFGS; converged when its
   // tolerance is met; the history's measures are smoothness_energy only). Without: a
-  // construction (closed form), no iterations, converged. Initial and final measures are Measure() before and after (initial:
-  // smoothness_energy only when the starting net cannot be meshed). Throws InputError when the
-  // final net cannot be meshed.
+  // construction (closed form), no iterations, converged. Initial and final measures are Measure()
+  // before and after (initial: smoothness_energy only when the starting net cannot be meshed).
+  // Throws InputError when the final net cannot be meshed.
   RunReport Run(const RunCallback& callback = nullptr);
   NamedValues Measure() const;
 

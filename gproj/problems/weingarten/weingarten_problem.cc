@@ -264,7 +264,8 @@ ProblemSpec WeingartenSpec() {
   ProblemSpec spec;
   spec.name = "weingarten";
   spec.summary =
-      "Weingarten surface (003): moves a B-spline's control points (JSON, docs/formats.md) so that the "
+      "Weingarten surface (003): moves a B-spline's control points (JSON, docs/formats.md) so that "
+      "the "
       "isolines of H and K align, close to the input; optionally a fixed or fitted curvature "
       "relation, multiresolution, mold clustering and paneling.";
   spec.inputs = {{"surface", InputKind::kBSpline, "B-spline surface", true}};
