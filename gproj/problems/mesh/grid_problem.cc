@@ -64,6 +64,7 @@ RunResult Run(const RunInputs&, const nlohmann::json& values, const RunContext&)
   // An OpenMesh vertex with its quad and halfedges, and the text written, take about 400 B.
   CheckMemory("`nu` " + std::to_string(s.grid.nu) + " `nv` " + std::to_string(s.grid.nv),
               400.0 * s.grid.nu * s.grid.nv);
+  const Construction construction(ConstructionMethod::kClosedForm, "test grid");
   RunResult result;
   if (s.surface == "paraboloid") {
     result.meshes["output"] = MakeQuadGrid(s.grid);
@@ -78,10 +79,7 @@ RunResult Run(const RunInputs&, const nlohmann::json& values, const RunContext&)
                              : AsymptoticSurface(s.surface);
     result.meshes["output"] = MakeParametricGrid(surface, o);
   }
-  result.report.converged = true;
-  result.report.solver = SolverKind::kDirect;
-  result.report.method = ConstructionMethodName(ConstructionMethod::kClosedForm);
-  result.report.termination = "built";
+  result.report = construction.Finish({}, {}, true);
   char line[160];
   std::snprintf(line, sizeof(line), "%s grid: %d x %d vertices, noise %g of the spacing",
                 s.surface.c_str(), s.grid.nu, s.grid.nv, s.grid.noise);

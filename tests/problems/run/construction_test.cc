@@ -2,9 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
-#include <thread>
 
 #include "gproj/problems/run/registry.h"
 #include "gproj/problems/run/shared_options.h"
@@ -31,7 +31,6 @@ TEST(ConstructionTest, FinishReportsTheMethodTheMeasuresAndTheTime) {
   EXPECT_EQ(report.iterations, 0);
   EXPECT_EQ(ValueOf(report.initial, "gap"), 1.0);
   EXPECT_EQ(ValueOf(report.final, "gap"), 0.0);
-  EXPECT_GE(report.seconds, 0.0);
 }
 
 TEST(ConstructionTest, ABfgsFitIsReportedAsCeres) {
@@ -54,10 +53,12 @@ TEST(ConstructionTest, StopFreezesTheTime) {
   Construction build(ConstructionMethod::kLinearSystem, "lift");
   build.Stop();
   const double stopped = build.seconds();
-  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  // Wait for the clock to move on (no duration is asserted): the time read stays the stopped one.
+  const auto now = std::chrono::steady_clock::now();
+  while (std::chrono::steady_clock::now() == now) {
+  }
   EXPECT_EQ(build.seconds(), stopped);
   EXPECT_EQ(build.Finish({}, {}, true).seconds, stopped);
-  EXPECT_LT(stopped, 0.02);
 }
 
 // Every solver choice in the registry is a value of SolverKind, by its name or by a word the
