@@ -50,11 +50,11 @@ BENCHMARK(BM_SmoothField)->Arg(100)->Arg(317)->Iterations(1)->Unit(benchmark::kS
 
 void BM_IntegerGridMap(benchmark::State& state) {
   const PolyMesh mesh = MonkeySaddle(static_cast<int>(state.range(0)));
-  const QuadRemeshOptions options;
+  const remesh::QuadRemeshOptions options;
   const DirectionField field =
       EstimateDirectionField(mesh, options.directions, options.fit, options.smoothing);
   int folded = 0;
-  for (auto _ : state) folded = ParametrizeAlongField(mesh, field, options).folded_faces;
+  for (auto _ : state) folded = remesh::ParametrizeAlongField(mesh, field, options).folded_faces;
   state.counters["triangles"] = static_cast<double>(mesh.n_faces());
   state.counters["folded"] = folded;
 }
@@ -62,10 +62,10 @@ BENCHMARK(BM_IntegerGridMap)->Arg(100)->Arg(317)->Iterations(1)->Unit(benchmark:
 
 void BM_QuadExtraction(benchmark::State& state) {
   const PolyMesh mesh = MonkeySaddle(static_cast<int>(state.range(0)));
-  const QuadRemeshOptions options;
+  const remesh::QuadRemeshOptions options;
   const DirectionField field =
       EstimateDirectionField(mesh, options.directions, options.fit, options.smoothing);
-  const FieldParametrization map = ParametrizeAlongField(mesh, field, options);
+  const remesh::FieldParametrization map = remesh::ParametrizeAlongField(mesh, field, options);
   size_t quads = 0;
   for (auto _ : state) quads = ExtractQuads(mesh, map.map).quads.n_faces();
   state.counters["triangles"] = static_cast<double>(mesh.n_faces());

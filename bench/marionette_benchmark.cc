@@ -13,7 +13,7 @@ namespace gproj {
 namespace {
 
 struct Setup {
-  MarionettePlan plan;
+  marionette::MarionettePlan plan;
   Eigen::VectorXd row, column;
 };
 
@@ -21,7 +21,8 @@ Setup MakeSetup(int n) {
   QuadGridOptions o;
   o.nu = o.nv = n + 1;
   o.noise = 0.1;
-  Setup s{MakeMarionettePlan(MakeQuadGrid(o)), Eigen::VectorXd(n + 1), Eigen::VectorXd(n + 1)};
+  Setup s{marionette::MakeMarionettePlan(MakeQuadGrid(o)), Eigen::VectorXd(n + 1),
+          Eigen::VectorXd(n + 1)};
   for (int k = 0; k <= n; ++k) {
     s.row[k] = 0.3 * std::sin(6.0 * k / n);
     s.column[k] = 0.2 * std::cos(4.0 * k / n) - 0.2;
@@ -32,19 +33,20 @@ Setup MakeSetup(int n) {
 
 void BM_MarionetteLift(benchmark::State& state) {
   const Setup s = MakeSetup(static_cast<int>(state.range(0)));
-  for (auto _ : state) benchmark::DoNotOptimize(LiftMarionette(s.plan, s.row, s.column).data());
+  for (auto _ : state)
+    benchmark::DoNotOptimize(marionette::LiftMarionette(s.plan, s.row, s.column).data());
   state.counters["faces"] = s.plan.rows * s.plan.cols;
 }
 BENCHMARK(BM_MarionetteLift)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 
 void BM_MarionetteLiftGP(benchmark::State& state) {
   const Setup s = MakeSetup(static_cast<int>(state.range(0)));
-  std::vector<MarionetteTarget> guides;
+  std::vector<marionette::MarionetteTarget> guides;
   for (int j = 0; j <= s.plan.cols; ++j) guides.push_back({s.plan.Vertex(0, j), s.row[j]});
   for (int i = 1; i <= s.plan.rows; ++i) guides.push_back({s.plan.Vertex(i, 0), s.column[i]});
   for (auto _ : state) {
-    Problem problem = MakeMarionetteProblem(s.plan, guides, {}, 1.0, 0.0);
-    Solve(MarionetteSolverOptions(), &problem);
+    Problem problem = marionette::MakeMarionetteProblem(s.plan, guides, {}, 1.0, 0.0);
+    Solve(marionette::MarionetteSolverOptions(), &problem);
     benchmark::DoNotOptimize(problem.x().data());
   }
   state.counters["faces"] = s.plan.rows * s.plan.cols;

@@ -24,12 +24,12 @@ PolyMesh Enneper(int n, double jitter) {
 void BM_ANetIteration(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const PolyMesh exact = Enneper(n, 0.0), mesh = Enneper(n, 0.03);
-  ANetOptions options;
+  nets::ANetOptions options;
   options.solver.max_iterations = 4;
   options.tolerance = 1e-300;
   SolverSummary summary;
   for (auto _ : state) {
-    ANet anet(mesh, &exact, options);
+    nets::ANet anet(mesh, &exact, options);
     summary = anet.Run().summary;
   }
   SetSolverCounters(summary, &state);
@@ -39,14 +39,14 @@ BENCHMARK(BM_ANetIteration)->Arg(41)->Arg(161)->Iterations(1)->Unit(benchmark::k
 void BM_HNet(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const PolyMesh exact = Enneper(n, 0.0), mesh = Enneper(n, 0.03);
-  HNetSummary summary;
+  nets::HNetSummary summary;
   for (auto _ : state) {
-    HNet hnet(mesh, &exact, HNetOptions());
+    nets::HNet hnet(mesh, &exact, nets::HNetOptions());
     summary = hnet.Run();
   }
   int round_iterations = 0;
   double round_seconds = 0.0;
-  for (const HNetRound& r : summary.rounds) {
+  for (const nets::HNetRound& r : summary.rounds) {
     round_iterations += r.solver_iterations;
     round_seconds += r.seconds;
   }

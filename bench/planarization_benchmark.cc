@@ -50,13 +50,13 @@ void BM_PlanarizationIteration(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const bool eliminate = state.range(1) == 1;
   const PolyMesh mesh = NoisyGrid(n);
-  PQPlanarizationOptions options;
+  pq::PQPlanarizationOptions options;
   options.solver.max_iterations = 4;
   options.tolerance = 1e-300;
   SolverSummary summary;
   double wall = 0.0;
   for (auto _ : state) {
-    PQPlanarization pq(mesh, options);
+    pq::PQPlanarization pq(mesh, options);
     SolverOptions solver_options = options.solver;
     solver_options.eliminate_auxiliaries = eliminate;
     const auto t = Clock::now();
@@ -83,13 +83,13 @@ void BM_PlanarizationOrdering(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const auto ordering = static_cast<FillOrdering>(state.range(1));
   const PolyMesh mesh = NoisyGrid(n);
-  PQPlanarizationOptions options;
+  pq::PQPlanarizationOptions options;
   options.solver.max_iterations = 2;
   options.solver.ordering = ordering;
   options.tolerance = 1e-300;
   SolverSummary summary;
   for (auto _ : state) {
-    PQPlanarization pq(mesh, options);
+    pq::PQPlanarization pq(mesh, options);
     summary = Solve(options.solver, &pq.problem());
   }
   const PhaseMeans m = SetSolverCounters(summary, &state);
@@ -130,7 +130,7 @@ void BM_PlanarizeToTolerance(benchmark::State& state) {
   const bool use_ceres = state.range(1) == 1;
   const int exponent = static_cast<int>(state.range(2));
   const PolyMesh mesh = NoisyGrid(n);
-  PQPlanarizationOptions options;
+  pq::PQPlanarizationOptions options;
   options.tolerance = std::pow(10.0, -exponent);
   options.solver.max_iterations = use_ceres ? 500 : 50;
   double reached = 0.0, iterations = 0.0, seconds = 0.0;
@@ -138,7 +138,7 @@ void BM_PlanarizeToTolerance(benchmark::State& state) {
   ResetPeakMemory();
   for (auto _ : state) {
     const auto t = Clock::now();
-    PQPlanarization pq(mesh, options);
+    pq::PQPlanarization pq(mesh, options);
     const RunReport report = use_ceres ? pq.RunCeres(options.solver.max_iterations) : pq.Run();
     seconds = Since(t);
     iterations = report.iterations;
@@ -197,10 +197,10 @@ void BM_PlanarizeLocalGlobal(benchmark::State& state) {
   double lowest = HUGE_VAL;  // the lowest planarity any weight reached
   bool reached = false;
   for (auto _ : state) {
-    PQPlanarizationOptions options;
+    pq::PQPlanarizationOptions options;
     options.tolerance = tolerance;
     auto t = Clock::now();
-    PQPlanarization pq(mesh, options);
+    pq::PQPlanarization pq(mesh, options);
     pq.Run();
     gproj_seconds = Since(t);
     const PlanarityMeasures m = pq.Measures();

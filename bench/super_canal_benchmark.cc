@@ -19,7 +19,7 @@ namespace {
 struct Setup {
   PolyMesh mesh;
   GridShape shape;
-  CombescureLengths lengths;
+  circular::CombescureLengths lengths;
 };
 
 Setup MakeSetup(int n) {
@@ -28,7 +28,7 @@ Setup MakeSetup(int n) {
   Setup s;
   s.mesh = MakeParametricGrid(RevolutionSurface, o);
   s.shape = DetectGridShape(s.mesh);
-  s.lengths = ReferenceLengths(s.mesh, s.shape);
+  s.lengths = circular::ReferenceLengths(s.mesh, s.shape);
   for (size_t j = 0; j < s.lengths.row.size(); ++j)
     s.lengths.row[j] *= 1.0 + 0.3 * std::sin(6.0 * j / n);
   return s;
@@ -37,7 +37,8 @@ Setup MakeSetup(int n) {
 void BM_CombescurePropagation(benchmark::State& state) {
   const Setup s = MakeSetup(static_cast<int>(state.range(0)));
   for (auto _ : state)
-    benchmark::DoNotOptimize(CombescureByPropagation(s.mesh, s.shape, s.lengths).n_vertices());
+    benchmark::DoNotOptimize(
+        circular::CombescureByPropagation(s.mesh, s.shape, s.lengths).n_vertices());
   state.counters["faces"] = s.shape.rows * s.shape.cols;
 }
 BENCHMARK(BM_CombescurePropagation)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
@@ -46,8 +47,8 @@ void BM_CombescureGP(benchmark::State& state) {
   const Setup s = MakeSetup(static_cast<int>(state.range(0)));
   int iterations = 0;
   for (auto _ : state) {
-    Problem problem = MakeCombescureProblem(s.mesh, s.shape, s.lengths);
-    const SolverSummary summary = Solve(CombescureSolverDefaults(), &problem);
+    Problem problem = circular::MakeCombescureProblem(s.mesh, s.shape, s.lengths);
+    const SolverSummary summary = Solve(circular::CombescureSolverDefaults(), &problem);
     iterations = summary.num_steps();
     benchmark::DoNotOptimize(problem.x().data());
   }
@@ -68,12 +69,13 @@ std::vector<Eigen::Vector3d> Points(const PolyMesh& mesh) {
 void BM_CyclidicSurface(benchmark::State& state) {
   const Setup s = MakeSetup(static_cast<int>(state.range(0)));
   const std::vector<Eigen::Vector3d> points = Points(s.mesh);
-  const CyclidicNet net = MakeCyclidicNet(
-      s.shape, points, GridStartFrame(s.shape, points, DefaultGridAngles(s.shape, points)));
-  CyclidicSurfaceOptions options;
+  const circular::CyclidicNet net = circular::MakeCyclidicNet(
+      s.shape, points,
+      circular::GridStartFrame(s.shape, points, circular::DefaultGridAngles(s.shape, points)));
+  circular::CyclidicSurfaceOptions options;
   options.segments = static_cast<int>(state.range(1));
   size_t quads = 0;
-  for (auto _ : state) quads = MeshCyclidicSurface(net, options).mesh.n_faces();
+  for (auto _ : state) quads = circular::MeshCyclidicSurface(net, options).mesh.n_faces();
   state.counters["patches"] = s.shape.rows * s.shape.cols;
   state.counters["fine_quads"] = static_cast<double>(quads);
 }
@@ -88,7 +90,9 @@ void BM_CyclidicFrameFairing(benchmark::State& state) {
   const std::vector<Eigen::Vector3d> points = Points(s.mesh);
   int iterations = 0;
   for (auto _ : state)
-    iterations = FairGridFrame(s.shape, points, DefaultGridAngles(s.shape, points)).iterations;
+    iterations =
+        circular::FairGridFrame(s.shape, points, circular::DefaultGridAngles(s.shape, points))
+            .iterations;
   state.counters["edges"] = 2 * s.shape.rows * (s.shape.cols + 1);
   state.counters["iterations"] = iterations;
 }

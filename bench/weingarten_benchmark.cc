@@ -52,13 +52,13 @@ constexpr TableRow kTable2[] = {
 void BM_WeingartenIteration(benchmark::State& state) {
   const TableRow& row = kTable2[state.range(0)];
   state.SetLabel(std::string("Fig. ") + row.figure);
-  WeingartenOptions o = WeingartenPreset(row.geodesic ? "fig4c" : "fig1");
+  weingarten::WeingartenOptions o = weingarten::WeingartenPreset(row.geodesic ? "fig4c" : "fig1");
   o.samples_u = row.su;
   o.samples_v = row.sv;
   o.solver.max_iterations = 3;
   SolverSummary summary;
   for (auto _ : state) {
-    WeingartenProblem problem(MakeWavyBSpline(row.nu, row.nv, row.degree), o);
+    weingarten::WeingartenProblem problem(MakeWavyBSpline(row.nu, row.nv, row.degree), o);
     summary = problem.Run().summary;
   }
   const PhaseMeans m = SetSolverCounters(summary, &state);
@@ -73,14 +73,14 @@ BENCHMARK(BM_WeingartenIteration)
 
 void BM_WeingartenFig3Iteration(benchmark::State& state) {
   const BSplineSurface bump = MakeBumpBSpline(25);
-  WeingartenOptions o = WeingartenPreset("fig3");
+  weingarten::WeingartenOptions o = weingarten::WeingartenPreset("fig3");
   o.fixed_linear_relation = true;
   o.linear_coefficients = Eigen::Vector3d(1.0, 0.0, 0.1);
   o.curvature_auxiliaries = state.range(0) != 0;
   o.solver.max_iterations = 5;
   SolverSummary summary;
   for (auto _ : state) {
-    WeingartenProblem problem(bump, o);
+    weingarten::WeingartenProblem problem(bump, o);
     summary = problem.Run().summary;
   }
   state.SetLabel(o.curvature_auxiliaries ? "Fig. 3, auxiliaries" : "Fig. 3, control points only");

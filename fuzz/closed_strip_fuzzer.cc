@@ -3,6 +3,7 @@
 #include "gproj/problems/marionette/marionette_inputs.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  return gproj::fuzz::ReadFromFile(data, size, ".txt",
-                                   [](const std::string& path) { gproj::ReadClosedStrip(path); });
+  return gproj::fuzz::ReadFromFile(data, size, ".txt", [](const std::string& path) {
+    gproj::marionette::ReadClosedStrip(path);
+  });
 }

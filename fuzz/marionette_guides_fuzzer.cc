@@ -5,6 +5,6 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   return gproj::fuzz::ReadFromFile(data, size, ".txt", [](const std::string& path) {
-    gproj::ReadMarionetteGuides(path, /*num_vertices=*/100);
+    gproj::marionette::ReadMarionetteGuides(path, /*num_vertices=*/100);
   });
 }

@@ -21,16 +21,16 @@ py::dict BSplineCurvature(const py::object& surface, const std::vector<int>& sam
   const BSplineSurface s = ParseBSplineJson(PythonToJson(surface).dump(), "surface");
   if (!samples.empty() && samples.size() != 2)
     throw InputError("samples must be [NU, NV], got " + std::to_string(samples.size()) + " values");
-  const std::int64_t per = WeingartenOptions().samples_per_control;
+  const std::int64_t per = weingarten::WeingartenOptions().samples_per_control;
   const std::int64_t su = samples.empty() ? per * s.nu : samples[0];
   const std::int64_t sv = samples.empty() ? per * s.nv : samples[1];
-  if (su < 1 || sv < 1 || su * sv > kMaxWeingartenSamples)
-    throw InputError(
-        "samples must be positive with NU x NV <= " + std::to_string(kMaxWeingartenSamples) +
-        ", got " + std::to_string(su) + " x " + std::to_string(sv));
+  if (su < 1 || sv < 1 || su * sv > weingarten::kMaxWeingartenSamples)
+    throw InputError("samples must be positive with NU x NV <= " +
+                     std::to_string(weingarten::kMaxWeingartenSamples) + ", got " +
+                     std::to_string(su) + " x " + std::to_string(sv));
   const SampleMaps maps = MakeSampleMaps(s, static_cast<int>(su), static_cast<int>(sv));
   std::vector<double> h, k;
-  SampleCurvatures(s, maps, &h, &k);
+  weingarten::SampleCurvatures(s, maps, &h, &k);
   const std::vector<py::ssize_t> shape = {maps.su, maps.sv};
   py::dict result;
   result["u"] = py::array_t<double>(maps.su, maps.u.data());

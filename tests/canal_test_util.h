@@ -8,8 +8,8 @@
 
 namespace gproj {
 
-inline CircularStripInput BendingStripInput(int n = 8) {
-  CircularStripInput in;
+inline circular::CircularStripInput BendingStripInput(int n = 8) {
+  circular::CircularStripInput in;
   for (int k = 0; k <= n; ++k) {
     const double s = static_cast<double>(k) / n;
     in.curve.emplace_back(4.0 * s, 0.8 * std::sin(2.0 * s), 0.3 * s * s);

@@ -63,9 +63,9 @@ TEST_F(WeingartenCommandTest, RefusesStepsThatFoldUnlessAllowed) {
 // turn), with geodesic parallel isolines; the report and the log give the deviation from the
 // nearest helical surface before and after, and it falls.
 TEST_F(WeingartenCommandTest, GeodesicParallelIsolinesReportTheHelicalDeviation) {
-  HelicalTestSurface spec;
+  weingarten::HelicalTestSurface spec;
   spec.profile_drift = 0.1;
-  WriteBSplineJson(MakeHelicalBSpline(10, 12, 4, spec), Path("helical.json"));
+  WriteBSplineJson(weingarten::MakeHelicalBSpline(10, 12, 4, spec), Path("helical.json"));
   const CommandRun r = Gproj("weingarten " + Path("helical.json") + " -o " + Path("out.json") +
                              " --preset fig4c --closeness 0.01 --fairness 0.01 "
                              "--max-iterations 30 --report " +

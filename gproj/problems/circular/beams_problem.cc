@@ -10,7 +10,7 @@
 #include "gproj/problems/run/builtin_problems.h"
 #include "gproj/problems/run/construction.h"
 
-namespace gproj {
+namespace gproj::circular {
 namespace {
 
 struct BeamsSettings {
@@ -144,4 +144,4 @@ ProblemSpec BeamsSpec() {
   return spec;
 }
 
-}  // namespace gproj
+}  // namespace gproj::circular

@@ -9,7 +9,7 @@
 #include "gproj/geometry/mesh/quad_grid.h"
 #include "gproj/problems/circular/combescure.h"
 
-namespace gproj {
+namespace gproj::circular {
 
 bool CCanalOptions::IsValid(std::string* why) const {
   if (segments < 1 || segments > 100000) {
@@ -171,4 +171,4 @@ CCanalSurface BuildCCanalSurface(const CircularStripInput& input, const FrameAng
   return out;
 }
 
-}  // namespace gproj
+}  // namespace gproj::circular

@@ -16,7 +16,7 @@
 #include "gproj/geometry/io/mesh_io.h"
 #include "gproj/problems/circular/canal_surface.h"
 
-namespace gproj {
+namespace gproj::circular {
 
 struct CCanalOptions {
   int segments = 12;                   // quads across the strip (the cross-section's edges)
@@ -44,4 +44,4 @@ struct CCanalSurface {
 CCanalSurface BuildCCanalSurface(const CircularStripInput& input, const FrameAngles& angles,
                                  const CCanalOptions& options);
 
-}  // namespace gproj
+}  // namespace gproj::circular

@@ -9,7 +9,7 @@
 #include "gproj/problems/circular/canal_surface.h"
 #include "gproj/problems/circular/circular_mesh.h"
 
-namespace gproj {
+namespace gproj::circular {
 namespace {
 
 std::string Format(const char* pattern, int k, double value) {
@@ -270,4 +270,4 @@ CanalFromCurves FitCanalToCurves(const std::vector<Eigen::Vector3d>& curve1,
   return out;
 }
 
-}  // namespace gproj
+}  // namespace gproj::circular

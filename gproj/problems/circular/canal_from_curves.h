@@ -22,7 +22,7 @@
 #include "gproj/geometry/mesh/circle.h"
 #include "gproj/problems/run/guided_problem.h"
 
-namespace gproj {
+namespace gproj::circular {
 
 struct CanalFromCurvesOptions {
   int segments = 12;             // quads across the strip, in [1, 100000]
@@ -58,4 +58,4 @@ CanalFromCurves FitCanalToCurves(const std::vector<Eigen::Vector3d>& curve1,
                                  const Eigen::Vector3d& normal,
                                  const CanalFromCurvesOptions& options);
 
-}  // namespace gproj
+}  // namespace gproj::circular

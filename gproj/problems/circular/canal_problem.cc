@@ -18,7 +18,7 @@
 #include "gproj/problems/run/builtin_problems.h"
 #include "gproj/problems/run/construction.h"
 
-namespace gproj {
+namespace gproj::circular {
 namespace {
 
 struct CanalSettings {
@@ -476,4 +476,4 @@ ProblemSpec CanalSpec() {
   return spec;
 }
 
-}  // namespace gproj
+}  // namespace gproj::circular

@@ -13,7 +13,7 @@
 #include "gproj/problems/circular/circular_mesh.h"
 #include "gproj/problems/run/construction.h"
 
-namespace gproj {
+namespace gproj::circular {
 
 CircularStripInput MakeCircularStripInput(std::vector<Eigen::Vector3d> curve,
                                           const Eigen::Vector3d& first_point,
@@ -694,4 +694,4 @@ RunReport CanalSurface::Smooth(const RunCallback& callback) {
   return report;
 }
 
-}  // namespace gproj
+}  // namespace gproj::circular

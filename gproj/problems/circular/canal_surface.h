@@ -33,7 +33,7 @@
 #include "gproj/geometry/mesh/circle.h"
 #include "gproj/problems/run/guided_problem.h"
 
-namespace gproj {
+namespace gproj::circular {
 
 struct CircularStripInput {
   std::vector<Eigen::Vector3d> curve;                     // P_0..P_n, n ≥ 1
@@ -177,4 +177,4 @@ class CanalSurface {
   CircularStrip strip_;
 };
 
-}  // namespace gproj
+}  // namespace gproj::circular

@@ -5,7 +5,7 @@
 #include "gproj/geometry/mesh/circle.h"
 #include "gproj/problems/mesh/planarity_measures.h"
 
-namespace gproj {
+namespace gproj::circular {
 
 NamedValues MeasureCircularMesh(const PolyMesh& mesh) {
   const PlanarityMeasures p = MeasurePlanarity(mesh, mesh);
@@ -45,4 +45,4 @@ std::string CircularMeasuresLine(const std::string& label, const NamedValues& me
   return line;
 }
 
-}  // namespace gproj
+}  // namespace gproj::circular

@@ -10,7 +10,7 @@
 #include "gproj/geometry/mesh/mobius.h"
 #include "gproj/problems/run/guided_problem.h"
 
-namespace gproj {
+namespace gproj::circular {
 
 // Planarity and concyclicity of a quad mesh, per mean edge length, as named values (the
 // report's keys): max_planarity, mean_planarity (diagonal distance), max_concyclicity,
@@ -29,4 +29,4 @@ std::string CircularMeasuresLine(const std::string& label, const NamedValues& me
 // angle (radians) and diagonals.
 nlohmann::json MRevolutionJson(const MRevolutionChoice& choice, double t, int root);
 
-}  // namespace gproj
+}  // namespace gproj::circular

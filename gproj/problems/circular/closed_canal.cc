@@ -8,7 +8,7 @@
 
 #include "gproj/problems/circular/circular_mesh.h"
 
-namespace gproj {
+namespace gproj::circular {
 namespace {
 
 // A sphere or plane: a |x|² + b·x + c = 0.
@@ -347,4 +347,4 @@ nlohmann::json ClosedCanalJson(const ClosedCanalSurface& surface,
   return json;
 }
 
-}  // namespace gproj
+}  // namespace gproj::circular

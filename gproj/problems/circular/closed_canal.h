@@ -29,7 +29,7 @@
 #include "gproj/problems/circular/canal_surface.h"
 #include "gproj/problems/run/construction.h"
 
-namespace gproj {
+namespace gproj::circular {
 
 struct ClosedCircularStrip {
   CircularStrip strip;  // N points in p and q
@@ -129,4 +129,4 @@ RunReport ClosedCanalRunReport(const ClosedCanalSurface& surface, const ClosedCa
 nlohmann::json ClosedCanalJson(const ClosedCanalSurface& surface,
                                const ClosedCanalOptions& options);
 
-}  // namespace gproj
+}  // namespace gproj::circular

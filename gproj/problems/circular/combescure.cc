@@ -14,7 +14,7 @@
 #include "gproj/problems/mesh/planarity_measures.h"
 #include "gproj/problems/run/construction.h"
 
-namespace gproj {
+namespace gproj::circular {
 namespace {
 
 Eigen::Vector3d Point(const PolyMesh& mesh, int v) {
@@ -280,4 +280,4 @@ RunReport Combescure::RunPropagation() {
                              WithinTolerance(final, options_.propagation_tolerance));
 }
 
-}  // namespace gproj
+}  // namespace gproj::circular

@@ -17,7 +17,7 @@
 #include "gproj/problems/run/guided_problem.h"
 #include "gproj/solver/problem.h"
 
-namespace gproj {
+namespace gproj::circular {
 
 struct CombescureLengths {
   // Signed lengths of the new mesh's edges (0, j) → (0, j + 1), j = 0..cols − 1 (positive: the
@@ -119,4 +119,4 @@ class Combescure : public GuidedProblem {
   Problem problem_;
 };
 
-}  // namespace gproj
+}  // namespace gproj::circular

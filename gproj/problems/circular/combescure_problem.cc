@@ -9,7 +9,7 @@
 #include "gproj/problems/run/builtin_problems.h"
 #include "gproj/problems/run/shared_options.h"
 
-namespace gproj {
+namespace gproj::circular {
 namespace {
 
 struct CombescureSettings {
@@ -129,4 +129,4 @@ ProblemSpec CombescureSpec() {
   return spec;
 }
 
-}  // namespace gproj
+}  // namespace gproj::circular

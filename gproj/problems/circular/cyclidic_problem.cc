@@ -10,7 +10,7 @@
 #include "gproj/problems/run/builtin_problems.h"
 #include "gproj/problems/run/construction.h"
 
-namespace gproj {
+namespace gproj::circular {
 namespace {
 
 struct CyclidicSettings {
@@ -124,4 +124,4 @@ ProblemSpec CyclidicSpec() {
   return spec;
 }
 
-}  // namespace gproj
+}  // namespace gproj::circular

@@ -9,7 +9,7 @@
 
 #include "gproj/problems/circular/circular_mesh.h"
 
-namespace gproj {
+namespace gproj::circular {
 namespace {
 
 // Mirror image in the plane perpendicular to `edge` (through the origin: vectors only).
@@ -844,4 +844,4 @@ nlohmann::json CyclidicJson(const CyclidicMeshResult& result) {
   return json;
 }
 
-}  // namespace gproj
+}  // namespace gproj::circular

@@ -31,7 +31,7 @@
 #include "gproj/problems/run/construction.h"
 #include "gproj/problems/run/guided_problem.h"
 
-namespace gproj {
+namespace gproj::circular {
 
 // A circular arc: from `start`, counter-clockwise about `normal` (seen from its tip) by `angle`
 // radians (in (0, 2π)) around `centre`; or, `straight`, the segment from `start` to `end`.
@@ -198,4 +198,4 @@ RunReport CyclidicRunReport(const CyclidicMeshResult& result, double tangent_tol
                             const Construction& construction);
 nlohmann::json CyclidicJson(const CyclidicMeshResult& result);
 
-}  // namespace gproj
+}  // namespace gproj::circular

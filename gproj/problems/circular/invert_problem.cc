@@ -10,7 +10,7 @@
 #include "gproj/problems/run/builtin_problems.h"
 #include "gproj/problems/run/construction.h"
 
-namespace gproj {
+namespace gproj::circular {
 namespace {
 
 struct InvertSettings {
@@ -125,4 +125,4 @@ ProblemSpec InvertSpec() {
   return spec;
 }
 
-}  // namespace gproj
+}  // namespace gproj::circular

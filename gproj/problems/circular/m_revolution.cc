@@ -8,7 +8,7 @@
 
 #include "gproj/geometry/mesh/circle.h"
 
-namespace gproj {
+namespace gproj::circular {
 
 bool MRevolutionOptions::IsValid(std::string* why) const {
   if (!(t > 0.0) || !std::isfinite(t)) {
@@ -233,4 +233,4 @@ MRevolutionSurface BuildMRevolutionSurface(const std::vector<Eigen::Vector3d>& c
   return out;
 }
 
-}  // namespace gproj
+}  // namespace gproj::circular

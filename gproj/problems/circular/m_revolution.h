@@ -22,7 +22,7 @@
 #include "gproj/geometry/io/mesh_io.h"
 #include "gproj/geometry/mesh/mobius.h"
 
-namespace gproj {
+namespace gproj::circular {
 
 struct MRevolutionOptions {
   double t = 1.0;          // ratio of the trapezoid's parallel sides P1'P2' = t P4'P3' (> 0)
@@ -58,4 +58,4 @@ MRevolutionSurface BuildMRevolutionSurface(const std::vector<Eigen::Vector3d>& c
                                            const Eigen::Vector3d& p2, const Eigen::Vector3d& p3,
                                            const MRevolutionOptions& options);
 
-}  // namespace gproj
+}  // namespace gproj::circular

@@ -10,7 +10,7 @@
 #include "gproj/problems/run/builtin_problems.h"
 #include "gproj/problems/run/construction.h"
 
-namespace gproj {
+namespace gproj::circular {
 namespace {
 
 struct MRevolutionSettings {
@@ -133,4 +133,4 @@ ProblemSpec MRevolutionSpec() {
   return spec;
 }
 
-}  // namespace gproj
+}  // namespace gproj::circular

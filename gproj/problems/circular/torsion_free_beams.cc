@@ -12,7 +12,7 @@
 
 #include "gproj/geometry/mesh/scale_free.h"
 
-namespace gproj {
+namespace gproj::circular {
 namespace {
 
 Eigen::Vector3d Point(const PolyMesh& mesh, PolyMesh::VertexHandle v) {
@@ -336,4 +336,4 @@ std::string AxesObj(const PolyMesh& mesh, const std::vector<Eigen::Vector3d>& ax
   return SegmentsObj(comment.str(), segments);
 }
 
-}  // namespace gproj
+}  // namespace gproj::circular

@@ -26,7 +26,7 @@
 #include "gproj/geometry/io/mesh_io.h"
 #include "gproj/problems/run/guided_problem.h"
 
-namespace gproj {
+namespace gproj::circular {
 
 struct BeamOptions {
   double height = 0.0;  // h > 0: beam height, and the offset distance along the axes
@@ -61,4 +61,4 @@ BeamLayout TorsionFreeBeams(const PolyMesh& mesh, const BeamOptions& options);
 // The node axes as OBJ line segments from each vertex to vertex + length · axis.
 std::string AxesObj(const PolyMesh& mesh, const std::vector<Eigen::Vector3d>& axis, double length);
 
-}  // namespace gproj
+}  // namespace gproj::circular

@@ -12,7 +12,7 @@
 #include "gproj/geometry/mesh/scale_free.h"
 #include "gproj/problems/mesh/panel_bounds.h"
 
-namespace gproj {
+namespace gproj::marionette {
 
 MarionettePlan MakeMarionettePlan(const PolyMesh& mesh, const std::string& path) {
   const std::string prefix = path.empty() ? "" : path + ": ";
@@ -394,4 +394,4 @@ Eigen::VectorXd FitMarionette(const MarionettePlan& plan, const Eigen::VectorXd&
   throw InputError("the max height could not be met (the active set did not settle)");
 }
 
-}  // namespace gproj
+}  // namespace gproj::marionette

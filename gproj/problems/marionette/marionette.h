@@ -16,7 +16,7 @@
 #include "gproj/solver/guided_projection.h"
 #include "gproj/solver/problem.h"
 
-namespace gproj {
+namespace gproj::marionette {
 
 // A regular grid of (rows + 1) × (cols + 1) vertices; vertex (i, j) has index i * (cols + 1) + j
 // and face (i, j) is (i, j), (i+1, j), (i+1, j+1), (i, j+1).
@@ -132,4 +132,4 @@ ClosedStripLift LiftClosedStrip(const ClosedStrip& strip, const Eigen::VectorXd&
 // (inner i, outer i, outer i+1, inner i+1).
 PolyMesh ClosedStripMesh(const ClosedStrip& strip, const ClosedStripLift& lift);
 
-}  // namespace gproj
+}  // namespace gproj::marionette

@@ -7,7 +7,7 @@
 #include "gproj/common/input_error.h"
 #include "gproj/problems/mesh/planarity_measures.h"
 
-namespace gproj {
+namespace gproj::marionette {
 namespace {
 
 // The plan with its vertices at heights z.
@@ -120,4 +120,4 @@ Eigen::VectorXd MarionetteGridProblem::DirectHeights() const {
 
 PolyMesh MarionetteGridProblem::Result() const { return WithHeights(mesh_, problem_.x()); }
 
-}  // namespace gproj
+}  // namespace gproj::marionette

@@ -12,7 +12,7 @@
 #include "gproj/problems/marionette/marionette.h"
 #include "gproj/problems/run/guided_problem.h"
 
-namespace gproj {
+namespace gproj::marionette {
 
 struct MarionetteOptions {
   // Guided projection: the rows are linear, so one iteration with a tiny ε solves a lift. A fit
@@ -72,4 +72,4 @@ class MarionetteGridProblem : public GuidedProblem {
   Problem problem_;
 };
 
-}  // namespace gproj
+}  // namespace gproj::marionette

@@ -2,7 +2,7 @@
 
 #include "gproj/geometry/io/text_input.h"
 
-namespace gproj {
+namespace gproj::marionette {
 
 namespace {
 
@@ -131,4 +131,4 @@ MarionetteProjectionOptions MarionetteProjectionFromValues(const std::string& na
   return projection;
 }
 
-}  // namespace gproj
+}  // namespace gproj::marionette

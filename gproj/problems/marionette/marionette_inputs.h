@@ -11,7 +11,7 @@
 #include "gproj/problems/marionette/marionette.h"
 #include "gproj/problems/marionette/marionette_mesh.h"
 
-namespace gproj {
+namespace gproj::marionette {
 
 // A guide file, one entry a line ('#' starts a comment):
 //   guide START NEXT V0 V1 ...  values on the straight mesh polyline from vertex START through
@@ -54,4 +54,4 @@ MarionetteProjectionOptions MarionetteProjectionFromValues(const std::string& na
                                                            const std::vector<double>& axis,
                                                            const std::vector<double>& centre);
 
-}  // namespace gproj
+}  // namespace gproj::marionette

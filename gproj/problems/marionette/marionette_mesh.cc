@@ -11,7 +11,7 @@
 #include "gproj/constraints/quad_planarity.h"
 #include "gproj/constraints/scalar_target.h"
 
-namespace gproj {
+namespace gproj::marionette {
 namespace {
 
 using HalfedgeHandle = PolyMesh::HalfedgeHandle;
@@ -656,4 +656,4 @@ Eigen::VectorXd MarionetteMeshParameters(const Problem& problem) {
   return problem.x().segment(b.offset, b.num_items);
 }
 
-}  // namespace gproj
+}  // namespace gproj::marionette

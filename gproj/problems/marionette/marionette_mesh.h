@@ -20,7 +20,7 @@
 #include "gproj/solver/guided_projection.h"
 #include "gproj/solver/problem.h"
 
-namespace gproj {
+namespace gproj::marionette {
 
 enum class MarionetteProjection { kVertical, kCylindrical, kCentral };
 const char* MarionetteProjectionName(MarionetteProjection projection);
@@ -162,4 +162,4 @@ SolverOptions MarionetteMeshSolverOptions(MarionetteProjection projection, int m
 // The parameters t (#V) of a solved MakeMarionetteMeshProblem.
 Eigen::VectorXd MarionetteMeshParameters(const Problem& problem);
 
-}  // namespace gproj
+}  // namespace gproj::marionette

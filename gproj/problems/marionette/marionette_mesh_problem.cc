@@ -5,7 +5,7 @@
 
 #include "gproj/problems/mesh/planarity_measures.h"
 
-namespace gproj {
+namespace gproj::marionette {
 
 SolverOptions MarionetteMeshSolverDefaults() {
   return MarionetteMeshSolverOptions(MarionetteProjection::kCylindrical);
@@ -61,4 +61,4 @@ void MarionetteMeshProblem::SetParameters(const Eigen::VectorXd& t) {
   problem_.x().segment(problem_.layout().block(block).offset, t.size()) = t;
 }
 
-}  // namespace gproj
+}  // namespace gproj::marionette

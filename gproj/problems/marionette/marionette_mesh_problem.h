@@ -12,7 +12,7 @@
 #include "gproj/problems/marionette/marionette_mesh.h"
 #include "gproj/problems/run/guided_problem.h"
 
-namespace gproj {
+namespace gproj::marionette {
 
 // Guided projection's defaults for lifts on non-vertical lines (bilinear rows): 50 iterations,
 // ε = 1e-3, rows solved to 1e-12.
@@ -62,4 +62,4 @@ class MarionetteMeshProblem : public GuidedProblem {
   Problem problem_;
 };
 
-}  // namespace gproj
+}  // namespace gproj::marionette

@@ -13,7 +13,7 @@
 #include "gproj/geometry/mesh/scale_free.h"
 #include "gproj/problems/marionette/marionette.h"
 
-namespace gproj {
+namespace gproj::marionette {
 namespace {
 
 Eigen::Vector2d Plan(const PolyMesh& mesh, PolyMesh::VertexHandle v) {
@@ -398,4 +398,4 @@ ClosedRingsLift LiftClosedRings(const std::vector<std::vector<Eigen::Vector2d>>&
   return out;
 }
 
-}  // namespace gproj
+}  // namespace gproj::marionette

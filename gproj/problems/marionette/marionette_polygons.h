@@ -20,7 +20,7 @@
 
 #include "gproj/geometry/io/mesh_io.h"
 
-namespace gproj {
+namespace gproj::marionette {
 
 struct MarionetteDesignSpace {
   int vertices = 0;        // N
@@ -89,4 +89,4 @@ struct ClosedRingsLift {
 ClosedRingsLift LiftClosedRings(const std::vector<std::vector<Eigen::Vector2d>>& curves,
                                 const Eigen::VectorXd& inner_heights);
 
-}  // namespace gproj
+}  // namespace gproj::marionette

@@ -8,7 +8,7 @@
 #include "gproj/problems/run/builtin_problems.h"
 #include "gproj/problems/run/shared_options.h"
 
-namespace gproj {
+namespace gproj::marionette {
 namespace {
 
 struct MarionetteSettings {
@@ -210,4 +210,4 @@ ProblemSpec MarionetteSpec() {
   return spec;
 }
 
-}  // namespace gproj
+}  // namespace gproj::marionette

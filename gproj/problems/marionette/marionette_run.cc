@@ -13,7 +13,7 @@
 #include "gproj/problems/mesh/planarity_measures.h"
 #include "gproj/problems/run/construction.h"
 
-namespace gproj {
+namespace gproj::marionette {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -515,4 +515,4 @@ std::unique_ptr<MarionetteRun> MakeMarionetteRun(const MarionetteRunOptions& opt
   return std::make_unique<GridRun>(options);
 }
 
-}  // namespace gproj
+}  // namespace gproj::marionette

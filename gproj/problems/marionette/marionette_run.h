@@ -18,7 +18,7 @@
 #include "gproj/problems/run/guided_problem.h"
 #include "gproj/problems/run/report_json.h"
 
-namespace gproj {
+namespace gproj::marionette {
 
 // What a Marionette run takes; the mode follows from what is given:
 //   closed_strip                 a closed strip (002 §2.5) lifted by its closing condition (eq. 8);
@@ -74,4 +74,4 @@ class MarionetteRun {
 // Reads and checks the inputs of the mode `options` asks for. Throws InputError.
 std::unique_ptr<MarionetteRun> MakeMarionetteRun(const MarionetteRunOptions& options);
 
-}  // namespace gproj
+}  // namespace gproj::marionette

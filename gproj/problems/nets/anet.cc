@@ -12,7 +12,7 @@
 #include "gproj/problems/mesh/vertex_control.h"
 #include "gproj/solver/ceres_adapter.h"
 
-namespace gproj {
+namespace gproj::nets {
 namespace {
 
 // Neighbours of v in cyclic order.
@@ -265,4 +265,4 @@ CeresOptions ANet::ceres_options(int max_iterations) const {
       options_.ceres_soft_scale > 0.0 ? options_.ceres_soft_scale : options_.tolerance / 100.0);
 }
 
-}  // namespace gproj
+}  // namespace gproj::nets

@@ -20,7 +20,7 @@
 #include "gproj/solver/guided_projection.h"
 #include "gproj/solver/problem.h"
 
-namespace gproj {
+namespace gproj::nets {
 
 enum class StarPlanarityForm {
   kNormals,  // an auxiliary unit normal per inner vertex, orthogonal to its star's edges
@@ -141,4 +141,4 @@ class ANet : public MeshProblem {
   double start_planarity_ = 0.0;
 };
 
-}  // namespace gproj
+}  // namespace gproj::nets

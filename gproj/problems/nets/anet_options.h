@@ -8,7 +8,7 @@
 #include "gproj/problems/nets/anet.h"
 #include "gproj/problems/run/shared_options.h"
 
-namespace gproj {
+namespace gproj::nets {
 
 // solver, star_form, tolerance, tangent, point, fairness_order, the solver's options, the panel
 // bounds and the vertex control. `star_form` receives "normals" or "quads" (StarFormOf).
@@ -61,4 +61,4 @@ inline std::string BoundaryControlNote(const VertexControlOptions& vertices) {
          "with `fixed` instead)";
 }
 
-}  // namespace gproj
+}  // namespace gproj::nets

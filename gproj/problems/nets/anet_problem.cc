@@ -7,7 +7,7 @@
 #include "gproj/problems/run/builtin_problems.h"
 #include "gproj/problems/run/shared_options.h"
 
-namespace gproj {
+namespace gproj::nets {
 namespace {
 
 struct ANetSettings {
@@ -107,4 +107,4 @@ ProblemSpec ANetSpec() {
   return spec;
 }
 
-}  // namespace gproj
+}  // namespace gproj::nets

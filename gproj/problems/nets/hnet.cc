@@ -15,7 +15,7 @@
 #include "gproj/geometry/mesh/scale_free.h"
 #include "gproj/solver/inequality.h"
 
-namespace gproj {
+namespace gproj::nets {
 namespace {
 
 Eigen::Vector3d P(const PolyMesh& mesh, int v) {
@@ -798,4 +798,4 @@ nlohmann::json HNet::ReportFacts(const HNetSummary& summary) {
           {"equitwist_violations", violations}};
 }
 
-}  // namespace gproj
+}  // namespace gproj::nets

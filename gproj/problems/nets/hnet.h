@@ -16,7 +16,7 @@
 #include "gproj/problems/nets/anet.h"
 #include "gproj/problems/run/report_json.h"
 
-namespace gproj {
+namespace gproj::nets {
 
 // 0/1 colour per vertex such that every edge joins different colours. Throws InputError when
 // the vertex graph is not bipartite.
@@ -195,4 +195,4 @@ class HNet {
   std::string topology_note_;
 };
 
-}  // namespace gproj
+}  // namespace gproj::nets

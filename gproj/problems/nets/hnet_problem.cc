@@ -6,7 +6,7 @@
 #include "gproj/problems/nets/hnet.h"
 #include "gproj/problems/run/builtin_problems.h"
 
-namespace gproj {
+namespace gproj::nets {
 namespace {
 
 struct HNetSettings {
@@ -168,4 +168,4 @@ ProblemSpec HNetSpec() {
   return spec;
 }
 
-}  // namespace gproj
+}  // namespace gproj::nets

@@ -7,7 +7,7 @@
 #include "gproj/problems/run/builtin_problems.h"
 #include "gproj/problems/run/shared_options.h"
 
-namespace gproj {
+namespace gproj::pq {
 namespace {
 
 struct PlanarizeSettings {
@@ -161,4 +161,4 @@ ProblemSpec PlanarizeSpec() {
   return spec;
 }
 
-}  // namespace gproj
+}  // namespace gproj::pq

@@ -12,7 +12,7 @@
 #include "gproj/geometry/mesh/circle.h"
 #include "gproj/problems/mesh/mesh_variables.h"
 
-namespace gproj {
+namespace gproj::pq {
 
 SolverOptions PQPlanarizationSolverDefaults() {
   SolverOptions s;
@@ -194,4 +194,4 @@ CeresOptions PQPlanarization::ceres_options(int max_iterations) const {
                              : std::min(1.0, options_.tolerance * 1e-2));
 }
 
-}  // namespace gproj
+}  // namespace gproj::pq

@@ -20,7 +20,7 @@
 #include "gproj/solver/guided_projection.h"
 #include "gproj/solver/problem.h"
 
-namespace gproj {
+namespace gproj::pq {
 
 // Guided projection's defaults for planarisation: 30 iterations, ω_f = 1, soft weights fading
 // by 0.1 per iteration down to 1e-12, monotone steps (an under-determined Gauss–Newton step
@@ -104,4 +104,4 @@ class PQPlanarization : public MeshProblem {
   double start_planarity_ = 0.0;
 };
 
-}  // namespace gproj
+}  // namespace gproj::pq

@@ -12,7 +12,7 @@
 #include "gproj/problems/run/builtin_problems.h"
 #include "gproj/problems/run/construction.h"
 
-namespace gproj {
+namespace gproj::remesh {
 namespace {
 
 struct FieldSettings {
@@ -203,4 +203,4 @@ ProblemSpec FieldSpec() {
   return spec;
 }
 
-}  // namespace gproj
+}  // namespace gproj::remesh

@@ -13,7 +13,7 @@
 
 #include "gproj/geometry/mesh/scale_free.h"
 
-namespace gproj {
+namespace gproj::remesh {
 namespace {
 
 constexpr double kQuarter = M_PI / 2.0;
@@ -706,4 +706,4 @@ QuadRemeshResult RemeshAlongField(const PolyMesh& triangles, const QuadRemeshOpt
   return out;
 }
 
-}  // namespace gproj
+}  // namespace gproj::remesh

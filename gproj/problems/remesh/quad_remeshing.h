@@ -28,7 +28,7 @@
 #include "gproj/geometry/mesh/quad_extraction.h"
 #include "gproj/solver/sparse_cholesky.h"
 
-namespace gproj {
+namespace gproj::remesh {
 
 struct QuadRemeshOptions {
   DirectionKind directions = DirectionKind::kAsymptotic;
@@ -101,4 +101,4 @@ struct QuadRemeshResult {
 // for the surface).
 QuadRemeshResult RemeshAlongField(const PolyMesh& triangles, const QuadRemeshOptions& options);
 
-}  // namespace gproj
+}  // namespace gproj::remesh

@@ -9,7 +9,7 @@
 #include "gproj/problems/run/builtin_problems.h"
 #include "gproj/problems/run/construction.h"
 
-namespace gproj {
+namespace gproj::remesh {
 namespace {
 
 struct RemeshSettings {
@@ -223,4 +223,4 @@ ProblemSpec RemeshSpec() {
   return spec;
 }
 
-}  // namespace gproj
+}  // namespace gproj::remesh

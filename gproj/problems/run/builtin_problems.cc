@@ -5,19 +5,19 @@ namespace gproj {
 const Registry& Registry::Builtin() {
   static const Registry registry = [] {
     Registry r;
-    r.Add(PlanarizeSpec());
-    r.Add(ANetSpec());
-    r.Add(HNetSpec());
-    r.Add(FieldSpec());
-    r.Add(RemeshSpec());
-    r.Add(InvertSpec());
-    r.Add(CyclidicSpec());
-    r.Add(CombescureSpec());
-    r.Add(BeamsSpec());
-    r.Add(MRevolutionSpec());
-    r.Add(WeingartenSpec());
-    r.Add(MarionetteSpec());
-    r.Add(CanalSpec());
+    r.Add(pq::PlanarizeSpec());
+    r.Add(nets::ANetSpec());
+    r.Add(nets::HNetSpec());
+    r.Add(remesh::FieldSpec());
+    r.Add(remesh::RemeshSpec());
+    r.Add(circular::InvertSpec());
+    r.Add(circular::CyclidicSpec());
+    r.Add(circular::CombescureSpec());
+    r.Add(circular::BeamsSpec());
+    r.Add(circular::MRevolutionSpec());
+    r.Add(weingarten::WeingartenSpec());
+    r.Add(marionette::MarionetteSpec());
+    r.Add(circular::CanalSpec());
     r.Add(GridSpec());
     return r;
   }();

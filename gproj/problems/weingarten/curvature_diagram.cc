@@ -12,7 +12,7 @@
 
 #include "gproj/geometry/render/svg_plot.h"
 
-namespace gproj {
+namespace gproj::weingarten {
 namespace {
 
 constexpr int kMaxCellsPerAxis = 4096;
@@ -175,4 +175,4 @@ std::string RenderCurvatureDiagramSvg(const std::vector<DiagramSeries>& series,
   return svg;
 }
 
-}  // namespace gproj
+}  // namespace gproj::weingarten

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace gproj {
+namespace gproj::weingarten {
 
 struct MoldClustering {
   int cells_per_axis = 0;    // of the grid used
@@ -46,4 +46,4 @@ struct DiagramOptions {
 std::string RenderCurvatureDiagramSvg(const std::vector<DiagramSeries>& series,
                                       const DiagramOptions& options = {});
 
-}  // namespace gproj
+}  // namespace gproj::weingarten

@@ -7,7 +7,7 @@
 
 #include "gproj/common/input_error.h"
 
-namespace gproj {
+namespace gproj::weingarten {
 
 HelicalMotion FitHelicalMotion(const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& normals) {
   const Eigen::Index count = points.rows();
@@ -145,4 +145,4 @@ BSplineSurface MakeHelicalBSpline(int nu, int nv, int degree, const HelicalTestS
       degree, degree, nu, nv);
 }
 
-}  // namespace gproj
+}  // namespace gproj::weingarten

@@ -18,7 +18,7 @@
 
 #include "gproj/geometry/surface/bspline_surface.h"
 
-namespace gproj {
+namespace gproj::weingarten {
 
 struct HelicalMotion {
   Eigen::Vector3d axis_point = Eigen::Vector3d::Zero();  // the axis' point closest to the origin
@@ -56,4 +56,4 @@ struct HelicalTestSurface {
 };
 BSplineSurface MakeHelicalBSpline(int nu, int nv, int degree, const HelicalTestSurface& spec = {});
 
-}  // namespace gproj
+}  // namespace gproj::weingarten

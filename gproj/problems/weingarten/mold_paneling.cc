@@ -15,7 +15,7 @@
 #include "gproj/common/input_error.h"
 #include "gproj/problems/weingarten/curvature_diagram.h"
 
-namespace gproj {
+namespace gproj::weingarten {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -620,4 +620,4 @@ PolyMesh PanelMesh(const BSplineSurface& surface, const Paneling& paneling, int 
   return mesh;
 }
 
-}  // namespace gproj
+}  // namespace gproj::weingarten

@@ -29,7 +29,7 @@
 
 #include "gproj/geometry/surface/bspline_surface.h"
 
-namespace gproj {
+namespace gproj::weingarten {
 
 // The cubic height field of a mold: z = Σ c_k m_k(x / s, y / s) over the ten monomials
 // 1, x, y, x², x y, y², x³, x² y, x y², y³ with a length scale s (the cluster's panel size).
@@ -101,4 +101,4 @@ int MoldsForTolerance(const BSplineSurface& surface, PanelingOptions options, do
 PolyMesh PanelMesh(const BSplineSurface& surface, const Paneling& paneling, int n,
                    std::vector<int>* panel_of_face = nullptr);
 
-}  // namespace gproj
+}  // namespace gproj::weingarten

@@ -14,7 +14,7 @@
 #include "gproj/constraints/isoline_alignment.h"
 #include "gproj/constraints/polyline_fairness.h"
 
-namespace gproj {
+namespace gproj::weingarten {
 namespace {
 
 // Fold prevention: neighbouring normals on the check grid (kFoldGridFactor × the samples per
@@ -583,4 +583,4 @@ WeingartenMeasures WeingartenProblem::MeasuresAt(const Eigen::VectorXd& x) const
   return m;
 }
 
-}  // namespace gproj
+}  // namespace gproj::weingarten

@@ -28,6 +28,11 @@
 #include "gproj/solver/problem.h"
 
 namespace gproj {
+class LinearWeingarten;
+class SurfaceLinearWeingarten;
+}  // namespace gproj
+
+namespace gproj::weingarten {
 
 // The most samples a problem takes (12 unknowns each: 24 million unknowns); more is refused
 // before anything is allocated. WeingartenMemoryEstimate usually refuses less first.
@@ -153,8 +158,8 @@ class WeingartenProblem : public GuidedProblem {
   double fold_cosine_ = 0.5;
   Problem problem_;
   int control_block_ = -1, forms_block_ = -1, curvature_block_ = -1, gradient_block_ = -1;
-  class LinearWeingarten* linear_ = nullptr;
-  class SurfaceLinearWeingarten* surface_linear_ = nullptr;
+  LinearWeingarten* linear_ = nullptr;
+  SurfaceLinearWeingarten* surface_linear_ = nullptr;
 };
 
-}  // namespace gproj
+}  // namespace gproj::weingarten

@@ -5,7 +5,7 @@
 
 #include "gproj/common/input_error.h"
 
-namespace gproj {
+namespace gproj::weingarten {
 
 SolverOptions WeingartenSolverDefaults() {
   SolverOptions s;
@@ -154,4 +154,4 @@ WeingartenOptions WeingartenPreset(const std::string& name) {
   throw InputError("unknown preset '" + name + "' (known: " + known + ")");
 }
 
-}  // namespace gproj
+}  // namespace gproj::weingarten

@@ -9,7 +9,7 @@
 
 #include "gproj/solver/guided_projection.h"
 
-namespace gproj {
+namespace gproj::weingarten {
 
 enum class CurvatureRelation { kNone, kLinear, kBSpline };
 
@@ -100,4 +100,4 @@ struct WeingartenOptions {
 WeingartenOptions WeingartenPreset(const std::string& name);
 std::vector<std::string> WeingartenPresetNames();
 
-}  // namespace gproj
+}  // namespace gproj::weingarten

@@ -11,7 +11,7 @@
 #include "gproj/geometry/render/svg_plot.h"
 #include "gproj/geometry/render/svg_render.h"
 
-namespace gproj {
+namespace gproj::weingarten {
 namespace {
 
 // A colour per mold: hues spread by the golden angle, alternating lightness, so neighbouring
@@ -176,4 +176,4 @@ std::string PanelPictureSvg(const BSplineSurface& result, const Paneling& paneli
   return RenderMeshSvg(mesh, svg);
 }
 
-}  // namespace gproj
+}  // namespace gproj::weingarten

@@ -10,7 +10,7 @@
 #include "gproj/geometry/surface/bspline_surface.h"
 #include "gproj/problems/weingarten/mold_paneling.h"
 
-namespace gproj {
+namespace gproj::weingarten {
 
 struct PanelSettings {
   int panels_u = 0, panels_v = 0;  // 0: no paneling
@@ -48,4 +48,4 @@ std::string SeamHistogramsSvg(const PanelComparison& c);
 // The result's placed panels, one colour per mold (SVG).
 std::string PanelPictureSvg(const BSplineSurface& result, const Paneling& paneling);
 
-}  // namespace gproj
+}  // namespace gproj::weingarten

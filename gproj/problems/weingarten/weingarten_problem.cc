@@ -11,7 +11,7 @@
 #include "gproj/problems/weingarten/weingarten_run.h"
 #include "gproj/problems/weingarten/weingarten_settings.h"
 
-namespace gproj {
+namespace gproj::weingarten {
 namespace {
 
 struct WeingartenCommandSettings {
@@ -284,4 +284,4 @@ ProblemSpec WeingartenSpec() {
   return spec;
 }
 
-}  // namespace gproj
+}  // namespace gproj::weingarten

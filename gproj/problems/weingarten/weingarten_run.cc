@@ -10,7 +10,7 @@
 #include "gproj/geometry/io/mesh_io.h"
 #include "gproj/geometry/render/svg_render.h"
 
-namespace gproj {
+namespace gproj::weingarten {
 namespace {
 
 // Appends a level's report to the run's.
@@ -297,4 +297,4 @@ std::string WeingartenCurvatureCsv(const WeingartenRun& run, const std::vector<i
   return out.str();
 }
 
-}  // namespace gproj
+}  // namespace gproj::weingarten

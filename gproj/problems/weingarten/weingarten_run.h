@@ -19,7 +19,7 @@
 #include "gproj/problems/weingarten/weingarten.h"
 #include "gproj/problems/weingarten/weingarten_options.h"
 
-namespace gproj {
+namespace gproj::weingarten {
 
 // Bytes a run of `input` with `options` needs at its last (finest) level, the largest: about
 // 25 KB per sample plus 1.6 KB per sample and control point of its stencil, (du + 1)(dv + 1)
@@ -120,4 +120,4 @@ void AddWeingartenFiles(const WeingartenRun& run, const WeingartenFiles& files, 
 std::string WeingartenCurvatureCsv(const WeingartenRun& run,
                                    const std::vector<int>* mold_of_sample = nullptr);
 
-}  // namespace gproj
+}  // namespace gproj::weingarten

@@ -3,7 +3,7 @@
 
 #include "gproj/common/input_error.h"
 
-namespace gproj {
+namespace gproj::weingarten {
 namespace {
 
 // The relation asked by name, and a fixed linear relation over it.
@@ -73,4 +73,4 @@ WeingartenOptions WeingartenSettings::ToOptions() const {
   return o;
 }
 
-}  // namespace gproj
+}  // namespace gproj::weingarten

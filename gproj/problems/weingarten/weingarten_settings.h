@@ -8,7 +8,7 @@
 
 #include "gproj/problems/weingarten/weingarten_options.h"
 
-namespace gproj {
+namespace gproj::weingarten {
 
 // A preset with what a user overrides (unset: the preset's value); the command line and the
 // Python module fill one of these.
@@ -35,4 +35,4 @@ struct WeingartenSettings {
   WeingartenOptions ToOptions() const;
 };
 
-}  // namespace gproj
+}  // namespace gproj::weingarten

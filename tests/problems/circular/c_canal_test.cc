@@ -11,7 +11,7 @@
 #include "gproj/problems/circular/combescure.h"
 #include "gproj/problems/run/report_json.h"
 
-namespace gproj {
+namespace gproj::circular {
 namespace {
 
 CircularStripInput Input(int n = 8) { return BendingStripInput(n); }
@@ -70,4 +70,4 @@ TEST(CCanalTest, RefusesBadScales) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::circular

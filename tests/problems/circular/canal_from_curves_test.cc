@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
-namespace gproj {
+namespace gproj::circular {
 namespace {
 
 double Measure(const CanalFromCurves& c, const char* name) { return ValueOf(c.measures, name); }
@@ -161,4 +161,4 @@ TEST(CanalFromCurvesTest, ScaleAndPositionDoNotMatter) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::circular

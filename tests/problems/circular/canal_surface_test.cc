@@ -9,7 +9,7 @@
 #include "gproj/geometry/mesh/circle.h"
 #include "gproj/problems/mesh/planarity_measures.h"
 
-namespace gproj {
+namespace gproj::circular {
 namespace {
 
 CircularStripInput Input(int n = 8) { return BendingStripInput(n); }
@@ -191,4 +191,4 @@ TEST(CanalSurfaceTest, BadInputIsRefused) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::circular

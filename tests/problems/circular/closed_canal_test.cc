@@ -8,7 +8,7 @@
 #include "gproj/geometry/mesh/circle.h"
 #include "input_error_test_util.h"
 
-namespace gproj {
+namespace gproj::circular {
 namespace {
 
 // N points of the curve (cos t, sin t, wave sin 3t) · radius, optionally pushed onto the sphere
@@ -269,4 +269,4 @@ TEST(ClosedCanalTest, AFlatRingOfTrapezoidsCloses) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::circular

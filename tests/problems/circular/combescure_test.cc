@@ -9,7 +9,7 @@
 #include "gproj/geometry/mesh/parametric_grid.h"
 #include "gproj/problems/mesh/planarity_measures.h"
 
-namespace gproj {
+namespace gproj::circular {
 namespace {
 
 PolyMesh Revolution(int nu, int nv, double jitter = 0.0) {
@@ -192,4 +192,4 @@ TEST(GridShapeTest, DetectsShapeAndRefusesOtherMeshes) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::circular

@@ -10,7 +10,7 @@
 #include "gproj/problems/circular/closed_canal.h"
 #include "input_error_test_util.h"
 
-namespace gproj {
+namespace gproj::circular {
 namespace {
 
 using Eigen::Vector3d;
@@ -274,4 +274,4 @@ TEST(CyclidicSurfaceTest, FarFromTheOriginTheSurfaceAndItsMeasuresAreTheSame) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::circular

@@ -9,7 +9,7 @@
 #include "gproj/problems/circular/circular_mesh.h"
 #include "gproj/problems/run/report_json.h"
 
-namespace gproj {
+namespace gproj::circular {
 namespace {
 
 // The inversion of a known surface of revolution (axis the x-axis, meridian y = 1 + 0.3 sin x in
@@ -168,4 +168,4 @@ TEST(MRevolutionTest, RefusesWhatHasNoSolution) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::circular

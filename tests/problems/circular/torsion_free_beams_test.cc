@@ -9,7 +9,7 @@
 
 #include "gproj/geometry/mesh/mobius.h"
 
-namespace gproj {
+namespace gproj::circular {
 namespace {
 
 // A surface of revolution meshed by meridians and parallels (every quad an isosceles
@@ -160,4 +160,4 @@ TEST(TorsionFreeBeamsTest, ScaleAndPositionDoNotMatterAndBadInputsAreNamed) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::circular

@@ -8,7 +8,7 @@
 #include "gproj/geometry/mesh/quad_grid.h"
 #include "gproj/problems/marionette/marionette_run.h"
 
-namespace gproj {
+namespace gproj::marionette {
 namespace {
 
 // A jittered 6 × 5-face grid plan.
@@ -108,4 +108,4 @@ TEST(MarionetteGridProblemTest, RefusesGuideCurvesThatDoNotFit) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::marionette

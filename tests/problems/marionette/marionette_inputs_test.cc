@@ -8,7 +8,7 @@
 
 #include "input_error_test_util.h"
 
-namespace gproj {
+namespace gproj::marionette {
 namespace {
 
 namespace fs = std::filesystem;
@@ -92,4 +92,4 @@ TEST(MarionetteInputsTest, ProjectionFromValuesChecksTheCounts) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::marionette

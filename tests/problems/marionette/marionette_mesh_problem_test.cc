@@ -7,7 +7,7 @@
 #include "gproj/geometry/mesh/quad_grid.h"
 #include "gproj/problems/marionette/marionette_run.h"
 
-namespace gproj {
+namespace gproj::marionette {
 namespace {
 
 // The shipped tower plan (12 × 18 faces around the z axis) on cylindrical lines, with radii
@@ -82,4 +82,4 @@ TEST(MarionetteMeshProblemTest, DirectPropagationIsReportedAsARun) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::marionette

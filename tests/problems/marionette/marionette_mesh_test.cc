@@ -10,7 +10,7 @@
 #include "gproj/geometry/mesh/quad_grid.h"
 #include "input_error_test_util.h"
 
-namespace gproj {
+namespace gproj::marionette {
 namespace {
 
 // A plan with one singular vertex: n rhombic sectors of k × k quads around vertex 0 (inner
@@ -385,4 +385,4 @@ TEST(MarionetteProjectionTest, RefusesLinesParallelToTheFacePlaneAndVerticesOnTh
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::marionette

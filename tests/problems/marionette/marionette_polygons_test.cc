@@ -12,7 +12,7 @@
 
 #include "gproj/problems/marionette/marionette.h"
 
-namespace gproj {
+namespace gproj::marionette {
 namespace {
 
 // Point (i, j) of the triangular lattice of unit spacing.
@@ -327,4 +327,4 @@ TEST(MarionettePolygonsTest, ClosedRingsWithARingOfTrapezoids) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::marionette

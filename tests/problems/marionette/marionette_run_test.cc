@@ -8,7 +8,7 @@
 
 #include "input_error_test_util.h"
 
-namespace gproj {
+namespace gproj::marionette {
 namespace {
 
 const std::string kData = std::string(GPROJ_SOURCE_DIR) + "/examples/data/";
@@ -159,4 +159,4 @@ TEST(MarionetteRunTest, ClosedStripReportsItsClosingLift) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::marionette

@@ -12,7 +12,7 @@
 #include "gproj/constraints/marionette_planarity.h"
 #include "gproj/geometry/mesh/quad_grid.h"
 
-namespace gproj {
+namespace gproj::marionette {
 namespace {
 
 // A plan view: a (n+1) × (m+1)-vertex grid with jittered x, y (z is ignored).
@@ -158,9 +158,9 @@ TEST(MarionetteTest, RefusesMeshesThatAreNotGrids) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::marionette
 
-namespace gproj {
+namespace gproj::marionette {
 namespace {
 
 // Inner unit circle, outer ellipse with semi-axes 1.6 and 1.6 + stretch (mirror symmetric in
@@ -427,4 +427,4 @@ TEST(MarionetteConstraintsTest, PartialTargetsOnTheGuidesGiveTheLift) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::marionette

@@ -35,9 +35,9 @@ double DistanceToLoop(const PolyMesh& mesh, const std::vector<int>& loop,
 
 TEST(VertexControlTest, FixedVerticesDoNotMoveAtAll) {
   const PolyMesh mesh = NoisyParaboloid(21);
-  PQPlanarizationOptions options;
+  pq::PQPlanarizationOptions options;
   options.vertices.fixed = {0, 20, 220, 440};  // three corners and the centre
-  PQPlanarization pq(mesh, options);
+  pq::PQPlanarization pq(mesh, options);
   ASSERT_TRUE(pq.Run().converged);
   const PolyMesh out = pq.Result();
   for (int v : options.vertices.fixed)
@@ -48,10 +48,10 @@ TEST(VertexControlTest, FixedVerticesDoNotMoveAtAll) {
 
 TEST(VertexControlTest, FixedBoundaryStaysAndTheInsideBecomesPlanar) {
   const PolyMesh mesh = NoisyParaboloid(21);
-  PQPlanarizationOptions options;
+  pq::PQPlanarizationOptions options;
   options.vertices.fix_boundary = true;
   options.solver.max_iterations = 50;
-  PQPlanarization pq(mesh, options);
+  pq::PQPlanarization pq(mesh, options);
   ASSERT_TRUE(pq.Run().converged);
   const PolyMesh out = pq.Result();
   int boundary = 0;
@@ -75,9 +75,9 @@ TEST(VertexControlTest, GlidingBoundaryVerticesSlideAlongTheInputBoundary) {
     grid.noise = 0.05;
     grid.c = twist;
     const PolyMesh mesh = MakeQuadGrid(grid);
-    PQPlanarizationOptions options;
+    pq::PQPlanarizationOptions options;
     options.vertices.glide_boundary = true;
-    PQPlanarization pq(mesh, options);
+    pq::PQPlanarization pq(mesh, options);
     const RunReport report = pq.Run();
     ASSERT_TRUE(report.converged) << twist << " " << report.termination;
     EXPECT_LE(pq.Measures().max_planarity, 1e-9);
@@ -155,9 +155,9 @@ TEST(VertexControlTest, ReferenceSurfacePullsVerticesOntoIt) {
     }
     return sum / m.n_vertices();
   };
-  PQPlanarization with(mesh, PQPlanarizationOptions(), &reference);
+  pq::PQPlanarization with(mesh, pq::PQPlanarizationOptions(), &reference);
   ASSERT_TRUE(with.Run().converged);
-  PQPlanarization without(mesh, PQPlanarizationOptions());
+  pq::PQPlanarization without(mesh, pq::PQPlanarizationOptions());
   ASSERT_TRUE(without.Run().converged);
   EXPECT_LT(height_error(with.Result()), 0.5 * height_error(mesh));
   EXPECT_LT(height_error(with.Result()), 0.5 * height_error(without.Result()));

@@ -5,7 +5,7 @@
 #include "gproj/geometry/mesh/parametric_grid.h"
 #include "gproj/solver/internal/linearized_system.h"
 
-namespace gproj {
+namespace gproj::nets {
 namespace {
 
 PolyMesh Grid(const std::string& surface, int n, double jitter, uint32_t seed = 1) {
@@ -167,4 +167,4 @@ TEST(ANetTest, ResidualTiedScheduleNeedsFewerIterations) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::nets

@@ -10,7 +10,7 @@
 #include "gproj/geometry/mesh/parametric_grid.h"
 #include "gproj/problems/nets/anet.h"
 
-namespace gproj {
+namespace gproj::nets {
 namespace {
 
 PolyMesh Jittered(const std::string& surface, int n, double jitter) {
@@ -172,4 +172,4 @@ TEST(ANetDriftTest, BoundaryGlidesAlongAnExactBoundary) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::nets

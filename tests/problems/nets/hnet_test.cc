@@ -4,7 +4,7 @@
 
 #include "gproj/geometry/mesh/parametric_grid.h"
 
-namespace gproj {
+namespace gproj::nets {
 namespace {
 
 PolyMesh Grid(const std::string& surface, int n, double jitter = 0.0, uint32_t seed = 1) {
@@ -229,4 +229,4 @@ TEST(HNetTest, RefusesMeshesThatAreNotSimplyConnected) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::nets

@@ -7,7 +7,7 @@
 #include "gproj/geometry/mesh/quad_grid.h"
 #include "gproj/solver/internal/linearized_system.h"
 
-namespace gproj {
+namespace gproj::pq {
 namespace {
 
 const std::string kShippedGrid =
@@ -236,4 +236,4 @@ TEST(PQPlanarizationTest, DiagonalDistanceOfKnownQuad) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::pq

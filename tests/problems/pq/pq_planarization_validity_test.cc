@@ -10,7 +10,7 @@
 #include "gproj/geometry/mesh/quad_shape.h"
 #include "gproj/problems/pq/pq_planarization.h"
 
-namespace gproj {
+namespace gproj::pq {
 namespace {
 
 QuadGridOptions Twisted(int n) {  // z = 0.3 x² + 0.2 y² + 0.3 x y
@@ -201,4 +201,4 @@ TEST(PQPlanarizationValidityTest, ASaddleGridIsPlanarisedWithShortEdgesHeldAtThe
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::pq

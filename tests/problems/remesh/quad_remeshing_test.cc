@@ -12,7 +12,7 @@
 #include "gproj/problems/nets/hnet.h"
 #include "triangulated_surface_util.h"
 
-namespace gproj {
+namespace gproj::remesh {
 namespace {
 
 // A height field z = f(x, y) with its derivatives.
@@ -257,10 +257,10 @@ TEST(QuadRemeshingTest, TrianglesToHNet) {
     const Remeshed run =
         RemeshHeightField(monkey ? "monkey saddle → H-net" : "hyperbolic field → H-net",
                           monkey ? MonkeySaddle() : Hyperbolic(), 40, 13, options);
-    HNet hnet(run.result.extraction.quads, &run.triangles, HNetOptions{});
-    const HNetSummary summary = hnet.Run(nullptr, nullptr);
+    nets::HNet hnet(run.result.extraction.quads, &run.triangles, nets::HNetOptions{});
+    const nets::HNetSummary summary = hnet.Run(nullptr, nullptr);
     ASSERT_FALSE(summary.rounds.empty()) << summary.report.termination;
-    const HNetRound& last = summary.rounds.back();
+    const nets::HNetRound& last = summary.rounds.back();
     std::printf(
         "  H-net: max tangent-plane angle %.2e deg, W in [%.3f, %.3f], %.2e of the "
         "diagonal from the triangles, %zu equitwist violations\n",
@@ -270,7 +270,7 @@ TEST(QuadRemeshingTest, TrianglesToHNet) {
     EXPECT_LE(last.max_tangent_angle_deg, 0.01);
     // Converged means the stars are planar to the A-net tolerance too (a round cut short left
     // them at 6e-9 once; a joint solve of vertices and weights finishes).
-    EXPECT_LE(last.star.max_star_planarity, HNetOptions{}.anet.tolerance);
+    EXPECT_LE(last.star.max_star_planarity, nets::HNetOptions{}.anet.tolerance);
     EXPECT_GT(last.min_w, 0.0);
     // Within 0.5% of the diagonal on the hyperbolic field (004's test); on the steep monkey
     // saddle the boundary corners of valence 2 slide up to 0.5% past the surface's border.
@@ -314,7 +314,7 @@ TEST(QuadRemeshingTest, HNetOfAnANetWithTwoHoles) {
     return std::hypot(c.x() - 0.45, c.y() - 0.2) < 0.18 ||
            std::hypot(c.x() + 0.3, c.y() + 0.45) < 0.18;
   });
-  ASSERT_FALSE(SimplyConnectedProblem(holed).empty());
+  ASSERT_FALSE(nets::SimplyConnectedProblem(holed).empty());
   int six = 0;
   for (auto v : holed.vertices()) six += !holed.is_boundary(v) && holed.valence(v) == 6;
   ASSERT_EQ(six, 1);
@@ -327,13 +327,13 @@ TEST(QuadRemeshingTest, HNetOfAnANetWithTwoHoles) {
     for (auto v : input.vertices())
       input.set_point(
           v, input.point(v) + PolyMesh::Point(offset(random), offset(random), offset(random)));
-    HNetOptions hnet_options;
+    nets::HNetOptions hnet_options;
     hnet_options.allow_not_simply_connected = true;
-    HNet hnet(input, &run.triangles, hnet_options);
-    const HNetSummary summary = hnet.Run(nullptr, nullptr);
+    nets::HNet hnet(input, &run.triangles, hnet_options);
+    const nets::HNetSummary summary = hnet.Run(nullptr, nullptr);
     ASSERT_EQ(summary.rounds.size(), 2u) << summary.report.termination;
-    const HNetRound& propagated = summary.rounds[0];
-    const HNetRound& joint = summary.rounds[1];
+    const nets::HNetRound& propagated = summary.rounds[0];
+    const nets::HNetRound& joint = summary.rounds[1];
     std::printf(
         "  two holes, jitter %g: propagated W in [%.3g, %.3g], max tangent-plane angle %.3g deg; "
         "joint W in [%.3f, %.3f], %.2e deg, %.2e of the diagonal from the triangles, %d "
@@ -494,4 +494,4 @@ TEST(QuadRemeshingTest, RefusesWhatItCannotRemesh) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::remesh

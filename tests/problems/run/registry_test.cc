@@ -81,7 +81,7 @@ TEST(RegistryTest, TheBuiltinRegistryDescribesEveryProblem) {
 TEST(RegistryTest, PlanarizeDefaultsAreTheProblemsOwn) {
   const ProblemSpec* spec = Registry::Builtin().Find("planarize");
   ASSERT_NE(spec, nullptr);
-  const PQPlanarizationOptions defaults;
+  const pq::PQPlanarizationOptions defaults;
   const auto default_of = [&](const std::string& name) {
     const OptionSpec* option = spec->FindOption(name);
     EXPECT_NE(option, nullptr) << name;
@@ -105,13 +105,13 @@ TEST(RegistryTest, PlanarizeThroughTheRegistryIsThePlanarizationItself) {
   grid.nu = grid.nv = 8;
   grid.noise = 0.05;
   const PolyMesh mesh = MakeQuadGrid(grid);
-  PQPlanarizationOptions options;
+  pq::PQPlanarizationOptions options;
   options.closeness_weight = 30.0;
   options.solver.fairness_weight = 0.5;
   options.solver.max_iterations = 12;
   options.panels.min_angle_deg = 10.0;
   options.vertices.fixed = {0, 5};
-  PQPlanarization direct(mesh, options);
+  pq::PQPlanarization direct(mesh, options);
   const RunReport direct_report = direct.Run();
 
   RunInputs inputs;

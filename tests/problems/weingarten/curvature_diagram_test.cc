@@ -8,7 +8,7 @@
 #include <numeric>
 #include <stdexcept>
 
-namespace gproj {
+namespace gproj::weingarten {
 namespace {
 
 // K from a signed square root s = sign(K)·√|K|.
@@ -300,4 +300,4 @@ TEST(CurvatureDiagramTest, RejectsMismatchedSeriesAndTinyCanvases) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::weingarten

@@ -6,7 +6,7 @@
 
 #include "gproj/common/input_error.h"
 
-namespace gproj {
+namespace gproj::weingarten {
 namespace {
 
 // The helical test surface (10 × 12 bi-quartic), with a dent that breaks the symmetry.
@@ -61,4 +61,4 @@ TEST(HelicalFitTest, RefusesTooFewPoints) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::weingarten

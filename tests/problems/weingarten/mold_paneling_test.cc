@@ -7,7 +7,7 @@
 
 #include "gproj/common/input_error.h"
 
-namespace gproj {
+namespace gproj::weingarten {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -188,4 +188,4 @@ TEST(PanelingTest, InvalidOptionsAreNamed) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::weingarten

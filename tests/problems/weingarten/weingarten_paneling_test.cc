@@ -8,7 +8,7 @@
 #include "gproj/problems/weingarten/weingarten.h"
 #include "gproj/problems/weingarten/weingarten_options.h"
 
-namespace gproj {
+namespace gproj::weingarten {
 namespace {
 
 BSplineSurface Optimised(const BSplineSurface& input) {
@@ -83,4 +83,4 @@ TEST(WeingartenPanelingTest, ReportObjectAndSettings) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::weingarten

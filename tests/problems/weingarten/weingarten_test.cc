@@ -13,7 +13,7 @@
 #include "gproj/problems/weingarten/weingarten_run.h"
 #include "gproj/solver/ceres_adapter.h"
 
-namespace gproj {
+namespace gproj::weingarten {
 namespace {
 
 BSplineSurface Freeform(int nu, int nv, int degree = 4) { return MakeWavyBSpline(nu, nv, degree); }
@@ -667,4 +667,4 @@ TEST(WeingartenTest, WithoutAuxiliariesOnlyTheSurfaceRelationIsAllowed) {
 }
 
 }  // namespace
-}  // namespace gproj
+}  // namespace gproj::weingarten
