@@ -83,3 +83,12 @@ def assert_close(a, b, tol=1e-12):
     a, b = np.asarray(a), np.asarray(b)
     assert a.shape == b.shape
     assert np.max(np.abs(a - b), initial=0.0) <= tol
+
+
+def compare_with_command_line(cli, command, V, F, python_kwargs, args, output="out.obj"):
+    """Runs `command` on (V, F) from the command line and from Python; the reports must agree."""
+    source = cli.write_mesh("in.obj", V, F)
+    cli.run(command, source, "-o", cli.path(output), "--report", cli.path("r.json"), *args)
+    result, report = getattr(gproj, command)(V, F, **python_kwargs)
+    assert_reports_equal(report, cli.read_report("r.json"))
+    return result, report

@@ -1,0 +1,87 @@
+"""anet and hnet (gproj::nets) against the command line; hnet's callback stops both stages."""
+import json
+
+import numpy as np
+import pytest
+
+import gproj
+from conftest import assert_close, assert_reports_equal, compare_with_command_line
+
+
+def test_anet_and_hnet_hold_fixed_vertices_like_the_command_line(cli):
+    V, F = gproj.grid(nu=9, nv=9, surface="hyperboloid", noise=0.05)
+    V_out, report = compare_with_command_line(
+        cli, "anet", V, F, {"fixed": [0, 8], "min_angle": 10.0},
+        ["--fixed", cli.write_text("fixed.txt", "0 8\n"), "--min-angle", 10])
+    assert report["converged"]
+    assert np.array_equal(V_out[[0, 8]], V[[0, 8]])
+    assert report["final"]["non_convex_quads"] == 0
+    with pytest.raises(ValueError, match="out of range"):
+        gproj.hnet(V, F, fixed=[81])
+
+
+@pytest.mark.parametrize("star_form", ["normals", "quads"])
+def test_anet_equals_the_command_line(cli, star_form):
+    V, F = gproj.grid(nu=7, nv=7, surface="hypar", noise=0.05)
+    V_out, _ = compare_with_command_line(cli, "anet", V, F, {"star_form": star_form},
+                                         ["--star-form", star_form])
+    assert_close(V_out, gproj.read_mesh(cli.path("out.obj"))[0])
+
+
+def test_anet_with_a_reference(cli):
+    V, F = gproj.grid(nu=6, nv=6, surface="hypar", noise=0.05)
+    Vr, Fr = gproj.grid(nu=12, nv=12, surface="hypar", noise=0.0)
+    cli.write_mesh("ref.obj", Vr, Fr)
+    V_out, _ = compare_with_command_line(cli, "anet", V, F, {"reference": (Vr, Fr)},
+                                         ["--reference", cli.path("ref.obj")])
+    assert_close(V_out, gproj.read_mesh(cli.path("out.obj"))[0])
+
+
+def test_anet_refuses_odd_valence():
+    V = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [2, 0, 0], [2, 1, 0]], float)
+    with pytest.raises(ValueError):
+        gproj.anet(V, [[0, 1, 2, 3], [1, 4, 5, 2], [0, 1, 4, 5]])
+
+
+def test_hnet_equals_the_command_line(cli):
+    V, F = gproj.grid(nu=6, nv=6, surface="hypar", noise=0.02)
+    result, report = compare_with_command_line(cli, "hnet", V, F, {}, [], output="h.json")
+    hnet = result["output"]
+    import json
+    with open(cli.path("h.json")) as f:
+        expected = json.load(f)
+    assert_reports_equal(hnet, expected)
+    assert len(hnet["weights"]) == len(F)
+
+
+def test_hnet_surface_equals_the_command_lines_surface_mesh(cli):
+    V, F = gproj.grid(nu=5, nv=5, surface="hypar", noise=0.02)
+    source = cli.write_mesh("in.obj", V, F)
+    cli.run("hnet", source, "-o", cli.path("h.json"), "--surface-mesh", cli.path("s.obj"),
+            "--samples", 3)
+    result, report = gproj.hnet(V, F, outputs=["surface_mesh"], samples=3)
+    Vs, Fs = result["surface_mesh"]
+    Ve, Fe = gproj.read_mesh(cli.path("s.obj"))
+    assert Vs.shape == (len(F) * 16, 3) and Fs.shape == (len(F) * 18, 3)
+    assert_close(Vs, Ve)
+    assert (Fs == Fe).all()
+    assert "surface_mesh" not in gproj.hnet(V, F, rounds=1)[0]
+    with pytest.raises(ValueError, match=r"samples: -1 is not in \[1, 200\]"):
+        gproj.hnet(V, F, samples=-1)
+    with pytest.raises(ValueError, match="outputs: hnet has no output 'surface'"):
+        gproj.hnet(V, F, outputs=["surface"])
+
+
+def test_hnet_callback_returning_false_stops_the_whole_run():
+    V, F = gproj.grid(nu=7, nv=7, surface="hypar", noise=0.05)
+    records = []
+
+    def callback(record):
+        records.append(record)
+        return len(records) < 2
+
+    result, report = gproj.hnet(V, F, callback=callback)
+    assert len(records) == 2
+    assert report["termination"].startswith("USER_ABORT")
+    assert not report["converged"] and not report["failed"]
+    assert report["rounds"] == [] and "output" not in result

@@ -1,0 +1,65 @@
+"""planarize (gproj::pq): results and reports equal to the command line's, vertex control."""
+import numpy as np
+import pytest
+
+import gproj
+from conftest import assert_close, compare_with_command_line
+
+
+@pytest.mark.parametrize("variant", ["gp", "ceres", "circular", "options", "control", "schedule"])
+def test_planarize_equals_the_command_line(cli, variant):
+    V, F = gproj.grid(nu=7, nv=6, noise=0.05)
+    kwargs, args = {
+        "gp": ({}, []),
+        "ceres": ({"solver": "ceres"}, ["--solver", "ceres"]),
+        "circular": ({"circular": True, "tolerance": 1e-8}, ["--circular", "--tolerance", 1e-8]),
+        "options": ({"closeness": 0.5, "fairness": 0.3, "fairness_order": 3, "epsilon": 1e-2,
+                     "max_iterations": 7, "linear_solver": "eigen"},
+                    ["--closeness", 0.5, "--fairness", 0.3, "--fairness-order", 3, "--epsilon",
+                     1e-2, "--max-iterations", 7, "--linear-solver", "eigen"]),
+        "control": ({"fixed": np.array([0, 41]), "glide_boundary": True, "min_angle": 10.0,
+                     "edge_length": (0.01, 5.0), "reference": gproj.grid(nu=15, nv=15, noise=0.0)},
+                    ["--fixed", cli.write_text("fixed.txt", "0 41\n"), "--glide-boundary",
+                     "--min-angle", 10, "--edge-length", "0.01,5", "--reference",
+                     cli.write_mesh("ref.obj", *gproj.grid(nu=15, nv=15, noise=0.0))]),
+        "schedule": ({"soft_residual": 0.0, "epsilon_min": 0.0},
+                     ["--soft-residual", 0, "--epsilon-min", 0]),
+    }[variant]
+    V_out, report = compare_with_command_line(cli, "planarize", V, F, kwargs, args)
+    Vc, _ = gproj.read_mesh(cli.path("out.obj"))
+    assert_close(V_out, Vc)
+    assert V_out.shape == V.shape and V_out.dtype == np.float64
+    if variant in ("gp", "circular", "control", "schedule"):
+        assert report["converged"]
+    if variant == "schedule":  # the fixed schedule: more iterations than the residual-tied one
+        assert report["iterations"] > gproj.planarize(V, F)[1]["iterations"]
+    if variant == "control":
+        assert np.array_equal(V_out[[0, 41]], V[[0, 41]])  # held bit for bit
+        assert report["final"]["max_glide_distance"] <= 1e-9
+        assert report["final"]["non_convex_quads"] == 0
+
+
+def test_planarize_refuses_bad_vertex_control():
+    V, F = gproj.grid(nu=4, nv=4, noise=0.05)
+    with pytest.raises(ValueError, match="out of range"):
+        gproj.planarize(V, F, fixed=[0, 16])
+    with pytest.raises(ValueError, match="both fixed and gliding"):
+        gproj.planarize(V, F, fix_boundary=True, glide_boundary=True)
+
+
+def test_planarize_accepts_lists_and_int_vertices():
+    V, F = gproj.grid(nu=4, nv=4, noise=0.0)
+    V_out, report = gproj.planarize(np.round(V * 10).astype(int) / 10, F.tolist())
+    assert report["converged"]
+
+
+def test_a_boolean_mask_fixes_the_vertices_it_marks():
+    V, F = gproj.grid(nu=5, nv=5, noise=0.05)
+    mask = np.zeros(len(V), dtype=bool)
+    mask[[3, 7, 11]] = True
+    V_out, report = gproj.planarize(V, F, fixed=mask)
+    assert report["fixed_vertices"] == 3
+    assert np.array_equal(V_out[mask], V[mask])
+    assert not np.array_equal(V_out[[0, 1]], V[[0, 1]])
+    with pytest.raises(ValueError, match="the boolean mask has 4 entries; the mesh has 25"):
+        gproj.planarize(V, F, fixed=mask[:4])
