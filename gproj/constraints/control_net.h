@@ -10,27 +10,50 @@
 //     then stall; the rows alone bring the points onto β to the constraint tolerance.
 
 #include <Eigen/Core>
+#include <string>
+#include <utility>
 #include <vector>
 
-#include "gproj/solver/constraint_family.h"
+#include "gproj/solver/term.h"
 
 namespace gproj {
 
-class EdgeLengthPreservation : public ConstraintFamily {
- public:
-  explicit EdgeLengthPreservation(double weight, std::string name = "shape preservation")
-      : ConstraintFamily(std::move(name), 1, FamilyRole::kSoft, weight) {}
-  int AddEdge(int a, int b, double reference_length);
-  void EvaluateElement(int e, const double* x, double* phi, double* jac) const override;
-
- private:
-  std::vector<double> lengths_;
+struct ReferenceLengthResidual {
+  template <typename T>
+  void operator()(const double& l0, const T* a, const T* b, T* r) const {
+    T d2 = T(0.0);
+    for (int c = 0; c < 3; ++c) d2 += (b[c] - a[c]) * (b[c] - a[c]);
+    r[0] = (d2 - l0 * l0) / (2.0 * l0);
+  }
 };
 
-class PolylineGliding : public ConstraintFamily {
+class EdgeLengthPreservation : public Term<double, ReferenceLengthResidual, 1, 3, 3> {
  public:
-  explicit PolylineGliding(double weight, std::string name = "boundary gliding")
-      : ConstraintFamily(std::move(name), 2, FamilyRole::kConstraint, weight) {}
+  explicit EdgeLengthPreservation(double weight, std::string name = "shape preservation")
+      : Term(std::move(name), ReferenceLengthResidual{}, FamilyRole::kSoft, weight) {}
+  int AddEdge(int a, int b, double reference_length) { return Add({a, b}, reference_length); }
+};
+
+// The frame of a gliding point, frozen at x^k: the closest point q of its polyline and two unit
+// vectors e1, e2 orthogonal to the polyline's direction there.
+struct GlideFrame {
+  int polyline = 0;
+  Eigen::Vector3d foot = Eigen::Vector3d::Zero();
+  Eigen::Vector3d e1 = Eigen::Vector3d::UnitX(), e2 = Eigen::Vector3d::UnitY();
+};
+
+struct GlideResidual {
+  template <typename T>
+  void operator()(const GlideFrame& frame, const T* c, T* r) const {
+    const T d[3] = {c[0] - frame.foot[0], c[1] - frame.foot[1], c[2] - frame.foot[2]};
+    r[0] = d[0] * frame.e1[0] + d[1] * frame.e1[1] + d[2] * frame.e1[2];
+    r[1] = d[0] * frame.e2[0] + d[1] * frame.e2[1] + d[2] * frame.e2[2];
+  }
+};
+
+class PolylineGliding : public Term<GlideFrame, GlideResidual, 2, 3> {
+ public:
+  explicit PolylineGliding(double weight, std::string name = "boundary gliding");
   // Adds a polyline (at least two points; a closed one repeats its first point at the end)
   // shared by the points that glide along it; returns its id.
   int AddPolyline(std::vector<Eigen::Vector3d> polyline);
@@ -41,8 +64,6 @@ class PolylineGliding : public ConstraintFamily {
     return AddPoint(item, AddPolyline(polyline));
   }
 
-  void EvaluateElement(int e, const double* x, double* phi, double* jac) const override;
-  void Update(const VariableLayout& layout, const Eigen::VectorXd& x) override;
   // The rows' frame turns from segment to segment, so a shifted target would point elsewhere.
   bool ShiftsTargets() const override { return false; }
 
@@ -55,8 +76,6 @@ class PolylineGliding : public ConstraintFamily {
 
  private:
   std::vector<std::vector<Eigen::Vector3d>> polylines_;
-  std::vector<int> polyline_of_;  // per element
-  std::vector<Eigen::Vector3d> foot_, e1_, e2_;
 };
 
 }  // namespace gproj

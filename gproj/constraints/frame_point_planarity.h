@@ -8,29 +8,57 @@
 //   n·(f1 − b0) = 0,  n·(b3 − b0) = 0,  n·(f4 − b0) = 0,  n·n − 1 = 0.
 // Items {n, b0, b1, b2, b3, b4, b5}; four rows.
 
-#include <vector>
+#include <string>
+#include <utility>
 
-#include "gproj/solver/constraint_family.h"
 #include "gproj/solver/term.h"
 
 namespace gproj {
 
-class FramePointPlanarity : public ConstraintFamily {
+// The frozen shape parameters of one edge's two patches.
+struct FrameShape {
+  double w_left = 1.0, w_right = 1.0;
+};
+
+struct FramePointPlanarityResidual {
+  template <typename T>
+  void operator()(const FrameShape& shape, const T* n, const T* b0, const T* b1, const T* b2,
+                  const T* b3, const T* b4, const T* b5, T* r) const {
+    const double wl = shape.w_left, wr = shape.w_right;
+    const double l1 = 1.0 / (1.0 + wl), l2 = wl / (1.0 + wl);  // f1 = l1 b1 + l2 b2
+    const double r5 = 1.0 / (1.0 + wr), r4 = wr / (1.0 + wr);  // f4 = r4 b4 + r5 b5
+    r[0] = T(0.0);
+    r[1] = T(0.0);
+    r[2] = T(0.0);
+    for (int c = 0; c < 3; ++c) {
+      r[0] += n[c] * (-b0[c] + l1 * b1[c] + l2 * b2[c]);  // f1 − b0
+      r[1] += n[c] * (-b0[c] + b3[c]);                    // b3 − b0
+      r[2] += n[c] * (-b0[c] + r4 * b4[c] + r5 * b5[c]);  // f4 − b0
+    }
+    r[3] = n[0] * n[0] + n[1] * n[1] + n[2] * n[2] - 1.0;
+  }
+};
+
+using FramePointPlanarityTerm =
+    Term<FrameShape, FramePointPlanarityResidual, 4, 3, 3, 3, 3, 3, 3, 3>;
+
+// The shape parameters change every round of the H-net solve, so the rows keep their automatic
+// derivatives instead of a quadratic model read off once per solve.
+class FramePointPlanarity : public FramePointPlanarityTerm {
  public:
   explicit FramePointPlanarity(double weight = 1.0, std::string name = "frame_planarity")
-      : ConstraintFamily(std::move(name), 4, FamilyRole::kConstraint, weight) {}
+      : FramePointPlanarityTerm(std::move(name), FramePointPlanarityResidual{},
+                                FamilyRole::kConstraint, weight) {}
 
   // Adds the edge b0b3; returns the element index.
   int AddEdge(int normal, int b0, int b1, int b2, int b3, int b4, int b5, double w_left,
-              double w_right);
+              double w_right) {
+    return Add({normal, b0, b1, b2, b3, b4, b5}, FrameShape{w_left, w_right});
+  }
   // Sets the frozen shape parameters of element e.
-  void SetShapeParameters(int e, double w_left, double w_right);
-
-  void EvaluateElement(int e, const double* x, double* phi, double* jac) const override;
-  bool RowTouches(int e, int row, int local) const override;
-
- private:
-  std::vector<double> w_left_, w_right_;
+  void SetShapeParameters(int e, double w_left, double w_right) {
+    data(e) = FrameShape{w_left, w_right};
+  }
 };
 
 // The same rows with the shape parameters W_l, W_r as unknowns (for meshes where no exact

@@ -13,10 +13,7 @@
 #include <random>
 
 #include "gproj/constraints/closeness.h"
-#include "gproj/constraints/control_net.h"
 #include "gproj/constraints/curvature_auxiliaries.h"
-#include "gproj/constraints/frame_point_planarity.h"
-#include "gproj/constraints/isoline_alignment.h"
 #include "gproj/constraints/normal_orthogonality.h"
 #include "gproj/constraints/quad_diagonal_planarity.h"
 
@@ -101,44 +98,6 @@ TEST(HandWrittenJacobianTest, QuadDiagonalPlanarityWithTheExactNormal) {
     const auto b0 = At(x, 0), b1 = At(x, 3), b2 = At(x, 6), b3 = At(x, 9);
     const auto n = (b2 - b0).cross(b3 - b1).normalized();
     r[0] = n.dot(0.5 * (b0 + b2 - b1 - b3));
-  });
-}
-
-TEST(HandWrittenJacobianTest, FramePointPlanarityWithFrozenShapeParameters) {
-  const double wl = 1.7, wr = 0.6;
-  FramePointPlanarity family;
-  family.AddEdge(0, 1, 2, 3, 4, 5, 6, wl, wr);
-  ExpectMatchesAutomatic<21, 4>(family, 0, RandomLocal<21>(9), [&](const auto* x, auto* r) {
-    using T = std::decay_t<decltype(x[0])>;
-    const Vec3<T> n = At(x, 0);
-    auto b = [&](int i) { return At(x, 3 + 3 * i); };
-    const Vec3<T> f1 = (b(1) + wl * b(2)) / (1.0 + wl), f4 = (b(5) + wr * b(4)) / (1.0 + wr);
-    r[0] = n.dot(f1 - b(0));
-    r[1] = n.dot(b(3) - b(0));
-    r[2] = n.dot(f4 - b(0));
-    r[3] = n.squaredNorm() - 1.0;
-  });
-}
-
-TEST(HandWrittenJacobianTest, EdgeLengthPreservationRelativeToTheReference) {
-  const double length = 0.8;
-  EdgeLengthPreservation family(1.0);
-  family.AddEdge(0, 1, length);
-  ExpectMatchesAutomatic<6, 1>(family, 0, RandomLocal<6>(11), [&](const auto* x, auto* r) {
-    r[0] = ((At(x, 0) - At(x, 3)).squaredNorm() - length * length) / (2.0 * length);
-  });
-}
-
-TEST(HandWrittenJacobianTest, IsolineAlignmentByCentralDifferences) {
-  const double inv_du = 2.5, inv_dv = 1.5;
-  IsolineAlignment family(1.0, /*normalized=*/false);
-  family.AddSample(0, 1, 2, 3, inv_du, inv_dv);
-  ExpectMatchesAutomatic<8, 1>(family, 0, RandomLocal<8>(12), [&](const auto* x, auto* r) {
-    auto psi = [&](int item, int offset) { return x[kCurvatureDim * item + offset]; };
-    constexpr int h = kCurvatureH, k = kCurvatureK;
-    const auto hu = inv_du * (psi(0, h) - psi(1, h)), ku = inv_du * (psi(0, k) - psi(1, k));
-    const auto hv = inv_dv * (psi(2, h) - psi(3, h)), kv = inv_dv * (psi(2, k) - psi(3, k));
-    r[0] = hu * kv - hv * ku;
   });
 }
 

@@ -19,7 +19,7 @@ TEST(SurfaceClosenessTest, TangentRowIsSignedDistanceToTheTangentPlane) {
   Eigen::VectorXd x(3);
   x << 0.0, 0.0, 1.5;
   SurfaceTangentCloseness tangent(Sphere, 1.0);
-  tangent.AddElement({0});
+  tangent.AddPoint(0);
   tangent.Update(layout, x);
   double phi, jac[3];
   tangent.EvaluateElement(0, x.data(), &phi, jac);
@@ -37,7 +37,7 @@ TEST(SurfaceClosenessTest, PointRowsVanishOnTheSurface) {
   Eigen::VectorXd x(3);
   x << 0.6, 0.0, 0.8;
   SurfacePointCloseness point(Sphere, 1.0);
-  point.AddElement({0});
+  point.AddPoint(0);
   point.Update(layout, x);
   double phi[3], jac[9];
   point.EvaluateElement(0, x.data(), phi, jac);

@@ -151,11 +151,11 @@ void AddReferenceCloseness(const PolyMesh& reference, const MeshNormalization& n
   const VariableLayout& layout = problem->layout();
   if (tangent_weight > 0.0) {
     auto* tangent = problem->AddFamily<SurfaceTangentCloseness>(projector, tangent_weight);
-    for (int v = 0; v < num_vertices; ++v) tangent->AddElement({layout.Item(vertex_block, v)});
+    for (int v = 0; v < num_vertices; ++v) tangent->AddPoint(layout.Item(vertex_block, v));
   }
   if (point_weight > 0.0) {
     auto* point = problem->AddFamily<SurfacePointCloseness>(projector, point_weight);
-    for (int v = 0; v < num_vertices; ++v) point->AddElement({layout.Item(vertex_block, v)});
+    for (int v = 0; v < num_vertices; ++v) point->AddPoint(layout.Item(vertex_block, v));
   }
 }
 
