@@ -14,8 +14,6 @@
 
 #include "gproj/constraints/closeness.h"
 #include "gproj/constraints/curvature_auxiliaries.h"
-#include "gproj/constraints/normal_orthogonality.h"
-#include "gproj/constraints/quad_diagonal_planarity.h"
 
 namespace gproj {
 namespace {
@@ -76,28 +74,6 @@ TEST(HandWrittenJacobianTest, ClosenessIsTheOffsetFromItsTarget) {
   family.AddTarget(0, target);
   ExpectMatchesAutomatic<3, 3>(family, 0, RandomLocal<3>(1), [&](const auto* v, auto* r) {
     for (int c = 0; c < 3; ++c) r[c] = v[c] - target[c];
-  });
-}
-
-TEST(HandWrittenJacobianTest, NormalOrthogonalityAndUnitNormal) {
-  EdgeNormalOrthogonality orthogonality;
-  orthogonality.AddElement({0, 1, 2});
-  ExpectMatchesAutomatic<9, 1>(orthogonality, 0, RandomLocal<9>(2), [](const auto* x, auto* r) {
-    r[0] = At(x, 0).dot(At(x, 6) - At(x, 3));
-  });
-  UnitNormal unit;
-  unit.AddElement({0});
-  ExpectMatchesAutomatic<3, 1>(unit, 0, RandomLocal<3>(3),
-                               [](const auto* n, auto* r) { r[0] = At(n, 0).squaredNorm() - 1.0; });
-}
-
-TEST(HandWrittenJacobianTest, QuadDiagonalPlanarityWithTheExactNormal) {
-  QuadDiagonalPlanarity family;
-  family.AddElement({0, 1, 2, 3});
-  ExpectMatchesAutomatic<12, 1>(family, 0, RandomLocal<12>(4), [](const auto* x, auto* r) {
-    const auto b0 = At(x, 0), b1 = At(x, 3), b2 = At(x, 6), b3 = At(x, 9);
-    const auto n = (b2 - b0).cross(b3 - b1).normalized();
-    r[0] = n.dot(0.5 * (b0 + b2 - b1 - b3));
   });
 }
 

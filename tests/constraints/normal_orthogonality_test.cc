@@ -9,13 +9,13 @@ namespace {
 
 TEST(EdgeNormalOrthogonalityTest, GradientMatchesFiniteDifferences) {
   EdgeNormalOrthogonality family;
-  family.AddElement({0, 1, 2});
+  family.Add({0, 1, 2});
   ExpectGradientMatchesFiniteDifferences(family, 0, {0.3, -0.5, 0.8, 1, 2, 3, -1, 0.5, 2});
 }
 
 TEST(EdgeNormalOrthogonalityTest, ZeroForAnEdgeInThePlane) {
   EdgeNormalOrthogonality family;
-  family.AddElement({0, 1, 2});
+  family.Add({0, 1, 2});
   const double x[9] = {0, 0, 1, 1, 2, 5, -3, 4, 5};  // n = e_z, both points at z = 5
   double phi, jac[9];
   family.EvaluateElement(0, x, &phi, jac);
@@ -27,7 +27,7 @@ TEST(EdgeNormalOrthogonalityTest, ZeroForAnEdgeInThePlane) {
 
 TEST(UnitNormalTest, GradientAndZeroOnUnitVectors) {
   UnitNormal family;
-  family.AddElement({0});
+  family.Add({0});
   ExpectGradientMatchesFiniteDifferences(family, 0, {0.3, -0.5, 0.8});
   const double n[3] = {0.6, 0.0, -0.8};
   double phi, jac[3];

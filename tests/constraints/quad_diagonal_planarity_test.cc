@@ -9,7 +9,7 @@ namespace {
 
 TEST(QuadDiagonalPlanarityTest, GradientMatchesFiniteDifferences) {
   QuadDiagonalPlanarity family;
-  family.AddElement({0, 1, 2, 3});
+  family.Add({0, 1, 2, 3});
   ExpectGradientMatchesFiniteDifferences(family, 0, {0, 0, 0, 1, 0, 0.2, 1.1, 1, 0, 0, 0.9, -0.1});
   ExpectGradientMatchesFiniteDifferences(
       family, 0, {0.3, -0.2, 0.1, 1.4, 0.1, 0.5, 0.2, 1.3, -0.4, -1.0, 0.6, 0.3});
@@ -17,7 +17,7 @@ TEST(QuadDiagonalPlanarityTest, GradientMatchesFiniteDifferences) {
 
 TEST(QuadDiagonalPlanarityTest, ZeroOnPlanarQuadAndDiagonalDistanceOtherwise) {
   QuadDiagonalPlanarity family;
-  family.AddElement({0, 1, 2, 3});
+  family.Add({0, 1, 2, 3});
   const double planar[12] = {0, 0, 1, 2, 0, 1, 2, 1.5, 1, -0.2, 1, 1};
   double phi, jac[12];
   family.EvaluateElement(0, planar, &phi, jac);

@@ -186,9 +186,8 @@ void AddANetFamilies(const PolyMesh& mesh, const ANetOptions& options, int verte
     for (size_t k = 0; k < layout_info.star_vertices.size(); ++k) {
       const int v = layout_info.star_vertices[k];
       const int normal = layout.Item(layout_info.normal_block, static_cast<int>(k));
-      unit->AddElement({normal});
-      for (int w : Ring(mesh, PolyMesh::VertexHandle(v)))
-        star->AddElement({normal, vertex[v], vertex[w]});
+      unit->Add({normal});
+      for (int w : Ring(mesh, PolyMesh::VertexHandle(v))) star->Add({normal, vertex[v], vertex[w]});
     }
   } else {
     auto* quads =
@@ -199,8 +198,8 @@ void AddANetFamilies(const PolyMesh& mesh, const ANetOptions& options, int verte
     for (int v : layout_info.star_vertices) {
       const std::vector<int> r = Ring(mesh, PolyMesh::VertexHandle(v));
       for (size_t i = 2; i + 1 < r.size(); ++i)
-        quads->AddElement({vertex[r[0]], vertex[r[1]], vertex[r[i]], vertex[r[i + 1]]});
-      quads->AddElement({vertex[r[0]], vertex[r[1]], vertex[r[2]], vertex[v]});
+        quads->Add({vertex[r[0]], vertex[r[1]], vertex[r[i]], vertex[r[i + 1]]});
+      quads->Add({vertex[r[0]], vertex[r[1]], vertex[r[2]], vertex[v]});
     }
   }
   if (reference != nullptr)
