@@ -13,7 +13,7 @@ namespace gproj {
 
 LinearWeingarten::LinearWeingarten(double weight, bool fixed, const Eigen::Vector3d& coefficients,
                                    double curvature_scale, std::string name)
-    : ConstraintFamily(std::move(name), 1, FamilyRole::kConstraint, weight),
+    : Term(std::move(name), LinearWeingartenResidual{}, FamilyRole::kConstraint, weight),
       fixed_(fixed),
       abc_(coefficients),
       curvature_scale_(curvature_scale) {}
@@ -24,13 +24,6 @@ double LinearWeingarten::RowScale(const Eigen::Vector3d& abc, double curvature_s
   return s > 0.0 ? 1.0 / s : 1.0;
 }
 
-void LinearWeingarten::EvaluateElement(int, const double* x, double* phi, double* jac) const {
-  const double f = RowScale();
-  phi[0] = f * (abc_[0] * x[kCurvatureH] + abc_[1] * x[kCurvatureK] + abc_[2]);
-  jac[kCurvatureH] = f * abc_[0];
-  jac[kCurvatureK] = f * abc_[1];
-}
-
 void LinearWeingarten::Update(const VariableLayout& layout, const Eigen::VectorXd& x) {
   if (fixed_ || num_elements() < 2) return;
   std::vector<double> h, k;
@@ -39,6 +32,8 @@ void LinearWeingarten::Update(const VariableLayout& layout, const Eigen::VectorX
     k.push_back(AuxiliaryValue(layout, x, element_items(e)[0], kCurvatureK));
   }
   abc_ = FitLine(h, k);
+  const LinearRelation relation = Relation();
+  for (int e = 0; e < num_elements(); ++e) data(e) = relation;
 }
 
 SurfaceLinearWeingarten::SurfaceLinearWeingarten(double weight, const Eigen::Vector3d& coefficients,
@@ -198,17 +193,8 @@ CurvatureCurveRelation::Curve CurvatureCurveRelation::FitCurve(const std::vector
 
 CurvatureCurveRelation::CurvatureCurveRelation(double weight, int curve_control_points,
                                                std::string name)
-    : ConstraintFamily(std::move(name), 1, FamilyRole::kConstraint, weight),
+    : Term(std::move(name), CurvatureCurveResidual{}, FamilyRole::kConstraint, weight),
       curve_control_points_(curve_control_points) {}
-
-void CurvatureCurveRelation::EvaluateElement(int e, const double* x, double* phi,
-                                             double* jac) const {
-  const Eigen::Vector2d& q = foot_[e];
-  const Eigen::Vector2d& nrm = normal_[e];
-  phi[0] = nrm[0] * (x[kCurvatureH] - q[0]) + nrm[1] * (x[kCurvatureK] - q[1]);
-  jac[kCurvatureH] = nrm[0];
-  jac[kCurvatureK] = nrm[1];
-}
 
 void CurvatureCurveRelation::Update(const VariableLayout& layout, const Eigen::VectorXd& x) {
   const int n = num_elements();
@@ -218,14 +204,13 @@ void CurvatureCurveRelation::Update(const VariableLayout& layout, const Eigen::V
     k[e] = AuxiliaryValue(layout, x, element_items(e)[0], kCurvatureK);
   }
   const Curve curve = FitCurve(h, k, curve_control_points_);
-  foot_.resize(n);
-  normal_.resize(n);
   for (int e = 0; e < n; ++e) {
     const double t = curve.ClosestParameter({h[e], k[e]});
-    foot_[e] = curve.Point(t);
+    CurveTangentLine& line = data(e);
+    line.foot = curve.Point(t);
     Eigen::Vector2d tangent = curve.Tangent(t);
     if (!(tangent.norm() > 0.0)) tangent = Eigen::Vector2d(1.0, 0.0);
-    normal_[e] = Eigen::Vector2d(-tangent.y(), tangent.x()).normalized();
+    line.normal = Eigen::Vector2d(-tangent.y(), tangent.x()).normalized();
   }
 }
 

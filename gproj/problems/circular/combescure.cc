@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "gproj/constraints/closeness.h"
 #include "gproj/constraints/edge_parallelism.h"
 #include "gproj/geometry/mesh/quad_shape.h"
 #include "gproj/problems/circular/circular_mesh.h"
@@ -26,27 +27,6 @@ std::string FaceName(const GridShape& shape, int i, int j) {
   return "face " + std::to_string(i * shape.cols + j) + " (grid " + std::to_string(i) + ", " +
          std::to_string(j) + ")";
 }
-
-// v − target = 0 as a hard constraint: fixes the translation of the parallel mesh.
-class PointAnchor : public ConstraintFamily {
- public:
-  PointAnchor() : ConstraintFamily("anchor", 3, FamilyRole::kConstraint, 1.0) {}
-  void Add(int item, const Eigen::Vector3d& target) {
-    targets_.push_back(target);
-    AddElement({item});
-  }
-  void EvaluateElement(int e, const double* x, double* phi, double* jac) const override {
-    std::fill(jac, jac + 9, 0.0);
-    for (int r = 0; r < 3; ++r) {
-      phi[r] = x[r] - targets_[e][r];
-      jac[r * 3 + r] = 1.0;
-    }
-  }
-  bool RowTouches(int, int row, int local) const override { return row == local; }
-
- private:
-  std::vector<Eigen::Vector3d> targets_;
-};
 
 }  // namespace
 
@@ -169,7 +149,9 @@ Problem MakeCombescureProblem(const PolyMesh& reference, const GridShape& shape,
     guides->AddEdge(item(a), item(b),
                     lengths.column[i] * (Point(reference, b) - Point(reference, a)).normalized());
   }
-  problem.AddFamily<PointAnchor>()->Add(item(0), lengths.origin);
+  // v − origin = 0 as a hard constraint: fixes the translation of the parallel mesh.
+  problem.AddFamily<Closeness>(3, 1.0, "anchor", FamilyRole::kConstraint)
+      ->AddTarget(item(0), lengths.origin.data());
   return problem;
 }
 
