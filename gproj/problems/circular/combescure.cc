@@ -128,30 +128,29 @@ Problem MakeCombescureProblem(const PolyMesh& reference, const GridShape& shape,
   const int block = problem.layout().AddBlock("vertices", shape.num_vertices(), 3);
   problem.ResizeToLayout();
   const Eigen::Vector3d shift = lengths.origin - Point(reference, 0);
+  const BlockItems item(problem.layout(), block);
   for (int v = 0; v < shape.num_vertices(); ++v)
-    problem.x().segment<3>(problem.layout().ItemOffset(problem.layout().Item(block, v))) =
-        Point(reference, v) + shift;
-  auto item = [&](int v) { return problem.layout().Item(block, v); };
+    problem.x().segment<3>(problem.layout().Index(block, v, 0)) = Point(reference, v) + shift;
   auto* parallel = problem.AddFamily<EdgeParallelism>();
   for (auto e : reference.edges()) {
     const auto h = reference.halfedge_handle(e, 0);
     const int a = reference.from_vertex_handle(h).idx(), b = reference.to_vertex_handle(h).idx();
-    parallel->AddEdge(item(a), item(b), Point(reference, b) - Point(reference, a));
+    parallel->AddEdge(item[a], item[b], Point(reference, b) - Point(reference, a));
   }
   auto* guides = problem.AddFamily<EdgeVector>(1.0, "guide edges");
   for (int j = 0; j < shape.cols; ++j) {
     const int a = shape.Vertex(0, j), b = shape.Vertex(0, j + 1);
-    guides->AddEdge(item(a), item(b),
+    guides->AddEdge(item[a], item[b],
                     lengths.row[j] * (Point(reference, b) - Point(reference, a)).normalized());
   }
   for (int i = 0; i < shape.rows; ++i) {
     const int a = shape.Vertex(i, 0), b = shape.Vertex(i + 1, 0);
-    guides->AddEdge(item(a), item(b),
+    guides->AddEdge(item[a], item[b],
                     lengths.column[i] * (Point(reference, b) - Point(reference, a)).normalized());
   }
   // v − origin = 0 as a hard constraint: fixes the translation of the parallel mesh.
   problem.AddFamily<Closeness>(3, 1.0, "anchor", FamilyRole::kConstraint)
-      ->AddTarget(item(0), lengths.origin.data());
+      ->AddTarget(item[0], lengths.origin.data());
   return problem;
 }
 
@@ -205,9 +204,7 @@ CeresOptions Combescure::ceres_options(int max_iterations) const {
   return CeresOptionsFor(options_.solver, max_iterations);
 }
 
-int Combescure::VertexOffset(int v) const {
-  return problem_.layout().ItemOffset(problem_.layout().Item(0, v));
-}
+int Combescure::VertexOffset(int v) const { return problem_.layout().Index(0, v, 0); }
 
 PolyMesh Combescure::MeshAt(const Eigen::VectorXd& x) const {
   PolyMesh mesh = reference_;

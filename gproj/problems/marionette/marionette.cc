@@ -146,25 +146,24 @@ Problem MakeMarionetteProblem(const MarionettePlan& plan, const std::vector<Mari
   const int block = problem.layout().AddBlock("heights", plan.num_vertices(), 1);
   problem.ResizeToLayout();
   problem.x().setZero();
+  const BlockItems height(problem.layout(), block);
   auto* planarity = problem.AddFamily<MarionettePlanarity>(1.0);
   for (int i = 0; i < plan.rows; ++i)
     for (int j = 0; j < plan.cols; ++j) {
       const int f = i * plan.cols + j;
-      planarity->AddQuad(problem.layout().Item(block, plan.Vertex(i, j)),
-                         problem.layout().Item(block, plan.Vertex(i + 1, j)),
-                         problem.layout().Item(block, plan.Vertex(i + 1, j + 1)),
-                         problem.layout().Item(block, plan.Vertex(i, j + 1)), plan.alpha[f],
-                         plan.beta[f]);
+      planarity->AddQuad(height[plan.Vertex(i, j)], height[plan.Vertex(i + 1, j)],
+                         height[plan.Vertex(i + 1, j + 1)], height[plan.Vertex(i, j + 1)],
+                         plan.alpha[f], plan.beta[f]);
     }
   if (!hard.empty()) {
     auto* guides =
         problem.AddFamily<ScalarTarget>("prescribed_heights", FamilyRole::kConstraint, hard_weight);
-    for (const auto& t : hard) guides->AddTarget(problem.layout().Item(block, t.vertex), t.height);
+    for (const auto& t : hard) guides->AddTarget(height[t.vertex], t.height);
   }
   if (!soft.empty()) {
     auto* target =
         problem.AddFamily<ScalarTarget>("target_heights", FamilyRole::kSoft, soft_weight);
-    for (const auto& t : soft) target->AddTarget(problem.layout().Item(block, t.vertex), t.height);
+    for (const auto& t : soft) target->AddTarget(height[t.vertex], t.height);
   }
   return problem;
 }

@@ -590,7 +590,7 @@ Problem MakeMarionetteMeshProblem(const MarionetteLines& lines,
   Eigen::VectorXd t = lines.plan_parameters;
   for (const MarionetteTarget& g : prescribed) t[g.vertex] = g.height;
   problem.x().segment(problem.layout().Index(t_block, 0, 0), nv) = t;
-  auto item = [&](int v) { return problem.layout().Item(t_block, v); };
+  const BlockItems item(problem.layout(), t_block);
   if (vertical) {
     auto* planarity = problem.AddFamily<MarionettePlanarity>();
     for (int f = 0; f < nf; ++f) {
@@ -613,8 +613,8 @@ Problem MakeMarionetteMeshProblem(const MarionetteLines& lines,
               &alpha, &beta))
         throw InputError("face " + std::to_string(f) +
                          " has a degenerate plan view: its vertices are collinear in x, y");
-      planarity->AddQuad(item(q[best]), item(q[(best + 1) % 4]), item(q[(best + 2) % 4]),
-                         item(q[(best + 3) % 4]), alpha, beta);
+      planarity->AddQuad(item[q[best]], item[q[(best + 1) % 4]], item[q[(best + 2) % 4]],
+                         item[q[(best + 3) % 4]], alpha, beta);
     }
   } else {
     auto* planarity = problem.AddFamily<LineQuadPlanarity>();
@@ -623,19 +623,19 @@ Problem MakeMarionetteMeshProblem(const MarionetteLines& lines,
       std::array<int, 4> items;
       std::array<Eigen::Vector3d, 4> o, d, p;
       for (int j = 0; j < 4; ++j) {
-        items[j] = item(q[j]);
+        items[j] = item[q[j]];
         o[j] = lines.origin[q[j]];
         d[j] = lines.direction[q[j]];
         p[j] = lines.Point(q[j], t[q[j]]);
       }
       const Eigen::Vector3d n = QuadPlanarity::InitialNormal(p[0], p[1], p[2], p[3]);
       problem.x().segment<3>(problem.layout().Index(n_block, f, 0)) = n;
-      planarity->AddQuad(problem.layout().Item(n_block, f), items, o, d);
+      planarity->AddQuad(BlockItems(problem.layout(), n_block)[f], items, o, d);
     }
   }
   if (!prescribed.empty()) {
     auto* guides = problem.AddFamily<ScalarTarget>("guides", FamilyRole::kConstraint);
-    for (const MarionetteTarget& g : prescribed) guides->AddTarget(item(g.vertex), g.height);
+    for (const MarionetteTarget& g : prescribed) guides->AddTarget(item[g.vertex], g.height);
   }
   return problem;
 }

@@ -102,11 +102,11 @@ VertexControl ApplyVertexControl(const PolyMesh& mesh, const MeshNormalization& 
         if (path.front() != path.back()) held[path.front()] = held[path.back()] = true;
         glide_paths.push_back(std::move(path));
       }
-  const VariableLayout& layout = problem->layout();
+  const BlockItems vertex(problem->layout(), vertex_block);
   for (int v = 0; v < n; ++v)
     if (held[v]) {
       out.held.push_back(v);
-      problem->SetConstant(layout.Item(vertex_block, v));
+      problem->SetConstant(vertex[v]);
     }
   if (options.glide_boundary) {
     out.glide = problem->AddFamily<PolylineGliding>(1.0, "boundary_gliding");
@@ -116,7 +116,7 @@ VertexControl ApplyVertexControl(const PolyMesh& mesh, const MeshNormalization& 
         points.push_back(norm.ToProblem(ToEigen(mesh.point(mesh.vertex_handle(v)))));
       const int id = out.glide->AddPolyline(std::move(points));
       for (int v : path)
-        if (!held[v]) out.glide->AddPoint(layout.Item(vertex_block, v), id);
+        if (!held[v]) out.glide->AddPoint(vertex[v], id);
     }
   }
   return out;
@@ -148,14 +148,14 @@ void AddReferenceCloseness(const PolyMesh& reference, const MeshNormalization& n
   const auto query = std::make_shared<const ClosestPointQuery>(moved);
   const SurfaceProjector projector = [query](const Eigen::Vector3d& q, Eigen::Vector3d* p,
                                              Eigen::Vector3d* n) { query->Project(q, p, n); };
-  const VariableLayout& layout = problem->layout();
+  const BlockItems vertex(problem->layout(), vertex_block);
   if (tangent_weight > 0.0) {
     auto* tangent = problem->AddFamily<SurfaceTangentCloseness>(projector, tangent_weight);
-    for (int v = 0; v < num_vertices; ++v) tangent->AddPoint(layout.Item(vertex_block, v));
+    for (int v = 0; v < num_vertices; ++v) tangent->AddPoint(vertex[v]);
   }
   if (point_weight > 0.0) {
     auto* point = problem->AddFamily<SurfacePointCloseness>(projector, point_weight);
-    for (int v = 0; v < num_vertices; ++v) point->AddPoint(layout.Item(vertex_block, v));
+    for (int v = 0; v < num_vertices; ++v) point->AddPoint(vertex[v]);
   }
 }
 

@@ -185,7 +185,7 @@ void AddANetFamilies(const PolyMesh& mesh, const ANetOptions& options, int verte
     auto* unit = problem->AddFamily<UnitNormal>("star_unit_normal", options.planarity_weight);
     for (size_t k = 0; k < layout_info.star_vertices.size(); ++k) {
       const int v = layout_info.star_vertices[k];
-      const int normal = layout.Item(layout_info.normal_block, static_cast<int>(k));
+      const int normal = BlockItems(layout, layout_info.normal_block)[static_cast<int>(k)];
       unit->Add({normal});
       for (int w : Ring(mesh, PolyMesh::VertexHandle(v))) star->Add({normal, vertex[v], vertex[w]});
     }

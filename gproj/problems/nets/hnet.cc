@@ -432,14 +432,13 @@ std::unique_ptr<VertexUpdate> BuildVertexUpdate(const PolyMesh& mesh,
   u->start = mesh;
   for (auto e : inner_edges) u->stencils.push_back(EdgeStencilOf(mesh, colour, e));
   const VariableLayout& layout = problem.layout();
+  const BlockItems edge(layout, u->edge_block), vertex(layout, u->vertex_block);
   if (!free_weights) {
     u->frame = problem.AddFamily<FramePointPlanarity>(options.frame_weight);
     for (size_t k = 0; k < inner_edges.size(); ++k) {
       const EdgeStencil& s = u->stencils[k];
-      std::vector<int> items = {layout.Item(u->edge_block, static_cast<int>(k))};
-      for (int i = 0; i < 6; ++i) items.push_back(layout.Item(u->vertex_block, s.b[i]));
-      u->frame->AddEdge(items[0], items[1], items[2], items[3], items[4], items[5], items[6], 1.0,
-                        1.0);
+      u->frame->AddEdge(edge[static_cast<int>(k)], vertex[s.b[0]], vertex[s.b[1]], vertex[s.b[2]],
+                        vertex[s.b[3]], vertex[s.b[4]], vertex[s.b[5]], 1.0, 1.0);
     }
     return u;
   }
@@ -447,26 +446,26 @@ std::unique_ptr<VertexUpdate> BuildVertexUpdate(const PolyMesh& mesh,
   for (int f = 0; f < faces; ++f)
     problem.x()[layout.Index(u->shape_block, f, 0)] = (*free_weights)[f];
   StartFrameNormals(*free_weights, u.get());
+  const BlockItems shape(layout, u->shape_block);
   auto* frame = problem.AddTerm<4, 3, 3, 3, 3, 3, 3, 3, 1, 1>(
       "frame_planarity", FramePointPlanarityWithWeightsResidual{}, FamilyRole::kConstraint,
       options.frame_weight);
   frame->AddElements(IndexRange(static_cast<int>(inner_edges.size())), [&](int k) {
     const EdgeStencil& s = u->stencils[k];
     std::array<int, 9> items;
-    items[0] = layout.Item(u->edge_block, k);
-    for (int i = 0; i < 6; ++i) items[1 + i] = layout.Item(u->vertex_block, s.b[i]);
-    items[7] = layout.Item(u->shape_block, s.left_face);
-    items[8] = layout.Item(u->shape_block, s.right_face);
+    items[0] = edge[k];
+    for (int i = 0; i < 6; ++i) items[1 + i] = vertex[s.b[i]];
+    items[7] = shape[s.left_face];
+    items[8] = shape[s.right_face];
     return items;
   });
   auto* near_one = problem.AddTerm<2, 1>("shape_near_one", ShapeParameterNearOneResidual{},
                                          FamilyRole::kSoft, options.shape_regularity);
-  near_one->AddElements(IndexRange(faces),
-                        [&](int f) { return std::array<int, 1>{layout.Item(u->shape_block, f)}; });
+  near_one->AddElements(IndexRange(faces), [&](int f) { return shape(f); });
   const double min_w = options.min_shape_parameter;
   AddInequalities<1, 1>(
       &problem, "shape_positive", [min_w](const auto* w, auto* r) { r[0] = w[0] - min_w; },
-      IndexRange(faces), [&](int f) { return std::array<int, 1>{layout.Item(u->shape_block, f)}; });
+      IndexRange(faces), [&](int f) { return shape(f); });
   return u;
 }
 

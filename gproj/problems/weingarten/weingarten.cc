@@ -190,8 +190,7 @@ std::vector<WeingartenProblem::SampleTerms> WeingartenProblem::AddCurvatureDefin
   problem_.ResizeToLayout();
   Eigen::VectorXd& x = problem_.x();
   for (int i = 0; i < nc; ++i)
-    x.segment<3>(layout.ItemOffset(layout.Item(control_block_, i))) =
-        scaled_.control.row(i).transpose();
+    x.segment<3>(layout.Index(control_block_, i, 0)) = scaled_.control.row(i).transpose();
   // Parameters are rescaled so that the mean speeds |s_u|, |s_v| are 1: E, F, G, Δ and n are
   // then O(1) and the definition rows are equally well conditioned for any knot domain.
   // H and K do not depend on the parametrisation.
@@ -235,10 +234,10 @@ std::vector<WeingartenProblem::SampleTerms> WeingartenProblem::AddCurvatureDefin
         stencil.weights[k][position[static_cast<int>(it.col())]] = it.value() * derivative_scale[k];
     }
     std::vector<int> items;
-    for (int c : stencil.control) items.push_back(layout.Item(control_block_, c));
+    for (int c : stencil.control) items.push_back(Items(control_block_)[c]);
     stencils.emplace_back(items, stencil);
     if (!definitions) continue;
-    const int forms = layout.Item(forms_block_, s), curvature = layout.Item(curvature_block_, s);
+    const int forms = Items(forms_block_)[s], curvature = Items(curvature_block_)[s];
     const Eigen::Matrix<double, 12, 1> exact = CurvatureAuxiliaries::ExactAuxiliary(derivatives[s]);
     const auto magnitudes =
         CurvatureAuxiliaries::RowMagnitudes(exact, options.target_mean_curvature);
@@ -329,7 +328,6 @@ void WeingartenProblem::AddGeodesicParallel() {
 
 void WeingartenProblem::AddRelations(const std::vector<SampleTerms>& stencils) {
   const WeingartenOptions& options = options_;
-  VariableLayout& layout = problem_.layout();
   const int ns = maps_.num_samples();
   if (options.linear_relation_weight > 0.0) {
     // Input units → scaled: κ_scaled = κ / scale, so a H + b K + c = 0 becomes
@@ -348,13 +346,13 @@ void WeingartenProblem::AddRelations(const std::vector<SampleTerms>& stencils) {
       linear_ = problem_.AddFamily<LinearWeingarten>(Squared(options.linear_relation_weight),
                                                      options.fixed_linear_relation, abc,
                                                      options.target_mean_curvature);
-      for (int s = 0; s < ns; ++s) linear_->AddSample(layout.Item(curvature_block_, s));
+      for (int s = 0; s < ns; ++s) linear_->AddSample(Items(curvature_block_)[s]);
     }
   }
   if (options.bspline_relation_weight > 0.0) {
     auto* curve = problem_.AddFamily<CurvatureCurveRelation>(
         Squared(options.bspline_relation_weight), options.bspline_relation_control_points);
-    for (int s = 0; s < ns; ++s) curve->AddSample(layout.Item(curvature_block_, s));
+    for (int s = 0; s < ns; ++s) curve->AddSample(Items(curvature_block_)[s]);
   }
 }
 
@@ -362,9 +360,8 @@ void WeingartenProblem::AddRelations(const std::vector<SampleTerms>& stencils) {
 void WeingartenProblem::AddControlNetTerms() {
   const BSplineSurface& input = reference_;
   const WeingartenOptions& options = options_;
-  VariableLayout& layout = problem_.layout();
   const int nc = input.num_control_points();
-  auto control = [&](int i, int j) { return layout.Item(control_block_, scaled_.Index(i, j)); };
+  auto control = [&](int i, int j) { return Items(control_block_)[scaled_.Index(i, j)]; };
   // Closeness and gliding are measured in units of the control net's mean edge length, so their
   // weights do not depend on the surface's size or on the net's resolution.
   double edge_sum = 0.0;
@@ -382,7 +379,7 @@ void WeingartenProblem::AddControlNetTerms() {
         3, Squared(options.soft_start * options.closeness_weight / mean_edge));
     for (int i = 0; i < nc; ++i) {
       const Eigen::Vector3d p = scaled_.control.row(i).transpose();
-      closeness->AddTarget(layout.Item(control_block_, i), p.data());
+      closeness->AddTarget(Items(control_block_)[i], p.data());
     }
   }
   if (options.shape_weight > 0.0) {
@@ -421,8 +418,7 @@ void WeingartenProblem::AddControlNetTerms() {
 void WeingartenProblem::AddBoundaryGliding(double mean_edge) {
   const BSplineSurface& input = reference_;
   const WeingartenOptions& options = options_;
-  VariableLayout& layout = problem_.layout();
-  auto control = [&](int i, int j) { return layout.Item(control_block_, scaled_.Index(i, j)); };
+  auto control = [&](int i, int j) { return Items(control_block_)[scaled_.Index(i, j)]; };
   auto* glide = problem_.AddFamily<PolylineGliding>(Squared(options.boundary_weight / mean_edge));
   // Held like the gliding rows, whatever the soft schedule does to closeness.
   auto* corners = problem_.AddFamily<Closeness>(3, Squared(options.boundary_weight / mean_edge),
@@ -453,9 +449,8 @@ void WeingartenProblem::AddBoundaryGliding(double mean_edge) {
 void WeingartenProblem::SetSampleAuxiliaries(const VariableLayout& layout, int s,
                                              const Eigen::Matrix<double, 12, 1>& a,
                                              Eigen::VectorXd* x) const {
-  x->segment<kFormsDim>(layout.ItemOffset(layout.Item(forms_block_, s))) = a.head<kFormsDim>();
-  x->segment<kCurvatureDim>(layout.ItemOffset(layout.Item(curvature_block_, s))) =
-      a.tail<kCurvatureDim>();
+  x->segment<kFormsDim>(layout.Index(forms_block_, s, 0)) = a.head<kFormsDim>();
+  x->segment<kCurvatureDim>(layout.Index(curvature_block_, s, 0)) = a.tail<kCurvatureDim>();
 }
 
 void WeingartenProblem::GatherControlPoints(const Eigen::VectorXd& x) const {
@@ -464,8 +459,7 @@ void WeingartenProblem::GatherControlPoints(const Eigen::VectorXd& x) const {
   const int nc = reference_.num_control_points();
   control_buffer_.resize(nc, 3);
   for (int i = 0; i < nc; ++i)
-    control_buffer_.row(i) =
-        x.segment<3>(layout.ItemOffset(layout.Item(control_block_, i))).transpose();
+    control_buffer_.row(i) = x.segment<3>(layout.Index(control_block_, i, 0)).transpose();
 }
 
 double WeingartenProblem::MinNormalCosineAt(const Eigen::VectorXd& x) const {
@@ -514,8 +508,7 @@ void WeingartenProblem::SetGradientAuxiliaries(Eigen::VectorXd* x) const {
         g[3 * p + 2] = dv * dv / unit;
         g[6 + p] = (G * du * du - 2 * F * du * dv + E * dv * dv) / (D * unit);
       }
-      x->segment<kGeodesicAuxDim>(
-          layout.ItemOffset(layout.Item(gradient_block_, maps_.Index(a, b)))) = g;
+      x->segment<kGeodesicAuxDim>(layout.Index(gradient_block_, maps_.Index(a, b), 0)) = g;
     }
 }
 
@@ -558,8 +551,7 @@ BSplineSurface WeingartenProblem::ScaledToInput(const Eigen::VectorXd& x) const 
   const VariableLayout& layout = problem_.layout();
   for (int i = 0; i < out.num_control_points(); ++i)
     out.control.row(i) =
-        (x.segment<3>(layout.ItemOffset(layout.Item(control_block_, i))) / scale_ + centre_)
-            .transpose();
+        (x.segment<3>(layout.Index(control_block_, i, 0)) / scale_ + centre_).transpose();
   return out;
 }
 

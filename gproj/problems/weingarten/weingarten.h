@@ -116,15 +116,11 @@ class WeingartenProblem : public GuidedProblem {
 
   // Items of sample (a, b): its forms (n, E, F, G, Δ, L, M, N), its curvatures (K, H), its
   // gradient auxiliaries.
-  int FormsItem(int a, int b) const {
-    return problem_.layout().Item(forms_block_, maps_.Index(a, b));
-  }
-  int CurvatureItem(int a, int b) const {
-    return problem_.layout().Item(curvature_block_, maps_.Index(a, b));
-  }
-  int GradientItem(int a, int b) const {
-    return problem_.layout().Item(gradient_block_, maps_.Index(a, b));
-  }
+  int FormsItem(int a, int b) const { return Items(forms_block_)[maps_.Index(a, b)]; }
+  int CurvatureItem(int a, int b) const { return Items(curvature_block_)[maps_.Index(a, b)]; }
+  int GradientItem(int a, int b) const { return Items(gradient_block_)[maps_.Index(a, b)]; }
+  // The items of one of the problem's blocks (control points, forms, curvatures, gradients).
+  BlockItems Items(int block) const { return BlockItems(problem_.layout(), block); }
 
   BSplineSurface ScaledToInput(const Eigen::VectorXd& x) const;
   WeingartenMeasures MeasuresAt(const Eigen::VectorXd& x) const;
