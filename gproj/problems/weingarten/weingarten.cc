@@ -144,6 +144,12 @@ WeingartenProblem::WeingartenProblem(const BSplineSurface& input, const Weingart
   AddAlignment();
   if (options.geodesic_parallel_weight > 0.0) AddGeodesicParallel();
   AddRelations(stencils);
+  tolerance_ = options.tolerance;
+  if (tolerance_ == 0.0 && options.fixed_linear_relation && (linear_ || surface_linear_)) {
+    const Eigen::Vector3d abc = LinearRelation();             // input units, a² + b² = 1
+    const double k = options.target_mean_curvature * scale_;  // κ in input units
+    tolerance_ = kDefaultRelationShare * (std::abs(abc[0]) * k + std::abs(abc[1]) * k * k);
+  }
   AddControlNetTerms();
   if (options.prevent_folds) {
     fold_grid_ = GridNormals(input, kFoldGridFactor * su, kFoldGridFactor * sv);
@@ -543,7 +549,7 @@ NamedValues WeingartenProblem::MeasureAt(const Eigen::VectorXd& x) const {
 }
 
 bool WeingartenProblem::MeetsTolerance(const NamedValues& measures) const {
-  return ValueOf(measures, options_.target_measure()) <= options_.tolerance;
+  return ValueOf(measures, options_.target_measure()) <= tolerance_;
 }
 
 BSplineSurface WeingartenProblem::ScaledToInput(const Eigen::VectorXd& x) const {

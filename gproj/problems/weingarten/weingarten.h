@@ -89,7 +89,14 @@ class WeingartenProblem : public GuidedProblem {
   CeresOptions ceres_options(int max_iterations) const override;
   NamedValues MeasureAt(const Eigen::VectorXd& x) const override;
   bool MeetsTolerance(const NamedValues& measures) const override;
-  bool HasTolerance() const override { return options_.tolerance > 0.0; }
+  // The tolerance asked, or with none and a fixed linear relation the relation's own: the run
+  // then takes the preset's iterations and is converged when every sample meets the relation
+  // to kDefaultRelationShare of its natural size |a| κ + |b| κ² (κ the input's typical
+  // principal curvature). Without either the run minimises and has no tolerance.
+  bool HasTolerance() const override { return tolerance_ > 0.0; }
+  // Only a tolerance asked stops the run when met.
+  bool StopsAtTolerance() const override { return options_.tolerance > 0.0; }
+  double tolerance() const { return tolerance_; }
 
   // Current surface in input units.
   BSplineSurface Result() const;
@@ -142,6 +149,7 @@ class WeingartenProblem : public GuidedProblem {
   SampleMaps maps_;
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();
   double scale_ = 1.0;
+  double tolerance_ = 0.0;                    // HasTolerance()
   double alignment_scale_ = 1.0;              // 1 / RMS |∇H| |∇K| of the input, scaled units
   std::array<double, 5> derivative_scale_{};  // parameters rescaled to unit mean speed
   std::vector<double> inv_du_, inv_dv_;       // central-difference factors per sample row

@@ -21,6 +21,10 @@ enum class CurvatureRelation { kNone, kLinear, kBSpline };
 // samples").
 constexpr int kRelationSamplesPerControl = 3;
 
+// A fixed linear relation run without a tolerance asked is converged when every sample meets
+// the relation to this share of its natural size |a| κ + |b| κ² (WeingartenProblem).
+constexpr double kDefaultRelationShare = 0.01;
+
 // Guided projection's defaults for Weingarten surfaces (003 eq. 11): 10 iterations, ω_f = 0.2,
 // ε = 1e-3, no residual tolerance (the alignment is minimised, not driven to zero), auxiliaries
 // kept in the factorisation; soft_weight_decay 0.5 is the relaxation of the soft start.

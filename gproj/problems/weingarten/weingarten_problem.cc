@@ -119,10 +119,13 @@ void AddWeightOptions(OptionSchema<S>* schema) {
 // The tolerance, mold clustering and paneling.
 void AddMoldOptions(OptionSchema<S>* schema) {
   OptionSchema<S>& s = *schema;
-  s.Custom("tolerance", OptionType::kNumber,
-           "Converged when the misalignment (with linear: max relation residual, input units) "
-           "is <= this (not given: none, the preset's iterations are run)",
-           nullptr, [](const nlohmann::json& v, S* x) { x->settings.tolerance = v.get<double>(); })
+  s.Custom(
+       "tolerance", OptionType::kNumber,
+       "Converged when the misalignment (with linear: max relation residual, input units) "
+       "is <= this, and the run stops there (not given: the preset's iterations are run; with a "
+       "fixed linear relation they are converged when it holds to 1% of |a| k + |b| k^2, k "
+       "the input's typical principal curvature; otherwise there is no tolerance)",
+       nullptr, [](const nlohmann::json& v, S* x) { x->settings.tolerance = v.get<double>(); })
       .Positive();
   s.Field<int>("molds", OptionType::kInt,
                "Cluster the samples into at most this many molds in the (H, sqrt K) plane (0: "
@@ -227,8 +230,8 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   }
   RunResult result;
   result.report = run.report;
-  result.tolerance_measure = options.tolerance > 0.0 ? options.target_measure() : "";
-  result.tolerance = options.tolerance;
+  result.tolerance_measure = run.tolerance > 0.0 ? options.target_measure() : "";
+  result.tolerance = run.tolerance;
   std::optional<PanelComparison> panels;
   if (!run.report.failed && s.panels.enabled()) {
     context.Headline("paneling the input and the result (" + std::to_string(s.panels.panels_u) +

@@ -116,6 +116,7 @@ WeingartenRun RunWeingarten(const BSplineSurface& input, const WeingartenOptions
     if (run.report.failed) return run;
     current = problem.Result();
     run.relation = problem.LinearRelation();
+    run.tolerance = problem.tolerance();
     run.levels.push_back({level, current.nu, current.nv, run.su, run.sv, level_report.variables,
                           level_report.iterations, ValueOf(level_report.final, "misalignment")});
   }
@@ -157,8 +158,8 @@ nlohmann::json WeingartenReportFacts(const WeingartenOptions& options, const Wei
       {"steps", options.project_auxiliaries ? "projected"
                 : options.solver.monotone   ? "monotone"
                                             : "plain"},
-      {"target", options.tolerance > 0.0 ? nlohmann::json(options.target_measure()) : nullptr},
-      {"tolerance", options.tolerance},
+      {"target", run.tolerance > 0.0 ? nlohmann::json(options.target_measure()) : nullptr},
+      {"tolerance", run.tolerance},
       {"samples", {run.su, run.sv}},
       {"levels", levels},
       {"refine_method", options.refine_by_refit ? "refit" : "insert"}};

@@ -69,6 +69,7 @@ struct WeingartenRun {
   int su = 0, sv = 0;                // the last level's samples
   Eigen::Vector3d relation = Eigen::Vector3d::Zero();  // the linear relation, input units
   bool with_relation = false;
+  double tolerance = 0.0;  // the last level's (WeingartenProblem::tolerance; 0: none)
   // The clustering of the result's (and the input's) samples into molds, when asked.
   std::optional<MoldClustering> molds, molds_before;
   // Regularity of the input and the result on a grid 4× as dense as the samples: a fold (the

@@ -614,6 +614,43 @@ TEST(WeingartenTest, CeresAndGuidedProjectionReachTheSameObjectiveFromTheSameSta
               1e-4 * gp.Measures().max_relation_residual);
 }
 
+// Without a tolerance asked, a fixed relation is still the run's target: the preset's
+// iterations all run (nothing stops early) and the result is converged only if every sample
+// meets the relation to 1% of its natural size; cut short, the same run is not converged. A run
+// without a relation has no tolerance, and says so instead of "maximum number of iterations".
+TEST(WeingartenTest, AFixedRelationWithoutAToleranceIsJudgedAtTheEnd) {
+  const WeingartenOptions o = Fig3Options(1.0, 0.0, 0.1);
+  ASSERT_EQ(o.tolerance, 0.0);
+  WeingartenProblem full(Bump(8), o);
+  ASSERT_TRUE(full.HasTolerance());
+  EXPECT_FALSE(full.StopsAtTolerance());
+  const RunReport met = full.Run();
+  ASSERT_FALSE(met.failed) << met.termination;
+  EXPECT_EQ(met.iterations, o.solver.max_iterations);
+  EXPECT_TRUE(met.converged) << met.termination;
+  EXPECT_LE(ValueOf(met.final, "max_relation_residual"), full.tolerance());
+  EXPECT_EQ(met.termination.rfind("CONVERGENCE: the problem's tolerance is met at the end", 0), 0u)
+      << met.termination;
+
+  WeingartenOptions short_options = o;
+  short_options.solver.max_iterations = 1;
+  WeingartenProblem cut(Bump(8), short_options);
+  const RunReport missed = cut.Run();
+  ASSERT_FALSE(missed.failed) << missed.termination;
+  EXPECT_GT(ValueOf(missed.final, "max_relation_residual"), cut.tolerance());
+  EXPECT_FALSE(missed.converged) << missed.termination;
+  EXPECT_EQ(missed.termination.rfind("NO_CONVERGENCE", 0), 0u) << missed.termination;
+
+  WeingartenOptions none = WeingartenPreset("fig1");
+  none.solver.max_iterations = 2;
+  WeingartenProblem minimise(Bump(8), none);
+  EXPECT_FALSE(minimise.HasTolerance());
+  const RunReport completed = minimise.Run();
+  EXPECT_TRUE(completed.converged) << completed.termination;
+  EXPECT_EQ(completed.termination.rfind("COMPLETED: no tolerance was asked", 0), 0u)
+      << completed.termination;
+}
+
 // A target on the fixed relation: the run stops once every sample meets it, and is converged
 // only then; an unreachable target leaves the run unconverged after its iterations.
 TEST(WeingartenTest, ToleranceOnTheRelationStopsTheRunWhenMet) {
