@@ -163,6 +163,7 @@ int RunProblemCommand(const ProblemSpec& spec, const ProblemArgs& args) {
   try {
     const RunInputs inputs = ReadInputs(spec, args);
     result = RunProblem(spec, inputs, options, context);
+    result.report.termination = SpellOptions(result.report.termination, true);
     written = WriteResult(spec, args, inputs, options, result);
   } catch (const InputError& e) {
     std::cerr << name << ": " << SpellOptions(e.what(), true) << "\n";

@@ -1,5 +1,12 @@
 #include "python/problem_solve.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
 #include "gproj/common/input_error.h"
 #include "gproj/problems/run/guided_problem.h"
 #include "python/run_bridge.h"
@@ -58,12 +65,42 @@ py::dict CeresSummaryDict(const CeresSummary& s) {
   return d;
 }
 
+// max |φ| over the rows of the constraint families at the problem's x (their frozen
+// coefficients as the solve left them).
+double MaxConstraintResidual(const Problem& problem) {
+  const VariableLayout& layout = problem.layout();
+  double worst = 0.0;
+  std::vector<double> local, phi, jac;
+  for (int f = 0; f < problem.num_families(); ++f) {
+    const ConstraintFamily& family = problem.family(f);
+    if (family.role() != FamilyRole::kConstraint) continue;
+    phi.resize(family.rows_per_element());
+    for (int e = 0; e < family.num_elements(); ++e) {
+      local.clear();
+      for (int k = 0; k < family.element_num_items(e); ++k) {
+        const int item = family.element_items(e)[k];
+        const double* begin = problem.x().data() + layout.ItemOffset(item);
+        local.insert(local.end(), begin, begin + layout.ItemDim(item));
+      }
+      jac.resize(phi.size() * local.size());
+      family.EvaluateElement(e, local.data(), phi.data(), jac.data());
+      for (double v : phi) worst = std::max(worst, std::abs(v));
+    }
+  }
+  return worst;
+}
+
 }  // namespace
 
 py::dict SolveProblem(Problem* problem, ErrorSlot* errors, const std::string& solver,
                       const py::object& callback, const GenericSolveArgs& args) {
-  if (solver != "gp" && solver != "ceres")
-    throw InputError("solver must be gp or ceres, not '" + solver + "'");
+  SolverKind kind = SolverKind::kDirect;
+  try {
+    kind = SolverKindFromName(solver);
+  } catch (const std::invalid_argument&) {
+  }
+  if (kind == SolverKind::kDirect)
+    throw InputError("`solver` must be gp or ceres, not '" + solver + "'");
   std::string why;
   if (!args.ceres.IsValid(&why)) throw InputError("invalid option: " + why);
   errors->error.reset();
@@ -72,7 +109,7 @@ py::dict SolveProblem(Problem* problem, ErrorSlot* errors, const std::string& so
     return bridge.OnRecord(record) && errors->empty();
   };
   py::dict summary;
-  if (solver == "gp") {
+  if (kind == SolverKind::kGuidedProjection) {
     const SolverSummary s = bridge.Call([&] {
       return Solve(args.gp, problem, [&](const IterationRecord& r, const Eigen::VectorXd&) {
         return go_on(ToRunRecord(r)) ? CallbackResult::kContinue : CallbackResult::kAbort;
@@ -89,6 +126,21 @@ py::dict SolveProblem(Problem* problem, ErrorSlot* errors, const std::string& so
     });
     errors->RethrowIfAny();
     summary = CeresSummaryDict(s);
+    // Ceres converges on the whole objective; the constraint rows decide, as they do for
+    // guided projection (residual_tolerance).
+    const double worst = MaxConstraintResidual(*problem);
+    summary["max_constraint"] = worst;
+    const double tolerance = args.gp.residual_tolerance;
+    if (summary["converged"].cast<bool>() && tolerance > 0.0 && !(worst <= tolerance)) {
+      char text[160];
+      std::snprintf(text, sizeof(text),
+                    "Ceres converged with a constraint row at |phi| = %.3g, above "
+                    "residual_tolerance %.3g",
+                    worst, tolerance);
+      summary["converged"] = false;
+      summary["termination"] = "STALLED";
+      summary["message"] = text;
+    }
   }
   summary["objective"] = EvaluateObjective(problem, args.gp.fairness_weight, problem->x());
   return summary;

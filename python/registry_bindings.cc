@@ -262,8 +262,9 @@ py::object Call(const ProblemSpec& spec, const py::args& args, const py::kwargs&
   RunContext context;
   context.on_record = bridge.callback();
   context.outputs = call.outputs;
-  const RunResult result =
+  RunResult result =
       bridge.Call([&] { return RunProblem(spec, call.inputs, call.options, context); });
+  result.report.termination = SpellOptions(result.report.termination, false);
   const py::module_ warnings = py::module_::import("warnings");
   for (const RunMessage& message : result.messages)
     if (message.kind == RunMessage::Kind::kWarning)

@@ -117,6 +117,19 @@ def test_cyclidic_equals_the_command_line(cli):
         gproj.cyclidic(V, F, normal=[0, 0, 0])
 
 
+def test_cyclidic_calls_the_callback_and_stops_on_false():
+    V, F = gproj.read_mesh(str(DATA / "revolution_13x17.obj"))
+    records = []
+    _, report = gproj.cyclidic(V, F, segments=2,
+                               callback=lambda record: records.append(record) or True)
+    assert len(records) > 1 and len(records) == len(report["history"])
+    assert records[-1]["smoothness_energy"] <= records[0]["smoothness_energy"]
+    assert report["status"] == "CONVERGENCE"
+    _, stopped = gproj.cyclidic(V, F, segments=2, callback=lambda record: False)
+    assert stopped["status"] == "USER_ABORT" and not stopped["converged"]
+    assert len(stopped["history"]) == 1
+
+
 def test_canal_from_two_curves_equals_the_command_line(cli):
     first, second = DATA / "canal_curve_fine.txt", DATA / "canal_second_curve.txt"
     cli.run("canal", first, "--second-curve", second, "--normal", "0,0,1", "--segments", 6,

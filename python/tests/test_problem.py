@@ -141,3 +141,18 @@ def test_items_outside_the_layout_and_duplicate_names_are_refused():
     p.add_term("row", row, 1, p.items(points)[:, None])
     with pytest.raises(ValueError, match="term name 'row' is empty or already used"):
         p.add_term("row", row, 1, p.items(points)[:, None])
+
+
+def test_incompatible_constraints_are_not_converged_by_either_solver():
+    """|x|^2 = 1 and |x|^2 = 4 on one point: both solvers end between them, and neither may call
+    that converged while a constraint row is 1.5 away from zero."""
+    for solver in ("gp", "ceres"):
+        p = gproj.Problem()
+        point = p.add_block("point", 1, 2)
+        p.set_values(point, np.array([[0.7, 0.9]]))
+        for name, r2 in (("unit", 1.0), ("double", 4.0)):
+            p.add_term(name, lambda x, element, r2=r2: ([x @ x - r2], [2.0 * x]), 1,
+                       p.items(point)[:, None])
+        summary = p.solve(solver, residual_tolerance=1e-10)
+        assert not summary["converged"], (solver, summary["termination"], summary["message"])
+        assert summary["termination"] != "CONVERGENCE"

@@ -1,11 +1,15 @@
 """What every run shares: the callback's records and stop, Ctrl-C, errors naming the keyword."""
 import os
+import pathlib
 import signal
 import threading
 
+import numpy as np
 import pytest
 
 import gproj
+
+DATA = pathlib.Path(__file__).resolve().parents[2] / "examples" / "data"
 
 
 def test_callback_gets_history_records_and_can_stop():
@@ -35,6 +39,28 @@ def test_ceres_callback_stops():
     V, F = gproj.grid(nu=5, nv=5, noise=0.05)
     _, report = gproj.planarize(V, F, solver="ceres", callback=lambda record: False)
     assert len(report["history"]) == 1
+    assert report["status"] == "USER_ABORT" and not report["converged"], report["termination"]
+    assert report["termination"].startswith("USER_ABORT")
+
+
+def test_a_smooth_canal_stopped_by_its_callback_is_a_user_abort():
+    curve = np.loadtxt(DATA / "canal_curve.txt")
+    result = gproj.canal(curve, first_point=[-0.5, 0.5, 2], length=2, smooth=True,
+                         callback=lambda record: False)
+    report = result[-1]
+    assert report["status"] == "USER_ABORT", report["termination"]
+    assert not report["converged"]
+
+
+def test_every_status_is_one_of_the_run_layers():
+    V, F = gproj.grid(nu=5, nv=5, noise=0.05)
+    statuses = {"CONVERGENCE", "DIRECT", "COMPLETED", "NO_CONVERGENCE", "STALLED",
+                "USER_ABORT", "FAILURE"}
+    for kwargs in ({}, {"max_iterations": 1, "tolerance": 1e-14}, {"solver": "ceres"}):
+        _, report = gproj.planarize(V, F, **kwargs)
+        assert report["status"] in statuses
+        assert report["termination"].startswith(report["status"])
+        assert report["converged"] == (report["status"] in {"CONVERGENCE", "DIRECT", "COMPLETED"})
 
 
 def test_callback_exception_propagates():

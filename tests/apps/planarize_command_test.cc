@@ -340,7 +340,10 @@ TEST_F(PlanarizeCommandTest, HNetWithoutSettledWeightsExitsThree) {
   EXPECT_TRUE(fs::exists(dir_ / "h.json"));
   const nlohmann::json report = nlohmann::json::parse(Slurp(dir_ / "r.json"));
   EXPECT_FALSE(report["converged"].get<bool>());
-  EXPECT_EQ(report["termination"], "maximum number of rounds reached");
+  EXPECT_EQ(report["status"], "NO_CONVERGENCE");
+  EXPECT_EQ(report["termination"],
+            "NO_CONVERGENCE: the problem's tolerance is not met (maximum number of rounds "
+            "reached)");
 }
 
 TEST_F(PlanarizeCommandTest, ANetRefusesOddValenceAndNonQuads) {

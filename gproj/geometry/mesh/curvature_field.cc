@@ -399,7 +399,7 @@ DirectionField EstimateDirectionField(const PolyMesh& mesh, DirectionKind kind,
         "no vertex could be fitted: none has " + std::to_string(options.min_points) +
         " vertices within " + std::to_string(options.max_rings) + " rings (the mesh has " +
         std::to_string(n) + ")" +
-        (static_cast<int>(n) >= 10 ? "; lower --neighbours" : ": too few vertices for a jet fit"));
+        (static_cast<int>(n) >= 10 ? "; lower `neighbours`" : ": too few vertices for a jet fit"));
   // Principal directions form a cross (4-fold: d1 and d2 may trade places across the field, so
   // an umbilic can split into singularities of index ±¼); the asymptotic pair is symmetric
   // about the line d1 only (2-fold: its two families never trade places).

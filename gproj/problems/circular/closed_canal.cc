@@ -312,7 +312,7 @@ RunReport ClosedCanalRunReport(const ClosedCanalSurface& surface, const ClosedCa
   char why[240];
   if (!surface.frame_closes)
     std::snprintf(why, sizeof(why),
-                  "the frame comes back %.3g deg off after the loop (--frame-tolerance %.1e)",
+                  "the frame comes back %.3g deg off after the loop (`frame_tolerance` %.1e)",
                   ValueOf(m, "frame_closure_deg"), options.frame_tolerance_deg);
   else if (!surface.welded)
     std::snprintf(why, sizeof(why),

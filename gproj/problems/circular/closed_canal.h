@@ -115,8 +115,8 @@ Eigen::Vector3d DefaultClosedCanalNormal(const CircularStripInput& input);
 
 // Why a canal mesh of a circular strip has crossed quads (CrossedQuadsFault's hint).
 inline constexpr const char* kCrossedQuadsHint =
-    "the frame makes the plane steps between the circles pass each other; try another --normal "
-    "or --psi";
+    "the frame makes the plane steps between the circles pass each other; try another `normal` "
+    "or `psi`";
 
 // The run's report from `construction` (timed from before the build), converged when the ring
 // closes (the frame and the curvature lines) and no quad is crossed; the termination says why

@@ -78,6 +78,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   const Construction construction(
       options.given_frame ? ConstructionMethod::kClosedForm : ConstructionMethod::kBfgs,
       options.given_frame ? "frame given" : "frame by eq. 5");
+  options.callback = [&context](const RunRecord& record) { return context.Record(record); };
   const CyclidicMeshResult r = CyclidicSurfaceOfMesh(mesh, options, source);
   RunResult result;
   result.report = CyclidicRunReport(r, settings.tangent_tolerance, construction);

@@ -471,8 +471,38 @@ double GridNetEnergy(const CyclidicNet& net) {
   return energy;
 }
 
+namespace {
+
+// Records every iterate of the frame's BFGS and asks the run's callback.
+class FairingRecorder final : public ceres::IterationCallback {
+ public:
+  FairingRecorder(double scale, const RunCallback& callback, GridFrameFairing* out)
+      : scale_(scale), callback_(callback), out_(out) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
+    RunRecord record;
+    record.iteration = s.iteration;
+    record.energy = s.cost;
+    record.step = s.step_norm;
+    record.max_constraint = NAN;  // no constraint rows
+    record.seconds = s.iteration_time_in_seconds;
+    record.measures = {{"smoothness_energy", s.cost / scale_}};
+    out_->history.push_back(record);
+    if (!callback_ || callback_(record)) return ceres::SOLVER_CONTINUE;
+    out_->aborted = true;
+    return ceres::SOLVER_ABORT;
+  }
+
+ private:
+  double scale_;
+  const RunCallback& callback_;
+  GridFrameFairing* out_;
+};
+
+}  // namespace
+
 GridFrameFairing FairGridFrame(const GridShape& shape, const std::vector<Eigen::Vector3d>& points,
-                               const FrameAngles& start, int max_iterations) {
+                               const FrameAngles& start, int max_iterations,
+                               const RunCallback& callback) {
   double edge = 0.0;
   int edges = 0;
   for (int i = 0; i <= shape.rows; ++i)
@@ -493,6 +523,8 @@ GridFrameFairing FairGridFrame(const GridShape& shape, const std::vector<Eigen::
   options.line_search_direction_type = ceres::BFGS;
   options.max_num_iterations = max_iterations;
   options.logging_type = ceres::SILENT;
+  FairingRecorder recorder(scale, callback, &out);
+  options.callbacks.push_back(&recorder);
   ceres::GradientProblemSolver::Summary summary;
   ceres::Solve(options, problem, x, &summary);
   out.angles = {x[0], x[1], x[2]};
@@ -765,7 +797,7 @@ CyclidicMeshResult CyclidicSurfaceOfMesh(const PolyMesh& mesh, const CyclidicMes
   } else {
     FrameAngles start = DefaultGridAngles(shape, points);
     start.psi = options.angles.psi;
-    r.fairing = FairGridFrame(shape, points, start, options.max_iterations);
+    r.fairing = FairGridFrame(shape, points, start, options.max_iterations, options.callback);
     r.angles = r.fairing.angles;
     frame = r.fairing.frame;
   }
@@ -776,7 +808,8 @@ CyclidicMeshResult CyclidicSurfaceOfMesh(const PolyMesh& mesh, const CyclidicMes
     char text[200];
     std::snprintf(text, sizeof(text),
                   "face %d is not circular: the frames carried around it miss by %.3g deg "
-                  "(tolerance %.1e); make the mesh circular first (gproj planarize --circular)",
+                  "(`closure_tolerance` %.1e); make the mesh circular first (planarize with "
+                  "`circular`)",
                   face, closure, options.closure_tolerance);
     throw InputError(path.empty() ? text : path + ": " + text);
   }
@@ -826,10 +859,15 @@ RunReport CyclidicRunReport(const CyclidicMeshResult& result, double tangent_tol
   const std::string fault = CyclidicSurfaceFault(result.final, tangent_tolerance);
   RunReport report = construction.Finish(result.initial, result.final, fault.empty());
   report.iterations = result.fairing.iterations;
+  report.history = result.fairing.history;
   report.termination =
       fault.empty()
           ? (result.given_frame ? "frame given" : "frame by eq. 5: " + result.fairing.message)
           : fault;
+  if (result.fairing.aborted) {
+    report.converged = false;
+    report.termination = "USER_ABORT: the frame's minimisation was stopped by the callback";
+  }
   return report;
 }
 

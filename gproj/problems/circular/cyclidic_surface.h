@@ -107,7 +107,9 @@ struct GridFrameFairing {
   double initial_energy = 0.0, final_energy = 0.0;
   int iterations = 0;
   bool converged = false;
-  std::string message;  // Ceres' report line
+  bool aborted = false;            // stopped by the callback
+  std::string message;             // Ceres' report line
+  std::vector<RunRecord> history;  // every iterate (energy and smoothness_energy: eq. 5)
 };
 
 // The frame at (0, 0) (λ, θ, ψ) that minimises eq. 5 over the net's edges (000 §3.3: the
@@ -115,7 +117,8 @@ struct GridFrameFairing {
 // gradients by automatic differentiation. The senses of `frame` are turned towards the first
 // edges as in GridStartFrame (eq. 5 does not see them; the patches do).
 GridFrameFairing FairGridFrame(const GridShape& shape, const std::vector<Eigen::Vector3d>& points,
-                               const FrameAngles& start, int max_iterations = 200);
+                               const FrameAngles& start, int max_iterations = 200,
+                               const RunCallback& callback = nullptr);
 
 // A canal strip's net: row 0 the curve P_0..P_n, row 1 the points Q_k; the strip's frame at P_0.
 CyclidicNet CyclidicNetOfStrip(const CyclidicStrip& strip);
@@ -163,6 +166,7 @@ struct CyclidicMeshOptions {
   FrameAngles angles;        // with given_frame; else only its ψ (the minimisation's start)
   int max_iterations = 200;  // BFGS iterations for the frame
   double closure_tolerance = 1e-4;  // degrees: frames carried around a face may miss by this
+  RunCallback callback;             // called with every iterate of the frame's BFGS; false stops
   bool IsValid(std::string* why) const;
 };
 

@@ -93,8 +93,8 @@ MRevolutionChoice ChooseCentre(const std::array<Eigen::Vector3d, 4>& quad,
       const double off3 = DistanceToCircle(quad[2], FitCircle(a, 3)) / extent;
       const double off2 = DistanceToCircle(quad[1], FitCircle(b, 3)) / extent;
       throw InputError(
-          Format("P2 and P3 must lie on one circle with P1 and P4: --p3 is %.3g "
-                 "curve extents from the circle through P1, P2, P4 (--p2: %.3g from "
+          Format("P2 and P3 must lie on one circle with P1 and P4: `p3` is %.3g "
+                 "curve extents from the circle through P1, P2, P4 (`p2`: %.3g from "
                  "the one through P1, P3, P4)",
                  off3, off2));
     }
@@ -110,7 +110,7 @@ Eigen::Vector3d DrawingNormal(const std::vector<Eigen::Vector3d>& curve, const E
   Eigen::Vector3d normal = (p2 - p1).cross(p4 - p1).normalized();
   if (options.up.norm() > 0.0) {
     if (std::abs(normal.dot(options.up.normalized())) < 1e-6)
-      throw InputError("--up lies in the drawing plane: it must point to one side of it");
+      throw InputError("`up` lies in the drawing plane: it must point to one side of it");
     if (normal.dot(options.up) < 0.0) normal = -normal;
   } else if (normal.z() < -1e-6) {
     normal = -normal;

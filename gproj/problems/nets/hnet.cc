@@ -368,7 +368,7 @@ HNet::HNet(const PolyMesh& mesh, const PolyMesh* reference, const HNetOptions& o
   if (!topology_note_.empty() && !options.allow_not_simply_connected)
     throw InputError(topology_note_ +
                      "; the exact H-net extension needs a simply connected A-net (pass "
-                     "--allow-not-simply-connected to optimise anyway)");
+                     "`allow_not_simply_connected` to optimise anyway)");
   colour_ = TwoColourVertices(mesh);
 }
 

@@ -211,7 +211,7 @@ std::vector<std::vector<int>> CutPaths(const PolyMesh& m,
                        "singularity's cut: the field has " +
                        std::to_string(singularities.size()) +
                        " singularities, too many for a cut from each to the boundary (a noisy "
-                       "mesh? smooth the field more with a smaller --smooth, or the mesh)");
+                       "mesh? smooth the field more with a smaller `smooth`, or the mesh)");
     std::vector<int> path;
     for (int v = reached; v >= 0; v = previous[v]) path.push_back(v);
     std::reverse(path.begin(), path.end());
@@ -311,7 +311,7 @@ double UnitEdgeLength(const QuadRemeshOptions& options, const UnitFrame& unit) {
   if (!(h >= kMinEdgeLength && h <= kMaxEdgeLength)) {
     char text[200];
     std::snprintf(text, sizeof(text),
-                  "the edge length (--edge-length) %g is %g mean triangle edges; it must be within "
+                  "the edge length (`edge_length`) %g is %g mean triangle edges; it must be within "
                   "%g … %g of "
                   "them (%g … %g)",
                   h * unit.length, h, kMinEdgeLength, kMaxEdgeLength, kMinEdgeLength * unit.length,

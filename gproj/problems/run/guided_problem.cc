@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace gproj {
 namespace {
@@ -55,6 +56,76 @@ void FailOnNonFiniteMeasures(RunReport* report) {
       report->termination = "FAILURE: the result's " + v.name + " is not finite";
       return;
     }
+}
+
+namespace {
+
+constexpr const char* kStatusNames[] = {"CONVERGENCE", "DIRECT",     "COMPLETED", "NO_CONVERGENCE",
+                                        "STALLED",     "USER_ABORT", "FAILURE"};
+
+// The status word `text` starts with ("WORD:" or "WORD " at the start), if any.
+const char* LeadingStatus(const std::string& text) {
+  for (const char* name : kStatusNames) {
+    const size_t n = std::char_traits<char>::length(name);
+    if (text.compare(0, n, name) == 0 && (text.size() == n || text[n] == ':' || text[n] == ' '))
+      return name;
+  }
+  return nullptr;
+}
+
+bool Contains(const std::string& text, const char* word) {
+  return text.find(word) != std::string::npos;
+}
+
+}  // namespace
+
+const char* RunStatusName(RunStatus status) { return kStatusNames[static_cast<int>(status)]; }
+
+RunStatus StatusOf(const RunReport& report) {
+  const char* lead = LeadingStatus(report.termination);
+  for (int i = 0; lead != nullptr && i < 7; ++i)
+    if (lead == kStatusNames[i]) return static_cast<RunStatus>(i);
+  return RunStatus::kFailure;
+}
+
+void ConcludeStatus(RunReport* report) {
+  std::string& t = report->termination;
+  const char* lead = LeadingStatus(t);
+  const std::string words = lead != nullptr ? lead : "";
+  auto prefix = [&t](const std::string& status, const std::string& how) {
+    t = status + ": " + how + (t.empty() ? "" : " (" + t + ")");
+  };
+  if (report->failed) {
+    report->converged = false;
+    if (words != "FAILURE") prefix("FAILURE", "numerical failure");
+    return;
+  }
+  // A Ceres run stopped by the callback says USER_FAILURE (SOLVER_ABORT) or, unconverged,
+  // USER_SUCCESS (SOLVER_TERMINATE_SUCCESSFULLY is how the tolerance check stops it).
+  const bool aborted = words == "USER_ABORT" || Contains(t, "USER_ABORT") ||
+                       Contains(t, "USER_FAILURE") ||
+                       (!report->converged && Contains(t, "USER_SUCCESS"));
+  if (aborted) {
+    report->converged = false;
+    if (words != "USER_ABORT") prefix("USER_ABORT", "stopped by the callback");
+    return;
+  }
+  if (report->converged) {
+    if (words == "CONVERGENCE" || words == "DIRECT" || words == "COMPLETED") return;
+    if (!report->method.empty() && report->solver == SolverKind::kDirect)
+      prefix("DIRECT", "constructed without iterating");
+    else
+      prefix("CONVERGENCE", "the problem's tolerance is met");
+    return;
+  }
+  if (words == "NO_CONVERGENCE" || words == "STALLED") return;
+  // Not converged: a solver that calls its stop convergence stopped short of the tolerance.
+  const size_t at = t.find("CONVERGENCE");
+  const bool solver_converged = at != std::string::npos && (at == 0 || t[at - 1] != '_');
+  if (solver_converged)
+    prefix("STALLED", "the solver stopped short of the problem's tolerance");
+  else
+    prefix("NO_CONVERGENCE", "the problem's tolerance is not met");
 }
 
 RunRecord ToRunRecord(const IterationRecord& r) {

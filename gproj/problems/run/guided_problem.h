@@ -80,6 +80,33 @@ struct RunReport {
 // (coordinates near 1e308), and such a result must not be written.
 void FailOnNonFiniteMeasures(RunReport* report);
 
+// How a run ended, one of a fixed set that every run's termination starts with ("STATUS: how"):
+//   CONVERGENCE     the problem's tolerance is met (iterations)
+//   DIRECT          constructed without iterating, and its tolerance is met
+//   COMPLETED       the iterations asked ran; no tolerance was asked
+//   NO_CONVERGENCE  the tolerance is not met (the iterations or rounds ran out)
+//   STALLED         the solver stopped short of the tolerance (no step lowers the energy)
+//   USER_ABORT      stopped by the callback or Ctrl-C
+//   FAILURE         numerical failure: the result must not be used
+// converged is true exactly for the first three.
+enum class RunStatus {
+  kConvergence,
+  kDirect,
+  kCompleted,
+  kNoConvergence,
+  kStalled,
+  kUserAbort,
+  kFailure
+};
+const char* RunStatusName(RunStatus status);  // "CONVERGENCE", ...
+// The status a report's termination starts with (kFailure when it starts with none).
+RunStatus StatusOf(const RunReport& report);
+// Makes the termination start with the status that converged, failed and the solver's words
+// say (a Ceres stop by the callback reads USER_ABORT, a direct construction DIRECT, a solver's
+// CONVERGENCE short of the problem's tolerance STALLED, ...), keeping the solver's own words
+// after it. The run protocol (RunProblem) calls it on every run.
+void ConcludeStatus(RunReport* report);
+
 // The factor on the fairness rows' weight (ω_f²) for a start whose target measure (e.g. max
 // planarity, relative to the mean edge) is `start_residual`: 1 for a start far from the target,
 // and start_residual / 1e-2 (not below `floor`) for one within 1e-2 of it. Fairness is there to

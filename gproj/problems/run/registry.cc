@@ -228,6 +228,7 @@ RunResult RunProblem(const ProblemSpec& spec, const RunInputs& inputs,
   }
   RunResult result = spec.run(inputs, complete, context);
   FailOnNonFiniteMeasures(&result.report);
+  ConcludeStatus(&result.report);
   return result;
 }
 

@@ -42,6 +42,7 @@ nlohmann::json ReportJson(const std::string& command, const RunReport& report,
   for (const RunRecord& r : report.history) history.push_back(RecordJson(r));
   nlohmann::json j = {{"command", command},
                       {"solver", SolverKindName(report.solver)},
+                      {"status", RunStatusName(StatusOf(report))},
                       {"converged", report.converged},
                       {"failed", report.failed},
                       {"termination", report.termination},

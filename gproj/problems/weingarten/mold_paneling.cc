@@ -472,10 +472,10 @@ Eigen::Vector3d MoldShape::HeightAndSlope(double x, double y) const {
 
 void PanelingOptions::Validate() const {
   if (panels_u < 1 || panels_v < 1)
-    throw InputError("--panels: at least 1 x 1 panels (got " + std::to_string(panels_u) + " x " +
+    throw InputError("`panels`: at least 1 x 1 panels (got " + std::to_string(panels_u) + " x " +
                      std::to_string(panels_v) + ")");
   if (static_cast<int64_t>(panels_u) * panels_v > 1000000)
-    throw InputError("--panels: at most 1000000 panels (got " + std::to_string(panels_u) + " x " +
+    throw InputError("`panels`: at most 1000000 panels (got " + std::to_string(panels_u) + " x " +
                      std::to_string(panels_v) + ")");
   if (molds < 1)
     throw InputError("paneling: at least one mold (got " + std::to_string(molds) + ")");

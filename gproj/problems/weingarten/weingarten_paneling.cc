@@ -57,10 +57,10 @@ void PanelSettings::Validate() const {
   o.panels_v = panels_v;
   o.Validate();
   if (!(mold_factor > 0.0) || !std::isfinite(mold_factor))
-    throw InputError("--mold-factor must be > 0 (got " + std::to_string(mold_factor) + ")");
+    throw InputError("`mold_factor` must be > 0 (got " + std::to_string(mold_factor) + ")");
   if ((max_gap > 0.0) != (max_kink_deg > 0.0) || max_gap < 0.0 || max_kink_deg < 0.0 ||
       !std::isfinite(max_gap) || !std::isfinite(max_kink_deg))
-    throw InputError("--panel-tolerance needs GAP,KINK both > 0 and finite");
+    throw InputError("`panel_tolerance` needs GAP,KINK both > 0 and finite");
 }
 
 PanelComparison ComparePaneling(const BSplineSurface& input, const BSplineSurface& result,

@@ -10,13 +10,13 @@ namespace {
 void ApplyRelation(const WeingartenSettings& s, WeingartenOptions* o) {
   if (!s.relation.empty()) {
     if (s.relation != "none" && s.relation != "linear" && s.relation != "bspline")
-      throw InputError("relation must be none, linear or bspline, not '" + s.relation + "'");
+      throw InputError("`relation` must be none, linear or bspline, not '" + s.relation + "'");
     o->linear_relation_weight = s.relation == "linear" ? 1.0 : 0.0;
     o->bspline_relation_weight = s.relation == "bspline" ? 10.0 : 0.0;
   }
   if (!s.linear.empty()) {
     if (s.linear.size() != 3)
-      throw InputError("the linear relation needs three coefficients a,b,c, got " +
+      throw InputError("`linear` needs three coefficients a,b,c, got " +
                        std::to_string(s.linear.size()));
     o->fixed_linear_relation = true;
     o->linear_coefficients = Eigen::Vector3d(s.linear.data());
@@ -39,7 +39,7 @@ WeingartenOptions WeingartenSettings::ToOptions() const {
   ApplyRelation(*this, &o);
   if (!samples.empty()) {
     if (samples.size() != 2)
-      throw InputError("samples needs two numbers NU NV, got " + std::to_string(samples.size()));
+      throw InputError("`samples` needs two numbers NU NV, got " + std::to_string(samples.size()));
     o.samples_u = samples[0];
     o.samples_v = samples[1];
   }
@@ -55,7 +55,7 @@ WeingartenOptions WeingartenSettings::ToOptions() const {
   Override(soft_start, &o.soft_start);
   // A tolerance of 0 would read as "none" (run the preset's iterations) and claim success.
   if (tolerance && !(*tolerance > 0.0))
-    throw InputError("the tolerance must be > 0 (leave it out to run the preset's iterations)");
+    throw InputError("`tolerance` must be > 0 (leave it out to run the preset's iterations)");
   Override(tolerance, &o.tolerance);
   if (!steps.empty()) {
     o.solver.monotone = steps != "plain";
@@ -65,11 +65,11 @@ WeingartenOptions WeingartenSettings::ToOptions() const {
   if (allow_folds) o.prevent_folds = false;
   o.refine_levels = refine_levels;
   if (refine_method != "insert" && refine_method != "refit")
-    throw InputError("--refine-method must be insert or refit (got '" + refine_method + "')");
+    throw InputError("`refine_method` must be insert or refit (got '" + refine_method + "')");
   o.refine_by_refit = refine_method == "refit";
   std::string why;
   if (!o.IsValid(&why)) throw InputError(why);
-  if (molds < 0) throw InputError("molds must be ≥ 0");
+  if (molds < 0) throw InputError("`molds` must be ≥ 0");
   return o;
 }
 

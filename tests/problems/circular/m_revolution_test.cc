@@ -145,7 +145,7 @@ TEST(MRevolutionTest, RefusesWhatHasNoSolution) {
     BuildMRevolutionSurface(curve, p2, p3, sideways);
     ADD_FAILURE() << "up in the plane";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("--up lies in the drawing plane"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("`up` lies in the drawing plane"), std::string::npos)
         << e.what();
   }
   sideways.up = Eigen::Vector3d(0, 0, -1);

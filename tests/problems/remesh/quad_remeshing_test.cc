@@ -476,7 +476,7 @@ TEST(QuadRemeshingTest, RefusesWhatItCannotRemesh) {
     RemeshAlongField(saddle, options);
     ADD_FAILURE() << "quads of 1e-4";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("--edge-length"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("`edge_length`"), std::string::npos) << e.what();
   }
   // Two fans sharing one vertex (a bowtie) are no disk.
   PolyMesh bowtie;
