@@ -112,3 +112,11 @@ def test_bad_options_raise_errors_naming_the_keyword():
             ({"reference": V}, TypeError, r"reference: expected a pair \(V, F\)")]:
         with pytest.raises(error, match=match):
             gproj.planarize(V, F, **kwargs)
+
+
+def test_counts_and_element_ids_are_integers():
+    V, F = gproj.grid(nu=6, nv=6, noise=0.05)
+    _, report = gproj.planarize(V, F)
+    assert type(report["final"]["non_convex_quads"]) is int
+    assert type(report["history"][-1]["non_convex_quads"]) is int
+    assert type(report["final"]["max_planarity"]) is float

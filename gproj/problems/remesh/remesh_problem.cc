@@ -160,7 +160,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
       {"mean_alignment_deg", r.mean_alignment_deg},
       {"max_alignment_deg", r.max_alignment_deg},
       {"area_covered", r.area_covered},
-      {"nonconvex_quads", static_cast<double>(r.nonconvex_quads)},
+      {"non_convex_quads", static_cast<double>(r.nonconvex_quads)},
       {"min_corner_angle_deg", r.min_corner_angle_deg},
       {"folded_triangles", static_cast<double>(p.folded_faces)},
       {"negative_area_fraction", r.field.negative_area_fraction}};

@@ -1,6 +1,8 @@
 #include "gproj/problems/run/report_json.h"
 
 #include <cmath>
+#include <cstdint>
+#include <string>
 
 namespace gproj {
 
@@ -9,11 +11,28 @@ nlohmann::json JsonNumber(double value) {
   return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
 
+bool IsCountMeasure(const std::string& name) {
+  auto ends = [&name](const char* suffix) {
+    const std::string s = suffix;
+    return name.size() >= s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0;
+  };
+  return name == "quads" || name == "patches" || ends("_quads") || ends("_vertices") ||
+         ends("_faces") || name.rfind("worst_", 0) == 0;
+}
+
 namespace {
+
+// A measure's JSON: an integer for a count or an element id, else JsonNumber.
+nlohmann::json MeasureJson(const NamedValue& v) {
+  if (IsCountMeasure(v.name) && std::isfinite(v.value) && v.value == std::floor(v.value) &&
+      std::abs(v.value) < 9e15)
+    return static_cast<int64_t>(v.value);
+  return JsonNumber(v.value);
+}
 
 nlohmann::json MeasuresJson(const NamedValues& values) {
   nlohmann::json j = nlohmann::json::object();
-  for (const NamedValue& v : values) j[v.name] = JsonNumber(v.value);
+  for (const NamedValue& v : values) j[v.name] = MeasureJson(v);
   return j;
 }
 
@@ -23,7 +42,7 @@ nlohmann::json RecordJson(const RunRecord& r) {
       {"step", JsonNumber(r.step)}, {"epsilon", r.epsilon},
       {"soft_scale", r.soft_scale}, {"max_constraint", JsonNumber(r.max_constraint)},
       {"seconds", r.seconds}};
-  for (const NamedValue& v : r.measures) j[v.name] = JsonNumber(v.value);
+  for (const NamedValue& v : r.measures) j[v.name] = MeasureJson(v);
   nlohmann::json families = nlohmann::json::object();
   for (const FamilyResidual& f : r.families)
     families[f.name] = {{"max", JsonNumber(f.max_abs)}, {"rms", JsonNumber(f.rms)}};

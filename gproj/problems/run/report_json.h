@@ -9,6 +9,10 @@
 
 namespace gproj {
 
+// Whether a measure is a count or an element id, written as an integer: "quads", "patches",
+// names ending in _quads, _vertices or _faces, and worst_<element> ids.
+bool IsCountMeasure(const std::string& name);
+
 // A number for JSON: non-finite values become null (JSON has no NaN).
 nlohmann::json JsonNumber(double value);
 
