@@ -2,6 +2,7 @@
 the same schema, every problem a function, every option a keyword with the schema's default."""
 import json
 import pathlib
+import re
 import warnings
 
 import numpy as np
@@ -39,6 +40,20 @@ def test_every_problem_is_a_function_whose_doc_gives_every_option(problem):
         shown = "None" if default is None else python_literal(default)
         assert f"{option['name']}={shown}" in signature, option["name"]
         assert f"    {option['name']} ({option['type']}" in function.__doc__
+        # The schema's range in the option's line of the docstring.
+        line = next(l for l in function.__doc__.splitlines()
+                    if l.startswith(f"    {option['name']} ({option['type']}"))
+        shown_range = re.search(r"in ([\[(])([^,]+), ([^\])]+)([\])])", line.split(":")[0])
+        if "minimum" in option and "maximum" in option:
+            assert shown_range, (option["name"], line)
+            assert float(shown_range.group(2)) == option["minimum"], line
+            assert float(shown_range.group(3)) == option["maximum"], line
+            assert (shown_range.group(1) == "(") == option["minimum_exclusive"], line
+            assert (shown_range.group(4) == ")") == option["maximum_exclusive"], line
+        elif "minimum" in option or "maximum" in option:
+            bound = "minimum" if "minimum" in option else "maximum"
+            one = re.search(r"([<>]=?) (\S+)\)", line.split(":")[0])
+            assert one and float(one.group(2)) == option[bound], (option["name"], line)
     for item in spec["inputs"]:
         if not item["positional"]:
             assert f"{item['name']}=None" in signature
@@ -140,3 +155,31 @@ def test_beams_is_the_command_lines(cli):
     Vo, Fo = result["offset"]
     assert Vo.shape == V.shape  # the parallel offset, one vertex per node
     assert result["axes"].count("\nl ") == len(V)
+
+
+def test_out_of_range_options_are_refused_by_both_front_ends_naming_the_option(cli):
+    """Every bounded option of planarize, just outside its range: Python raises ValueError naming
+    the keyword, the command line exits 1 naming the flag, and neither writes anything."""
+    V, F = gproj.grid(nu=4, nv=4, noise=0.05)
+    source = cli.write_mesh("in.obj", V, F)
+    spec = next(p for p in gproj.schema()["problems"] if p["name"] == "planarize")
+    checked = 0
+    for option in spec["options"]:
+        if option["type"] not in ("number", "int"):
+            continue
+        for bound, step in (("minimum", -1.0), ("maximum", 1.0)):
+            if bound not in option:
+                continue
+            exclusive = option.get(bound + "_exclusive", False)
+            value = option[bound] if exclusive else option[bound] + step
+            if option["type"] == "int":
+                value = int(value)
+            with pytest.raises(ValueError, match=option["name"]):
+                gproj.planarize(V, F, **{option["name"]: value})
+            flag = "--" + option["name"].replace("_", "-")
+            out = cli.path("out_%s.obj" % option["name"])
+            result = cli.run("planarize", source, "-o", out, flag, value, check=False)
+            assert result.returncode == 1 and flag in result.stderr, (flag, result.stderr)
+            assert not pathlib.Path(out).exists()
+            checked += 1
+    assert checked >= 10

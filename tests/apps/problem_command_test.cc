@@ -30,9 +30,15 @@ TEST_F(ProblemCommandTest, EveryOptionIsAFlagWithTheSchemasDefault) {
                  std::string::npos)
         at = help.out.find(FlagOf(option.name), at + 1);
       ASSERT_NE(at, std::string::npos) << help.out;
+      const std::string line = help.out.substr(at, help.out.find('\n', at) - at);
       if (option.type != OptionType::kBool && !option.default_value.is_null()) {
-        const std::string line = help.out.substr(at, help.out.find('\n', at) - at);
         EXPECT_NE(line.find("=" + OptionText(option.default_value)), std::string::npos) << line;
+      }
+      // The schema's range, as the registry states it, in the flag's entry (which CLI11 wraps
+      // onto the next line after a long flag).
+      const std::string entry = help.out.substr(at, help.out.find("\n  -", at) - at);
+      if (!option.RangeText().empty()) {
+        EXPECT_NE(entry.find(option.RangeText()), std::string::npos) << entry;
       }
       if (!option.negation.empty()) {
         EXPECT_NE(help.out.find(FlagOf(option.negation)), std::string::npos);
