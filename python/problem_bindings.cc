@@ -233,7 +233,9 @@ Solves in place (x holds the result afterwards).
     callback: None or callback(record: dict) with the keys of a report's history entries;
         returning False stops the solve. Ctrl-C stops it and raises KeyboardInterrupt.
     max_iterations, fairness (omega_f), epsilon, soft_decay, soft_floor, soft_residual,
-        epsilon_min, linear_solver, threads: as for planarize (SolverOptions).
+        epsilon_min, linear_solver, threads: the solver options planarize and the other
+        problems take, with the solver's own defaults (SolverOptions; each problem sets its
+        own, e.g. fairness 1 for planarize, 0.5 for anet).
     residual_tolerance: gp converges when every constraint row has |phi| <= this.
     step_tolerance: gp converges when the step's max norm <= this.
     soft_scale: ceres only, factor on the soft and fairness weights.
