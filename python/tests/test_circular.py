@@ -11,10 +11,10 @@ DATA = ROOT / "examples" / "data"
 
 def test_combescure_equals_the_command_line(cli):
     V, F = gproj.read_mesh(str(DATA / "revolution_13x17.obj"))
-    for method in ("propagation", "gp"):
+    for solver in ("direct", "gp"):
         cli.run("combescure", DATA / "revolution_13x17.obj", "-o", cli.path("c.obj"),
-                "--column-scale", 0.8, "--method", method, "--report", cli.path("r.json"))
-        V_out, report = gproj.combescure(V, F, column_scale=0.8, method=method)
+                "--column-scale", 0.8, "--solver", solver, "--report", cli.path("r.json"))
+        V_out, report = gproj.combescure(V, F, column_scale=0.8, solver=solver)
         assert_reports_equal(report, cli.read_report("r.json"))
         assert_close(V_out, gproj.read_mesh(cli.path("c.obj"))[0])
 

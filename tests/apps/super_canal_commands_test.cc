@@ -17,18 +17,18 @@ namespace {
 class SuperCanalCommandTest : public CommandTest {};
 
 TEST_F(SuperCanalCommandTest, CombescureByEveryMethodKeepsEdgesParallelAndQuadsCircular) {
-  for (const std::string method : {"propagation", "gp", "ceres"}) {
+  for (const std::string method : {"direct", "gp", "ceres"}) {
     const CommandRun r =
         Gproj("combescure " + Data("revolution_13x17.obj") + " -o " + Path("out.obj") +
-              " --method " + method +
+              " --solver " + method +
               " --row-lengths 0.1,0.12,0.14,0.16,0.18,0.2,0.2,0.18,0.16,0.14,0.12,0.1,0.1,0.1,"
               "0.1,0.1 --column-scale 0.6 --report " +
               Path("r.json"));
     ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
     const nlohmann::json report = Json("r.json");
     EXPECT_TRUE(report["converged"].get<bool>());
-    EXPECT_EQ(report["options"]["method"], method);
-    EXPECT_EQ(report["solver"], method == "propagation" ? "direct" : method);
+    EXPECT_EQ(report["options"]["solver"], method);
+    EXPECT_EQ(report["solver"], method);
     EXPECT_LT(report["final"]["max_edge_parallelism_angle"].get<double>(), 1e-10) << method;
     EXPECT_LT(report["final"]["max_planarity"].get<double>(), 1e-10) << method;
     EXPECT_LT(report["final"]["max_concyclicity"].get<double>(), 1e-10) << method;
@@ -187,7 +187,7 @@ TEST_F(SuperCanalCommandTest, ReportsFollowTheSharedSchema) {
   const std::vector<std::array<std::string, 3>> cases = {
       {"invert " + in + " --centre 4,0.5,0.3 --ratio 9", "direct", "closed form"},
       {"combescure " + in + " --column-scale 0.5", "direct", "propagation"},
-      {"combescure " + in + " --column-scale 0.5 --method gp", "gp", ""},
+      {"combescure " + in + " --column-scale 0.5 --solver gp", "gp", ""},
       {"canal " + Data("canal_curve.txt") + " --first-point -0.5,0.5,2 --length 2", "direct",
        "closed form"}};
   for (const auto& [command, solver, method] : cases) {

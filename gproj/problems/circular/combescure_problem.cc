@@ -14,7 +14,7 @@ namespace {
 
 struct CombescureSettings {
   CombescureOptions options;
-  SolverKind method = SolverKind::kDirect;
+  SolverKind solver = SolverKind::kDirect;
   std::vector<double> row, column, origin;  // empty: the reference's (scaled) / unchanged
   double row_scale = 1.0, column_scale = 1.0;
 };
@@ -23,11 +23,12 @@ const OptionSchema<CombescureSettings>& Schema() {
   static const OptionSchema<CombescureSettings> schema = [] {
     using S = CombescureSettings;
     OptionSchema<S> s;
-    AddSolverChoice<S>(&s, "method",
-                       "propagation (linear time), gp (guided projection, edge-parallelism "
-                       "rows) or ceres (Levenberg-Marquardt on the same rows: the cross-check)",
-                       [](S& x) -> SolverKind& { return x.method; },
-                       {{"propagation", SolverKind::kDirect},
+    AddSolverChoice<S>(&s, "solver",
+                       "direct: propagation (linear time); gp: guided projection on "
+                       "edge-parallelism rows; ceres: Levenberg-Marquardt on the same rows (the "
+                       "cross-check)",
+                       [](S& x) -> SolverKind& { return x.solver; },
+                       {{"direct", SolverKind::kDirect},
                         {"gp", SolverKind::kGuidedProjection},
                         {"ceres", SolverKind::kCeres}});
     s.Optional<std::vector<double>>(
@@ -74,20 +75,20 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   if (!settings.origin.empty())
     lengths.origin = Eigen::Vector3d(settings.origin[0], settings.origin[1], settings.origin[2]);
   Combescure combescure(reference, shape, lengths, settings.options);
-  const SolverKind method = settings.method;
+  const SolverKind solver = settings.solver;
   context.Headline(
       source + ": " + std::to_string(shape.rows) + " x " + std::to_string(shape.cols) + " faces; " +
-      (method == SolverKind::kGuidedProjection ? "guided projection with edge-parallelism rows"
-       : method == SolverKind::kCeres          ? "Levenberg-Marquardt on the edge-parallelism rows"
+      (solver == SolverKind::kGuidedProjection ? "guided projection with edge-parallelism rows"
+       : solver == SolverKind::kCeres          ? "Levenberg-Marquardt on the edge-parallelism rows"
                                                : "propagation (000 eq. 4)"));
   context.Info(CircularMeasuresLine("reference", combescure.Measure()));
   const RunCallback record = [&context](const RunRecord& r) { return context.Record(r); };
   RunResult result;
-  result.report = method == SolverKind::kDirect  ? combescure.RunPropagation()
-                  : method == SolverKind::kCeres ? combescure.RunCeres(200, record)
+  result.report = solver == SolverKind::kDirect  ? combescure.RunPropagation()
+                  : solver == SolverKind::kCeres ? combescure.RunCeres(200, record)
                                                  : combescure.Run(record);
   result.tolerance_measure = "max_edge_parallelism_angle";
-  result.tolerance = method == SolverKind::kDirect ? settings.options.propagation_tolerance
+  result.tolerance = solver == SolverKind::kDirect ? settings.options.propagation_tolerance
                                                    : settings.options.tolerance;
   result.facts = {{"row_lengths", lengths.row}, {"column_lengths", lengths.column}};
   if (result.report.failed) return result;
