@@ -2,8 +2,10 @@
 // A problem's options as a typed schema. Every option has an identifier (a keyword argument in
 // Python, `--kebab-case` on the command line, a key of the report's "options" object and of the
 // service's JSON), a type, a default read off the problem's own Options struct, a range, a unit
-// and a one-line doc. CheckOptionValue is the one check of types and ranges for every front end;
-// the Options' IsValid keeps only the rules that join several options.
+// and a one-line doc. CheckOptionValue is the one check of types and ranges for every front end
+// (command line, Python, the service), before a run starts; a problem's Options::IsValid guards
+// the C++ API, whose callers fill the struct themselves, and adds the rules that join several
+// options.
 
 #include <functional>
 #include <limits>
