@@ -16,6 +16,7 @@
 #include "gproj/problems/circular/cyclidic_surface.h"
 #include "gproj/problems/mesh/mesh_outputs.h"
 #include "gproj/problems/run/builtin_problems.h"
+#include "gproj/problems/run/report_json.h"
 #include "gproj/problems/run/construction.h"
 
 namespace gproj::circular {
@@ -385,7 +386,7 @@ RunResult RunStrip(const RunInputs& inputs, const CanalSettings& s, const RunCon
   result.facts = {{"lengths", canal.input().lengths}};
   result.facts["frame"] = {{"lambda", a.lambda}, {"theta", a.theta}, {"psi", a.psi}};
   result.facts["frame"]["normal"] = {n.x(), n.y(), n.z()};
-  for (const NamedValue& v : strip) result.facts["strip"][v.name] = v.value;
+  result.facts["strip"] = MeasuresJson(strip);
   result.facts["mesh"] = {{"rows", canal.strip().p.size() - 1}, {"segments", options.segments}};
   AddSmoothSurface(smooth.get(), context, &result);
   result.meshes["output"] = mesh;

@@ -22,17 +22,18 @@ CircularStripInput MakeCircularStripInput(std::vector<Eigen::Vector3d> curve,
   input.curve = std::move(curve);
   input.first_point = first_point;
   const std::size_t n = input.curve.size();
-  if (!lengths.empty() && length > 0.0) throw InputError("give either lengths or length, not both");
+  if (!lengths.empty() && length > 0.0)
+    throw InputError("give either `lengths` or `length`, not both");
   if (!lengths.empty()) {
     input.lengths = lengths;
   } else if (length > 0.0) {
     input.lengths.assign(n, length);
   } else {
     throw InputError(
-        "give the lengths across the strip (lengths, one per curve point, or length for all)");
+        "give the lengths across the strip (`lengths`, one per curve point, or `length` for all)");
   }
   if (input.lengths.size() != n)
-    throw InputError("lengths needs one value per curve point (" + std::to_string(n) + "), got " +
+    throw InputError("`lengths` needs one value per curve point (" + std::to_string(n) + "), got " +
                      std::to_string(input.lengths.size()));
   return input;
 }

@@ -42,8 +42,8 @@ struct CircularStripInput {
 };
 
 // The input from a curve, a first point and the lengths: `lengths` (one per curve point) or one
-// `length` (> 0) for all, not both. Throws InputError "give either lengths or length, not
-// both", "give the lengths ...", "lengths needs one value per curve point (N), got M".
+// `length` (> 0) for all, not both. Throws InputError "give either `lengths` or `length`,
+// not both", "give the lengths ...", "`lengths` needs one value per curve point (N), got M".
 CircularStripInput MakeCircularStripInput(std::vector<Eigen::Vector3d> curve,
                                           const Eigen::Vector3d& first_point,
                                           const std::vector<double>& lengths, double length);

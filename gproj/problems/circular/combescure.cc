@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "gproj/constraints/closeness.h"
@@ -69,10 +70,14 @@ void CheckCombescureInput(const PolyMesh& reference, const GridShape& shape,
                             c = Point(reference, shape.Vertex(i + 1, j + 1)),
                             d = Point(reference, shape.Vertex(i, j + 1));
       const double planarity = DiagonalDistance(a, b, c, d) / mean_edge;
-      if (planarity > tolerance)
-        throw InputError(FaceName(shape, i, j) + " of the reference is not planar (diagonal " +
-                         "distance " + std::to_string(planarity) + " mean edges > tolerance " +
-                         std::to_string(tolerance) + "); planarise it first");
+      if (planarity > tolerance) {
+        char text[160];
+        std::snprintf(text, sizeof(text),
+                      " of the reference is not planar (diagonal distance %.3g mean edges > "
+                      "tolerance %.3g); planarise it first",
+                      planarity, tolerance);
+        throw InputError(FaceName(shape, i, j) + text);
+      }
       const Eigen::Vector3d sides[4] = {b - a, c - b, d - c, a - d};
       for (int k = 0; k < 4; ++k) {
         const Eigen::Vector3d& u = sides[k];

@@ -786,9 +786,7 @@ nlohmann::json HNetJson(const PolyMesh& mesh, const std::vector<std::array<doubl
 nlohmann::json HNet::ReportFacts(const HNetSummary& summary) {
   nlohmann::json rounds = nlohmann::json::array(), violations = nlohmann::json::array();
   for (const HNetRound& r : summary.rounds) {
-    nlohmann::json round = nlohmann::json::object();
-    for (const NamedValue& v : ToNamedValues(r)) round[v.name] = JsonNumber(v.value);
-    rounds.push_back(round);
+    rounds.push_back(MeasuresJson(ToNamedValues(r)));
   }
   for (const auto& [a, b] : summary.equitwist_violations) violations.push_back({a, b});
   return {{"rounds", rounds},

@@ -25,13 +25,16 @@ void Conclude(const GuidedProblem& problem, Clock::time_point start, bool aborte
   // the tolerance is judged at the end, or none was asked.
   const size_t ran_out = report->termination.find("NO_CONVERGENCE");
   if (report->converged && ran_out != std::string::npos &&
-      (ran_out == 0 || report->termination[ran_out - 1] == ' '))
-    report->termination.replace(ran_out, report->termination.size() - ran_out,
-                                problem.HasTolerance()
-                                    ? "CONVERGENCE: the problem's tolerance is met at the end of "
-                                      "the run"
-                                    : "COMPLETED: no tolerance was asked (the measures are "
-                                      "minimised, not driven to a target)");
+      (ran_out == 0 || report->termination[ran_out - 1] == ' ')) {
+    // The solver's name ("ceres ") before its words is kept, after the status.
+    const std::string solver = report->termination.substr(0, ran_out);
+    report->termination =
+        std::string(problem.HasTolerance()
+                        ? "CONVERGENCE: the problem's tolerance is met at the end of the run"
+                        : "COMPLETED: no tolerance was asked (the measures are minimised, not "
+                          "driven to a target)") +
+        (solver.empty() ? "" : " (" + solver + "iterations ran out)");
+  }
   // A solver stop short of the problem's tolerance (a step too small, no lower energy) is a
   // stall, whatever the solver calls it.
   const size_t at = report->termination.find("CONVERGENCE");

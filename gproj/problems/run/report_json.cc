@@ -16,13 +16,10 @@ bool IsCountMeasure(const std::string& name) {
     const std::string s = suffix;
     return name.size() >= s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0;
   };
-  return name == "quads" || name == "patches" || ends("_quads") || ends("_vertices") ||
-         ends("_faces") || name.rfind("worst_", 0) == 0;
+  return name == "quads" || name == "patches" || name == "round" || ends("_quads") ||
+         ends("_vertices") || ends("_faces") || ends("iterations") || name.rfind("worst_", 0) == 0;
 }
 
-namespace {
-
-// A measure's JSON: an integer for a count or an element id, else JsonNumber.
 nlohmann::json MeasureJson(const NamedValue& v) {
   if (IsCountMeasure(v.name) && std::isfinite(v.value) && v.value == std::floor(v.value) &&
       std::abs(v.value) < 9e15)
@@ -35,6 +32,8 @@ nlohmann::json MeasuresJson(const NamedValues& values) {
   for (const NamedValue& v : values) j[v.name] = MeasureJson(v);
   return j;
 }
+
+namespace {
 
 nlohmann::json RecordJson(const RunRecord& r) {
   nlohmann::json j = {

@@ -10,8 +10,12 @@
 namespace gproj {
 
 // Whether a measure is a count or an element id, written as an integer: "quads", "patches",
-// names ending in _quads, _vertices or _faces, and worst_<element> ids.
+// "round", names ending in _quads, _vertices, _faces or iterations, and worst_<element> ids.
 bool IsCountMeasure(const std::string& name);
+// A measure as JSON: an integer for a count or an element id, else JsonNumber.
+nlohmann::json MeasureJson(const NamedValue& value);
+// Named measures as a JSON object (MeasureJson each), as the report's "initial" and "final".
+nlohmann::json MeasuresJson(const NamedValues& values);
 
 // A number for JSON: non-finite values become null (JSON has no NaN).
 nlohmann::json JsonNumber(double value);
