@@ -16,8 +16,8 @@
 #include "gproj/problems/circular/cyclidic_surface.h"
 #include "gproj/problems/mesh/mesh_outputs.h"
 #include "gproj/problems/run/builtin_problems.h"
-#include "gproj/problems/run/report_json.h"
 #include "gproj/problems/run/construction.h"
+#include "gproj/problems/run/report_json.h"
 
 namespace gproj::circular {
 namespace {
