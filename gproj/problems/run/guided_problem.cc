@@ -46,6 +46,7 @@ void Conclude(const GuidedProblem& problem, Clock::time_point start, bool aborte
   if (report->converged && report->termination.rfind("STALLED", 0) == 0)
     report->termination =
         "CONVERGENCE: the problem's tolerance was met (the solver: " + report->termination + ")";
+  ConcludeStatus(report);  // the same status as through RunProblem, for C++ callers of Run
   report->seconds = SecondsSince(start);
 }
 
