@@ -2,6 +2,7 @@
 // paths (required) or --NAME paths, outputs as -o/--output and --NAME paths plus --report, and
 // one option per schema entry (--kebab-case; switches as flags, with their negation). The
 // handler reads, runs by the one protocol, logs, writes and maps the exit code.
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -37,6 +38,7 @@ struct ProblemArgs {
   std::map<std::string, std::string> texts;   // option -> its text
   std::map<std::string, bool> switches;       // switch -> its value
   std::map<std::string, CLI::Option*> given;  // option -> CLI11's record of it
+  bool weld = false;                          // --weld: merge coincident input vertices
 };
 
 // The options given on the command line, as JSON values (checked again by the run protocol).
@@ -93,7 +95,10 @@ RunInputs ReadInputs(const ProblemSpec& spec, const ProblemArgs& args) {
       read.texts[input.name] = ReadTextFile(path);
       continue;
     }
-    read.meshes[input.name] = ReadMesh(path, MeshRequirements{input.kind == InputKind::kQuadMesh});
+    std::vector<int> weld_map;
+    read.meshes[input.name] =
+        ReadMesh(path, MeshRequirements{input.kind == InputKind::kQuadMesh, args.weld}, &weld_map);
+    if (args.weld) read.weld_maps[input.name] = std::move(weld_map);
     if (num_vertices < 0) num_vertices = static_cast<int>(read.meshes[input.name].n_vertices());
   }
   return read;
@@ -211,6 +216,13 @@ void AddPaths(CLI::App* cmd, const ProblemSpec& spec, ProblemArgs* args) {
   }
   args->paths["report"];
   if (spec.generator) return;
+  if (std::any_of(spec.inputs.begin(), spec.inputs.end(), [](const InputSpec& input) {
+        return input.kind == InputKind::kMesh || input.kind == InputKind::kQuadMesh;
+      }))
+    cmd->add_flag("--weld", args->weld,
+                  "Merge the input meshes' coincident vertices (within 1e-9 of the bounding-box "
+                  "diagonal), as unwelded exports need (each face with its own corners); "
+                  "without it such a mesh is refused");
   cmd->add_option("--report", args->paths["report"],
                   "Write a JSON report: converged, iterations, seconds, variables, per-iteration "
                   "history, the initial and final measures and the options")

@@ -51,15 +51,20 @@ def main():
     V, F = gproj.read_mesh(args.mesh)
     print(f"{args.mesh}: {len(V)} vertices, {len(F)} quads")
     iterations = []
-    V_out, report = gproj.planarize(V, F, tolerance=args.tolerance, circular=args.circular,
-                                    callback=iterations.append)
+    result = gproj.planarize(V, F, tolerance=args.tolerance, circular=args.circular,
+                             callback=iterations.append)
+    report = result.report
+    if result.vertices is None:
+        print(f"the run failed: {report.termination}", file=sys.stderr)
+        return 1
+    V_out = result.vertices
     for r in iterations:
         print(f"  iteration {r['iteration']:3d}: max planarity {r['max_planarity']:.3e}")
     before = gproj.face_values(V, F)["planarity"]
     after_values = gproj.face_values(V_out, F)
     after = after_values["planarity"]
     print(f"max planarity {before.max():.3e} -> {after.max():.3e} "
-          f"({report['termination']}, {report['seconds']:.2f} s)")
+          f"({report.termination}, {report.seconds:.2f} s)")
 
     floor = max(min(before.min(), after.max(), args.tolerance) / 10, 1e-16)
     norm = mcolors.LogNorm(vmin=floor, vmax=before.max())
@@ -83,8 +88,8 @@ def main():
     print(f"picture: {args.output}")
 
     folded = int((~after_values["convex"]).sum())
-    if not report["converged"] or folded:
-        print(f"not usable: converged {report['converged']}, {folded} non-convex quads",
+    if not result.converged or folded:
+        print(f"not usable: {report.status}, {folded} non-convex quads",
               file=sys.stderr)
         return 1
     return 0

@@ -38,17 +38,18 @@ def main():
         surface = json.load(f)
     print(f"{args.surface}: {len(surface['control_points'])} x "
           f"{len(surface['control_points'][0])} control points, preset {args.preset}")
-    result, report = gproj.weingarten(
+    run = gproj.weingarten(
         surface, preset=args.preset, max_iterations=args.max_iterations,
         callback=lambda r: print(f"  iteration {r['iteration']:3d}: "
                                  f"misalignment {r.get('misalignment', float('nan')):.3e}"))
-    if result is None:
-        print(f"the run failed: {report['termination']}", file=sys.stderr)
+    report = run.report
+    if run.output is None:
+        print(f"the run failed: {report.termination}", file=sys.stderr)
         return 1
-    result = result["output"]  # the optimised B-spline, a dict like its JSON
-    print(f"misalignment {report['initial']['misalignment']:.3e} -> "
-          f"{report['final']['misalignment']:.3e}, max deviation "
-          f"{report['final']['max_deviation']:.3e} ({report['seconds']:.1f} s)")
+    result = run.output  # the optimised B-spline, a dict like its JSON
+    print(f"misalignment {report.initial['misalignment']:.3e} -> "
+          f"{report.final['misalignment']:.3e}, max deviation "
+          f"{report.final['max_deviation']:.3e} ({report.seconds:.1f} s)")
 
     # The same samples as the optimisation (2 per control point and direction).
     before = gproj.bspline_curvature(surface)

@@ -59,6 +59,8 @@ FILES = {"input", "output"} | {i["name"] for p in gproj.schema()["problems"] for
 
 def assert_reports_equal(python, command_line, tol=1e-12, path="report"):
     """Same keys everywhere; numbers equal to `tol` (relative), times and file names aside."""
+    if isinstance(python, gproj.Report):  # a run's Report compares as its plain dict
+        python = python.to_dict()
     if isinstance(command_line, dict):
         assert isinstance(python, dict), path
         assert sorted(python) == sorted(command_line), path
@@ -86,9 +88,11 @@ def assert_close(a, b, tol=1e-12):
 
 
 def compare_with_command_line(cli, command, V, F, python_kwargs, args, output="out.obj"):
-    """Runs `command` on (V, F) from the command line and from Python; the reports must agree."""
+    """Runs `command` on (V, F) from the command line and from Python; the reports must agree.
+    Returns the Python run's Result."""
     source = cli.write_mesh("in.obj", V, F)
     cli.run(command, source, "-o", cli.path(output), "--report", cli.path("r.json"), *args)
-    result, report = getattr(gproj, command)(V, F, **python_kwargs)
-    assert_reports_equal(report, cli.read_report("r.json"))
-    return result, report
+    result = getattr(gproj, command)(V, F, **python_kwargs)
+    assert isinstance(result, gproj.Result) and isinstance(result.report, gproj.Report)
+    assert_reports_equal(result.report, cli.read_report("r.json"))
+    return result

@@ -23,9 +23,9 @@ def test_marionette_lift_equals_the_command_line(cli):
         cli.run("marionette", plan, "-o", cli.path("m.obj"), "--row", ",".join(map(repr, row)),
                 "--column", ",".join(map(repr, column)), "--solver", solver,
                 "--report", cli.path("r.json"))
-        V_out, report = gproj.marionette(V, F, row=row, column=column, solver=solver)
-        assert_reports_equal(report, cli.read_report("r.json"))
-        assert_close(V_out, gproj.read_mesh(cli.path("m.obj"))[0])
+        result = gproj.marionette(V, F, row=row, column=column, solver=solver)
+        assert_reports_equal(result.report, cli.read_report("r.json"))
+        assert_close(result.vertices, gproj.read_mesh(cli.path("m.obj"))[0])
 
 
 def test_marionette_guides_and_fit(cli):
@@ -34,12 +34,12 @@ def test_marionette_guides_and_fit(cli):
     cli.run("marionette", plan, "--guides", DATA / "marionette_valence6_guides.txt",
             "-o", cli.path("m.obj"), "--report", cli.path("r.json"))
     V, F = gproj.read_mesh(str(plan))
-    V_out, report = gproj.marionette(V, F, guides=guides)
-    assert_close(V_out, gproj.read_mesh(cli.path("m.obj"))[0])
-    assert report["converged"]
+    result = gproj.marionette(V, F, guides=guides)
+    assert_close(result.vertices, gproj.read_mesh(cli.path("m.obj"))[0])
+    assert result.report["converged"] and result.converged
     expected = cli.read_report("r.json")
     expected["guides"] = None
-    assert_reports_equal(report, expected)
+    assert_reports_equal(result.report, expected)
     with pytest.raises(ValueError, match="guides:1: "):
         gproj.marionette(V, F, guides="guide 0 1 nonsense\n")
     Vp, Fp = gproj.read_mesh(str(DATA / "marionette_plan_21x21.obj"))
@@ -48,36 +48,38 @@ def test_marionette_guides_and_fit(cli):
     cli.write_mesh("target.obj", target, Fp)
     cli.run("marionette", DATA / "marionette_plan_21x21.obj", "--fit", cli.path("target.obj"),
             "-o", cli.path("f.obj"), "--report", cli.path("r.json"))
-    V_fit, report = gproj.marionette(Vp, Fp, fit=(target, Fp))
+    fitted = gproj.marionette(Vp, Fp, fit=(target, Fp))
     expected = cli.read_report("r.json")
     expected["fit"] = None
-    assert_reports_equal(report, expected)
-    assert_close(V_fit, gproj.read_mesh(cli.path("f.obj"))[0])
+    assert_reports_equal(fitted.report, expected)
+    assert_close(fitted.vertices, gproj.read_mesh(cli.path("f.obj"))[0])
 
 
 def test_marionette_closed_strip_and_polygon_plan_equal_the_command_line(cli):
     strip = DATA / "marionette_closed_strip.txt"
     cli.run("marionette", "--closed-strip", strip, "-o", cli.path("s.obj"),
             "--report", cli.path("r.json"))
-    result, report = gproj.marionette(closed_strip=strip.read_text())
-    V, F = result["output"]  # no plan: the strip's own connectivity comes back
+    result = gproj.marionette(closed_strip=strip.read_text())
+    V, F = result.output  # no plan: the strip's own connectivity comes back
     Vc, Fc = gproj.read_mesh(cli.path("s.obj"))
     assert_close(V, Vc)
     assert (F == Fc).all()
     expected = cli.read_report("r.json")
     assert expected["input"] == str(strip)
-    assert_reports_equal(report, expected)
-    with pytest.raises(TypeError, match="closed_strip: expected a str"):
-        gproj.marionette(closed_strip=strip)
+    assert_reports_equal(result.report, expected)
+    # A path is read as the file (the same run as its text); other types are refused.
+    assert_close(gproj.marionette(closed_strip=strip).vertices, Vc)
+    with pytest.raises(TypeError, match=r"closed_strip: expected a path or the file's text"):
+        gproj.marionette(closed_strip=strip.read_bytes())
     with pytest.raises(ValueError, match="^closed_strip:1: "):
         gproj.marionette(closed_strip="1 2 3\n")
     # A plan of polygons lifted from held heights: a dict of vertex heights as --hold's words.
     plan = DATA / "marionette_kagome.obj"
     Vk, Fk = gproj.read_mesh(str(plan))
     cli.run("marionette", plan, "-o", cli.path("k.obj"), "--hold", "0:0.2,40:0.5,100:0.1")
-    V_out, report = gproj.marionette(Vk, Fk, hold={0: 0.2, 40: 0.5, 100: 0.1})
-    assert_close(V_out, gproj.read_mesh(cli.path("k.obj"))[0])
-    assert report["options"]["hold"] == [[0, 0.2], [40, 0.5], [100, 0.1]]
-    assert abs(V_out[40, 2] - 0.5) < 1e-9
+    held = gproj.marionette(Vk, Fk, hold={0: 0.2, 40: 0.5, 100: 0.1})
+    assert_close(held.vertices, gproj.read_mesh(cli.path("k.obj"))[0])
+    assert held.report.options["hold"] == [[0, 0.2], [40, 0.5], [100, 0.1]]
+    assert abs(held.vertices[40, 2] - 0.5) < 1e-9
     with pytest.raises(ValueError, match="hold: vertex 40 is given twice"):
         gproj.marionette(Vk, Fk, hold=[[40, 0.5], [40, 0.1]])

@@ -30,6 +30,11 @@ def test_face_values_equal_the_command_lines_face_values(cli, circular):
             *(["--circular"] if circular else []))
     csv = np.loadtxt(cli.path("f.csv"), delimiter=",", skiprows=1)
     values = gproj.face_values(*gproj.read_mesh(cli.path("out.obj")), circular=circular)
+    # planarize makes the same CSV itself when asked for its optional output face_values.
+    result = gproj.planarize(V, F, max_iterations=2, circular=circular, outputs=["face_values"])
+    with open(cli.path("f.csv")) as f:
+        assert result.face_values == f.read()
+    assert result.outputs == {"face_values": result.face_values} and result.picture is None
     columns = ["planarity", "planarity_abs", "kink_deg", "min_angle_deg"]
     columns += ["concyclicity"] if circular else []
     assert np.array_equal(csv[:, 0], np.arange(len(F)))
@@ -48,7 +53,10 @@ def test_write_then_read_is_exact(tmp_path, extension):
     V, F = gproj.grid(nu=4, nv=3, noise=0.1)
     path = str(tmp_path / f"m.{extension}")
     gproj.write_mesh(path, V, F)
-    V2, F2 = gproj.read_mesh(path)
+    mesh = gproj.read_mesh(path)
+    assert isinstance(mesh, gproj.Mesh)
+    V2, F2 = mesh
+    assert V2 is mesh.vertices and F2 is mesh.faces
     # PLY is read through OpenMesh, in single precision.
     assert_close(V, V2, 1e-6 if extension == "ply" else 0.0)
     assert (F == F2).all()

@@ -10,12 +10,12 @@ from conftest import assert_close, assert_reports_equal, compare_with_command_li
 
 def test_anet_and_hnet_hold_fixed_vertices_like_the_command_line(cli):
     V, F = gproj.grid(nu=9, nv=9, surface="hyperboloid", noise=0.05)
-    V_out, report = compare_with_command_line(
+    result = compare_with_command_line(
         cli, "anet", V, F, {"fixed": [0, 8], "min_angle": 10.0},
         ["--fixed", cli.write_text("fixed.txt", "0 8\n"), "--min-angle", 10])
-    assert report["converged"]
-    assert np.array_equal(V_out[[0, 8]], V[[0, 8]])
-    assert report["final"]["non_convex_quads"] == 0
+    assert result.report["converged"]
+    assert np.array_equal(result.vertices[[0, 8]], V[[0, 8]])
+    assert result.report.final["non_convex_quads"] == 0
     with pytest.raises(ValueError, match="out of range"):
         gproj.hnet(V, F, fixed=[81])
 
@@ -23,18 +23,18 @@ def test_anet_and_hnet_hold_fixed_vertices_like_the_command_line(cli):
 @pytest.mark.parametrize("star_form", ["normals", "quads"])
 def test_anet_equals_the_command_line(cli, star_form):
     V, F = gproj.grid(nu=7, nv=7, surface="hypar", noise=0.05)
-    V_out, _ = compare_with_command_line(cli, "anet", V, F, {"star_form": star_form},
-                                         ["--star-form", star_form])
-    assert_close(V_out, gproj.read_mesh(cli.path("out.obj"))[0])
+    result = compare_with_command_line(cli, "anet", V, F, {"star_form": star_form},
+                                       ["--star-form", star_form])
+    assert_close(result.vertices, gproj.read_mesh(cli.path("out.obj"))[0])
 
 
 def test_anet_with_a_reference(cli):
     V, F = gproj.grid(nu=6, nv=6, surface="hypar", noise=0.05)
     Vr, Fr = gproj.grid(nu=12, nv=12, surface="hypar", noise=0.0)
     cli.write_mesh("ref.obj", Vr, Fr)
-    V_out, _ = compare_with_command_line(cli, "anet", V, F, {"reference": (Vr, Fr)},
-                                         ["--reference", cli.path("ref.obj")])
-    assert_close(V_out, gproj.read_mesh(cli.path("out.obj"))[0])
+    result = compare_with_command_line(cli, "anet", V, F, {"reference": (Vr, Fr)},
+                                       ["--reference", cli.path("ref.obj")])
+    assert_close(result.vertices, gproj.read_mesh(cli.path("out.obj"))[0])
 
 
 def test_anet_refuses_odd_valence():
@@ -45,9 +45,9 @@ def test_anet_refuses_odd_valence():
 
 def test_hnet_equals_the_command_line(cli):
     V, F = gproj.grid(nu=6, nv=6, surface="hypar", noise=0.02)
-    result, report = compare_with_command_line(cli, "hnet", V, F, {}, [], output="h.json")
-    hnet = result["output"]
-    import json
+    result = compare_with_command_line(cli, "hnet", V, F, {}, [], output="h.json")
+    hnet = result.output  # a JSON output: a dict, no mesh
+    assert isinstance(hnet, dict) and result.vertices is None
     with open(cli.path("h.json")) as f:
         expected = json.load(f)
     assert_reports_equal(hnet, expected)
@@ -59,13 +59,15 @@ def test_hnet_surface_equals_the_command_lines_surface_mesh(cli):
     source = cli.write_mesh("in.obj", V, F)
     cli.run("hnet", source, "-o", cli.path("h.json"), "--surface-mesh", cli.path("s.obj"),
             "--samples", 3)
-    result, report = gproj.hnet(V, F, outputs=["surface_mesh"], samples=3)
-    Vs, Fs = result["surface_mesh"]
+    result = gproj.hnet(V, F, outputs=["surface_mesh"], samples=3)
+    Vs, Fs = result.surface_mesh
+    assert isinstance(result.surface_mesh, gproj.Mesh)
     Ve, Fe = gproj.read_mesh(cli.path("s.obj"))
     assert Vs.shape == (len(F) * 16, 3) and Fs.shape == (len(F) * 18, 3)
     assert_close(Vs, Ve)
     assert (Fs == Fe).all()
-    assert "surface_mesh" not in gproj.hnet(V, F, rounds=1)[0]
+    unasked = gproj.hnet(V, F, rounds=1)
+    assert unasked.surface_mesh is None and "surface_mesh" not in unasked.outputs
     with pytest.raises(ValueError, match=r"samples: -1 is not in \[1, 200\]"):
         gproj.hnet(V, F, samples=-1)
     with pytest.raises(ValueError, match="outputs: hnet has no output 'surface'"):
@@ -80,8 +82,9 @@ def test_hnet_callback_returning_false_stops_the_whole_run():
         records.append(record)
         return len(records) < 2
 
-    result, report = gproj.hnet(V, F, callback=callback)
+    result = gproj.hnet(V, F, callback=callback)
+    report = result.report
     assert len(records) == 2
-    assert report["termination"].startswith("USER_ABORT")
-    assert not report["converged"] and not report["failed"]
-    assert report["rounds"] == [] and "output" not in result
+    assert report["termination"].startswith("USER_ABORT") and result.status == "USER_ABORT"
+    assert not report["converged"] and not report["failed"] and not result.converged
+    assert report["rounds"] == [] and result.output is None

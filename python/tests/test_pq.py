@@ -25,14 +25,16 @@ def test_planarize_equals_the_command_line(cli, variant):
         "schedule": ({"soft_residual": 0.0, "epsilon_min": 0.0},
                      ["--soft-residual", 0, "--epsilon-min", 0]),
     }[variant]
-    V_out, report = compare_with_command_line(cli, "planarize", V, F, kwargs, args)
+    result = compare_with_command_line(cli, "planarize", V, F, kwargs, args)
+    V_out, report = result.vertices, result.report
     Vc, _ = gproj.read_mesh(cli.path("out.obj"))
     assert_close(V_out, Vc)
     assert V_out.shape == V.shape and V_out.dtype == np.float64
+    assert np.array_equal(result.faces, F)  # the input's connectivity
     if variant in ("gp", "circular", "control", "schedule"):
         assert report["converged"]
     if variant == "schedule":  # the fixed schedule: more iterations than the residual-tied one
-        assert report["iterations"] > gproj.planarize(V, F)[1]["iterations"]
+        assert report["iterations"] > gproj.planarize(V, F).report.iterations
     if variant == "control":
         assert np.array_equal(V_out[[0, 41]], V[[0, 41]])  # held bit for bit
         assert report["final"]["max_glide_distance"] <= 1e-9
@@ -49,16 +51,17 @@ def test_planarize_refuses_bad_vertex_control():
 
 def test_planarize_accepts_lists_and_int_vertices():
     V, F = gproj.grid(nu=4, nv=4, noise=0.0)
-    V_out, report = gproj.planarize(np.round(V * 10).astype(int) / 10, F.tolist())
-    assert report["converged"]
+    result = gproj.planarize(np.round(V * 10).astype(int) / 10, F.tolist())
+    assert result.report["converged"] and result.converged
 
 
 def test_a_boolean_mask_fixes_the_vertices_it_marks():
     V, F = gproj.grid(nu=5, nv=5, noise=0.05)
     mask = np.zeros(len(V), dtype=bool)
     mask[[3, 7, 11]] = True
-    V_out, report = gproj.planarize(V, F, fixed=mask)
-    assert report["fixed_vertices"] == 3
+    result = gproj.planarize(V, F, fixed=mask)
+    V_out = result.vertices
+    assert result.report["fixed_vertices"] == 3
     assert np.array_equal(V_out[mask], V[mask])
     assert not np.array_equal(V_out[[0, 1]], V[[0, 1]])
     with pytest.raises(ValueError, match="the boolean mask has 4 entries; the mesh has 25"):

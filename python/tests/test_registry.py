@@ -1,5 +1,6 @@
 """The Python functions of the registry's problems agree with the registry and the command line:
 the same schema, every problem a function, every option a keyword with the schema's default."""
+import inspect
 import json
 import pathlib
 import re
@@ -21,42 +22,37 @@ def test_version_is_the_command_lines(cli):
     assert cli.run("--version").stdout.strip() == "gproj " + gproj.__version__
 
 
-def python_literal(value):
-    if isinstance(value, list):
-        return "[" + ", ".join(python_literal(v) for v in value) + "]"
-    return repr(value) if not isinstance(value, float) else "%g" % value
-
-
 @pytest.mark.parametrize("problem", [p["name"] for p in gproj.schema()["problems"]])
 def test_every_problem_is_a_function_whose_doc_gives_every_option(problem):
     spec = next(p for p in gproj.schema()["problems"] if p["name"] == problem)
     function = getattr(gproj, problem)
-    signature = function.__doc__.splitlines()[0]
+    parameters = inspect.signature(function).parameters
     for option in spec["options"]:
-        default = option["default"]
+        # Every option a keyword-only parameter with the schema's default (none when required).
+        parameter = parameters[option["name"]]
+        assert parameter.kind is inspect.Parameter.KEYWORD_ONLY, option["name"]
         if option.get("required"):
-            assert f", {option['name']}," in signature, option["name"]
-            continue
-        shown = "None" if default is None else python_literal(default)
-        assert f"{option['name']}={shown}" in signature, option["name"]
-        assert f"    {option['name']} ({option['type']}" in function.__doc__
-        # The schema's range in the option's line of the docstring.
-        line = next(l for l in function.__doc__.splitlines()
-                    if l.startswith(f"    {option['name']} ({option['type']}"))
-        shown_range = re.search(r"in ([\[(])([^,]+), ([^\])]+)([\])])", line.split(":")[0])
-        if "minimum" in option and "maximum" in option:
-            assert shown_range, (option["name"], line)
-            assert float(shown_range.group(2)) == option["minimum"], line
-            assert float(shown_range.group(3)) == option["maximum"], line
-            assert (shown_range.group(1) == "(") == option["minimum_exclusive"], line
-            assert (shown_range.group(4) == ")") == option["maximum_exclusive"], line
-        elif "minimum" in option or "maximum" in option:
-            bound = "minimum" if "minimum" in option else "maximum"
-            one = re.search(r"([<>]=?) (\S+)\)", line.split(":")[0])
-            assert one and float(one.group(2)) == option[bound], (option["name"], line)
+            assert parameter.default is inspect.Parameter.empty, option["name"]
+        else:
+            assert parameter.default == option["default"], option["name"]
+        # The option's line of the docstring: "    name: (type, unit, >= min, <= max) doc."
+        line = next((l for l in function.__doc__.splitlines()
+                     if l.startswith(f"    {option['name']}: ({option['type']}")), None)
+        assert line, option["name"]
+        shown = line.split(")")[0]
+        assert (", required" in shown) == bool(option.get("required")), line
+        # The schema's range, exact, with its exclusivity.
+        for bound, exclusive, inclusive in (("minimum", ">", ">="), ("maximum", "<", "<=")):
+            if bound not in option:
+                continue
+            sign = exclusive if option.get(bound + "_exclusive", False) else inclusive
+            found = re.search(f", {sign} ([^,]+)", shown)
+            assert found and float(found.group(1)) == option[bound], (option["name"], line)
     for item in spec["inputs"]:
         if not item["positional"]:
-            assert f"{item['name']}=None" in signature
+            parameter = parameters[item["name"]]
+            assert parameter.kind is inspect.Parameter.KEYWORD_ONLY and parameter.default is None
+            assert f"    {item['name']}: " in function.__doc__, item["name"]
 
 
 def test_python_defaults_run_like_the_command_lines(cli):
@@ -64,9 +60,9 @@ def test_python_defaults_run_like_the_command_lines(cli):
     V, F = gproj.grid(nu=6, nv=6, noise=0.05)
     source = cli.write_mesh("in.obj", V, F)
     cli.run("planarize", source, "-o", cli.path("out.obj"), "--report", cli.path("r.json"))
-    V_out, report = gproj.planarize(V, F)
-    assert report["options"] == cli.read_report("r.json")["options"]
-    assert np.max(np.abs(V_out - gproj.read_mesh(cli.path("out.obj"))[0])) <= 1e-12
+    result = gproj.planarize(V, F)
+    assert result.report["options"] == cli.read_report("r.json")["options"]
+    assert np.max(np.abs(result.vertices - gproj.read_mesh(cli.path("out.obj"))[0])) <= 1e-12
 
 
 def test_far_from_input_warns():
@@ -75,20 +71,24 @@ def test_far_from_input_warns():
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         gproj.planarize(V, F, allow_folds=True)
-    assert any("the input is far from a PQ (conjugate) mesh" in str(w.message) for w in caught)
+    assert any("the input is far from a PQ (conjugate) mesh" in str(w.message) and
+               issubclass(w.category, gproj.GprojWarning) for w in caught)
+    assert issubclass(gproj.GprojWarning, UserWarning)
 
 
 def test_field_is_the_command_lines_with_its_directions_as_arrays(cli):
     mesh = str(pathlib.Path(__file__).resolve().parents[2] / "examples/data/monkey_saddle_tri.obj")
     V, F = gproj.read_mesh(mesh)
     cli.run("field", mesh, "-o", cli.path("f.obj"), "--report", cli.path("r.json"))
-    result, report = gproj.field(V, F)
+    result = gproj.field(V, F)
+    report = result.report
     command_line = cli.read_report("r.json")
     assert report["singularities"] == command_line["singularities"]
     assert report["options"] == command_line["options"]
     with open(cli.path("f.obj")) as f:
-        assert result["output"] == f.read()
-    first, second = result["first"], result["second"]
+        assert result.output == f.read()  # a text output: the segments' OBJ text
+    first, second = result.first, result.second
+    assert first is result.arrays["first"] and second is result.arrays["second"]
     assert first.shape == second.shape == (len(V), 3)
     # unit lines, the two of a vertex distinct (the asymptotic pair of a saddle)
     fitted = np.linalg.norm(first, axis=1) > 0
@@ -104,8 +104,9 @@ def test_remesh_is_the_command_lines(cli):
     V, F = gproj.read_mesh(mesh)
     cli.run("remesh", mesh, "--edge-length", 0.15, "-o", cli.path("q.obj"), "--report",
             cli.path("r.json"))
-    result, report = gproj.remesh(V, F, edge_length=0.15)
-    Vq, Fq = result["output"]
+    result = gproj.remesh(V, F, edge_length=0.15)
+    report = result.report
+    Vq, Fq = result.output
     Vc, Fc = gproj.read_mesh(cli.path("q.obj"))
     assert np.array_equal(np.asarray(Fq), np.asarray(Fc))
     assert np.max(np.abs(Vq - Vc)) <= 1e-12
@@ -125,14 +126,15 @@ def test_mrevolution_is_the_command_lines(cli):
     cli.run("mrevolution", DATA / "m_revolution_curve.txt", "--p2=" + ",".join(map(repr, p2)),
             "--p3", ",".join(map(repr, p3)), "-o", cli.path("m.obj"), "--report",
             cli.path("r.json"))
-    result, report = gproj.mrevolution(curve, p2=p2, p3=p3, outputs=["revolution"])
-    V, F = result["output"]
+    result = gproj.mrevolution(curve, p2=p2, p3=p3, outputs=["revolution"])
+    report = result.report
+    V, F = result.output
     Vc, Fc = gproj.read_mesh(cli.path("m.obj"))
     assert np.max(np.abs(V - Vc)) <= 1e-12 and np.array_equal(np.asarray(F), np.asarray(Fc))
     assert report["final"]["max_concyclicity"] < 1e-9  # a circular mesh
     assert report["final"]["curve_roundtrip"] < 1e-9  # through the curve's own points
-    assert "revolution" in result
-    with pytest.raises(TypeError, match="p3: this option is required"):
+    assert "revolution" in result.outputs and isinstance(result.revolution, gproj.Mesh)
+    with pytest.raises(TypeError, match=r"^mrevolution\(\): missing the required option 'p3'"):
         gproj.mrevolution(curve, p2=p2)
     with pytest.raises(ValueError, match="curve: a curve needs at least 2 points"):
         gproj.mrevolution(curve[:1], p2=p2, p3=p3)
@@ -146,15 +148,16 @@ def test_beams_is_the_command_lines(cli):
     V, F = gproj.read_mesh(cli.path("circular.obj"))
     cli.run("beams", cli.path("circular.obj"), "--height", 0.05, "-o", cli.path("b.obj"),
             "--report", cli.path("r.json"))
-    result, report = gproj.beams(V, F, height=0.05, outputs=["offset", "axes"])
-    Vb, Fb = result["output"]
+    result = gproj.beams(V, F, height=0.05, outputs=["offset", "axes"])
+    report = result.report
+    Vb, Fb = result.output
     Vc, Fc = gproj.read_mesh(cli.path("b.obj"))
     assert np.max(np.abs(Vb - Vc)) <= 1e-12
     assert report["final"] == pytest.approx(cli.read_report("r.json")["final"], rel=1e-12)
     assert report["final"]["max_beam_planarity"] < 1e-10
-    Vo, Fo = result["offset"]
+    Vo, Fo = result.offset
     assert Vo.shape == V.shape  # the parallel offset, one vertex per node
-    assert result["axes"].count("\nl ") == len(V)
+    assert result.axes.count("\nl ") == len(V)
 
 
 def test_out_of_range_options_are_refused_by_both_front_ends_naming_the_option(cli):

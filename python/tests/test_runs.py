@@ -20,7 +20,7 @@ def test_callback_gets_history_records_and_can_stop():
         records.append(record)
         return len(records) < 3
 
-    _, report = gproj.planarize(V, F, callback=callback)
+    report = gproj.planarize(V, F, callback=callback).report
     assert len(records) == 3
     assert [r["iteration"] for r in records] == [0, 1, 2]
     assert sorted(records[0]) == sorted(report["history"][0])
@@ -31,13 +31,13 @@ def test_callback_gets_history_records_and_can_stop():
 
 def test_callback_returning_none_continues():
     V, F = gproj.grid(nu=5, nv=5, noise=0.05)
-    _, report = gproj.planarize(V, F, callback=lambda record: None)
-    assert report["converged"]
+    result = gproj.planarize(V, F, callback=lambda record: None)
+    assert result.report["converged"] and result.converged
 
 
 def test_ceres_callback_stops():
     V, F = gproj.grid(nu=5, nv=5, noise=0.05)
-    _, report = gproj.planarize(V, F, solver="ceres", callback=lambda record: False)
+    report = gproj.planarize(V, F, solver="ceres", callback=lambda record: False).report
     assert len(report["history"]) == 1
     assert report["status"] == "USER_ABORT" and not report["converged"], report["termination"]
     assert report["termination"].startswith("USER_ABORT")
@@ -47,9 +47,10 @@ def test_a_smooth_canal_stopped_by_its_callback_is_a_user_abort():
     curve = np.loadtxt(DATA / "canal_curve.txt")
     result = gproj.canal(curve, first_point=[-0.5, 0.5, 2], length=2, smooth=True,
                          callback=lambda record: False)
-    report = result[-1]
+    report = result.report
     assert report["status"] == "USER_ABORT", report["termination"]
     assert not report["converged"]
+    assert result.status == "USER_ABORT" and not result.converged
 
 
 def test_every_status_is_one_of_the_run_layers():
@@ -57,10 +58,12 @@ def test_every_status_is_one_of_the_run_layers():
     statuses = {"CONVERGENCE", "DIRECT", "COMPLETED", "NO_CONVERGENCE", "STALLED",
                 "USER_ABORT", "FAILURE"}
     for kwargs in ({}, {"max_iterations": 1, "tolerance": 1e-14}, {"solver": "ceres"}):
-        _, report = gproj.planarize(V, F, **kwargs)
+        result = gproj.planarize(V, F, **kwargs)
+        report = result.report
         assert report["status"] in statuses
         assert report["termination"].startswith(report["status"])
         assert report["converged"] == (report["status"] in {"CONVERGENCE", "DIRECT", "COMPLETED"})
+        assert (result.status, result.converged) == (report.status, report.converged)
 
 
 def test_callback_exception_propagates():
@@ -105,8 +108,8 @@ def test_bad_options_raise_errors_naming_the_keyword():
             ({"circular": 1}, TypeError, "circular: 1 is not true or false"),
             ({"edge_length": 0.2}, TypeError, "edge_length: 0.2 is not a list of numbers"),
             ({"edge_length": (0.1, 0.2, 0.3)}, ValueError, r"edge_length: expects 2 numbers"),
-            ({"tolerence": 1e-6}, TypeError, r"tolerence: there is no such option \(did you mean "
-                                             r"tolerance\?\)"),
+            ({"tolerence": 1e-6}, TypeError, r"^planarize\(\) has no argument 'tolerence'; did you "
+                                             r"mean 'tolerance'"),
             ({"fixed": 5}, TypeError, "fixed: expected a sequence of 0-based vertex ids"),
             ({"fixed": [0.5]}, TypeError, "fixed: expected .*an entry is float"),
             ({"reference": V}, TypeError, r"reference: expected a pair \(V, F\)")]:
@@ -116,7 +119,7 @@ def test_bad_options_raise_errors_naming_the_keyword():
 
 def test_counts_and_element_ids_are_integers():
     V, F = gproj.grid(nu=6, nv=6, noise=0.05)
-    _, report = gproj.planarize(V, F)
+    report = gproj.planarize(V, F).report
     assert type(report["final"]["non_convex_quads"]) is int
     assert type(report["history"][-1]["non_convex_quads"]) is int
     assert type(report["final"]["max_planarity"]) is float

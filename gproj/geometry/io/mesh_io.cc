@@ -4,6 +4,7 @@
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cerrno>
 #include <charconv>
@@ -324,9 +325,126 @@ PolygonSoup ReadPolygonSoup(const std::string& path) {
   Fail(path, 0, "unknown mesh format");
 }
 
-PolyMesh BuildMesh(const PolygonSoup& soup, const std::string& path,
-                   const MeshRequirements& requirements) {
+namespace {
+
+// Vertices near each other: a hash grid of cells of the tolerance's size, searched in the 27
+// cells around a point.
+class CoincidenceGrid {
+ public:
+  CoincidenceGrid(const std::vector<Eigen::Vector3d>& points, double tolerance) : points_(points) {
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+    for (const Eigen::Vector3d& p : points) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    lo_ = lo;
+    radius_ = points.empty() ? 0.0 : tolerance * (hi - lo).stableNorm();
+    cells_.reserve(points.size());
+  }
+
+  // The first vertex inserted within the radius of point i, or -1.
+  int Find(int i) const {
+    if (!(radius_ > 0.0)) return -1;
+    const auto [x, y, z] = CellOf(points_[i]);
+    int found = -1;
+    for (std::int64_t dx = -1; dx <= 1; ++dx)
+      for (std::int64_t dy = -1; dy <= 1; ++dy)
+        for (std::int64_t dz = -1; dz <= 1; ++dz) {
+          const auto cell = cells_.find(Key(x + dx, y + dy, z + dz));
+          if (cell == cells_.end()) continue;
+          for (int j : cell->second)
+            if ((points_[j] - points_[i]).norm() <= radius_ && (found < 0 || j < found)) found = j;
+        }
+    return found;
+  }
+
+  void Insert(int i) {
+    if (!(radius_ > 0.0)) return;
+    const auto [x, y, z] = CellOf(points_[i]);
+    cells_[Key(x, y, z)].push_back(i);
+  }
+
+ private:
+  std::array<std::int64_t, 3> CellOf(const Eigen::Vector3d& p) const {
+    const Eigen::Vector3d c = ((p - lo_) / radius_).array().floor();
+    return {static_cast<std::int64_t>(c.x()), static_cast<std::int64_t>(c.y()),
+            static_cast<std::int64_t>(c.z())};
+  }
+  static std::uint64_t Key(std::int64_t x, std::int64_t y, std::int64_t z) {
+    std::uint64_t h = static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ull;
+    h ^= static_cast<std::uint64_t>(y) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
+    h ^= static_cast<std::uint64_t>(z) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
+    return h;
+  }
+
+  const std::vector<Eigen::Vector3d>& points_;
+  Eigen::Vector3d lo_;
+  double radius_ = 0.0;
+  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+};
+
+// Refuses two vertices used by faces within kWeldTolerance of each other, naming the first
+// pair and the count.
+void CheckWelded(const PolygonSoup& soup, const std::string& path) {
+  std::vector<char> used(soup.vertices.size(), 0);
+  for (const std::vector<int>& face : soup.faces)
+    for (int v : face) used[v] = 1;
+  CoincidenceGrid grid(soup.vertices, kWeldTolerance);
+  int first = -1, first_match = -1, count = 0;
+  for (int v = 0; v < static_cast<int>(soup.vertices.size()); ++v) {
+    if (!used[v]) continue;
+    const int match = grid.Find(v);
+    if (match >= 0) {
+      if (first < 0) first = v, first_match = match;
+      ++count;
+    }
+    grid.Insert(v);
+  }
+  if (count == 0) return;
+  Fail(path, LineOf(soup.vertex_lines, first),
+       "vertex " + std::to_string(first) + " coincides with vertex " + std::to_string(first_match) +
+           " (" + std::to_string(count) + " of the " + std::to_string(soup.vertices.size()) +
+           " vertices repeat an earlier one, within 1e-9 of the bounding-box diagonal): its "
+           "faces are not joined (an unwelded mesh); `weld` merges them");
+}
+
+}  // namespace
+
+PolygonSoup WeldVertices(const PolygonSoup& soup, double tolerance, std::vector<int>* map) {
+  PolygonSoup out;
+  std::vector<int> index(soup.vertices.size(), -1);
+  CoincidenceGrid grid(soup.vertices, tolerance);
+  for (int v = 0; v < static_cast<int>(soup.vertices.size()); ++v) {
+    const int match = grid.Find(v);
+    if (match >= 0) {
+      index[v] = index[match];
+      continue;
+    }
+    grid.Insert(v);
+    index[v] = static_cast<int>(out.vertices.size());
+    out.vertices.push_back(soup.vertices[v]);
+    if (v < static_cast<int>(soup.vertex_lines.size()))
+      out.vertex_lines.push_back(soup.vertex_lines[v]);
+  }
+  out.faces = soup.faces;
+  for (std::vector<int>& face : out.faces)
+    for (int& v : face)
+      if (v >= 0 && v < static_cast<int>(index.size())) v = index[v];
+  out.face_lines = soup.face_lines;
+  if (map) *map = std::move(index);
+  return out;
+}
+
+PolyMesh BuildMesh(const PolygonSoup& given, const std::string& path,
+                   const MeshRequirements& requirements, std::vector<int>* weld_map) {
+  PolygonSoup welded;
+  if (requirements.weld) {
+    Validate(given, path, MeshRequirements{requirements.quads_only});
+    welded = WeldVertices(given, kWeldTolerance, weld_map);
+  }
+  const PolygonSoup& soup = requirements.weld ? welded : given;
   Validate(soup, path, requirements);
+  if (!requirements.weld && requirements.check_welded) CheckWelded(soup, path);
 
   PolyMesh mesh;
   mesh.reserve(soup.vertices.size(), soup.vertices.size() + soup.faces.size(), soup.faces.size());
@@ -350,8 +468,9 @@ PolyMesh BuildMesh(const PolygonSoup& soup, const std::string& path,
   return mesh;
 }
 
-PolyMesh ReadMesh(const std::string& path, const MeshRequirements& requirements) {
-  return BuildMesh(ReadPolygonSoup(path), path, requirements);
+PolyMesh ReadMesh(const std::string& path, const MeshRequirements& requirements,
+                  std::vector<int>* weld_map) {
+  return BuildMesh(ReadPolygonSoup(path), path, requirements, weld_map);
 }
 
 void CheckMeshExtension(const std::string& path) { FormatOf(path); }

@@ -30,7 +30,20 @@ struct PolygonSoup {
 
 struct MeshRequirements {
   bool quads_only = false;  // every face must have exactly four vertices
+  // Vertices within kWeldTolerance of an earlier one are merged into it (an unwelded mesh, each
+  // face with its own copies of its corners, as CAD exports often are, becomes one surface);
+  // without it such a mesh is refused.
+  bool weld = false;
+  // Whether coincident vertices are refused (false for meshes being written, not read).
+  bool check_welded = true;
 };
+
+// Coincidence tolerance of welding, relative to the bounding-box diagonal.
+constexpr double kWeldTolerance = 1e-9;
+
+// `soup` with every vertex within `tolerance` × its bounding-box diagonal of an earlier vertex
+// merged into the earliest, the faces renumbered; (*map)[v] is the new index of vertex v.
+PolygonSoup WeldVertices(const PolygonSoup& soup, double tolerance, std::vector<int>* map);
 
 // Reads OBJ / OFF / PLY (ASCII or binary) with gproj's own readers, which name the line (or,
 // in binary PLY, the element) of every problem. Text may start with a UTF-8 byte-order mark
@@ -43,12 +56,15 @@ PolygonSoup ReadPolygonSoup(const std::string& path);
 // Validates and builds the mesh. Throws InputError for: no faces, a face with fewer than 3
 // vertices or a repeated vertex, a degenerate face (zero area), a non-manifold edge (shared
 // by more than two faces, or by two faces with the same orientation), a non-quad face when
-// requirements.quads_only. `path` is used in messages only.
+// requirements.quads_only, two vertices used by faces within kWeldTolerance of each other
+// unless requirements.weld (which merges them first and gives the map of WeldVertices in
+// *weld_map when not null). `path` is used in messages only.
 PolyMesh BuildMesh(const PolygonSoup& soup, const std::string& path,
-                   const MeshRequirements& requirements);
+                   const MeshRequirements& requirements, std::vector<int>* weld_map = nullptr);
 
 // ReadPolygonSoup + BuildMesh.
-PolyMesh ReadMesh(const std::string& path, const MeshRequirements& requirements = {});
+PolyMesh ReadMesh(const std::string& path, const MeshRequirements& requirements = {},
+                  std::vector<int>* weld_map = nullptr);
 
 // Writes by extension (.obj/.off/.ply) to a temporary file in the same directory, then renames
 // it over `path`. On any failure the temporary is removed, `path` is untouched, and an

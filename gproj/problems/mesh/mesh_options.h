@@ -25,8 +25,9 @@ void AddPanelBoundsOptions(OptionSchema<S>* schema, std::function<PanelBoundsOpt
       .Group("panels");
   schema
       ->Custom("edge_length", OptionType::kNumbers,
-               "Every edge length stays within these (an edge outside in the input is kept from "
-               "getting worse); without it no edge shrinks below 10% of its input length",
+               "Every edge length ends within these, to the tolerance (an edge outside in the "
+               "input is brought in; the run converges only when all are); without it no edge "
+               "shrinks below 10% of its input length",
                nullptr,
                [panels](const nlohmann::json& value, S* s) {
                  panels(*s).min_edge_length = value[0].get<double>();

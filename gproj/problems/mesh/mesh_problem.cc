@@ -16,8 +16,21 @@ void MeshProblem::LoadInputVertices() {
 
 void MeshProblem::AddBoundsAndControl(const PanelBoundsOptions& panels,
                                       const VertexControlOptions& vertices) {
+  panels_ = panels;
   bounds_ = AddPanelBounds(input_, norm_, vertex_block_, panels, &problem_);
   control_ = ApplyVertexControl(input_, norm_, vertex_block_, vertices, &problem_);
+}
+
+void MeshProblem::AddEdgeRange(const PolyMesh& mesh, double tolerance, NamedValues* m) const {
+  if (!(panels_.min_edge_length > 0.0 || panels_.max_edge_length > 0.0)) return;
+  const double slack = tolerance * MeanEdgeLength(mesh);
+  const double max = panels_.max_edge_length > 0.0 ? panels_.max_edge_length : INFINITY;
+  int outside = 0;
+  for (auto e : mesh.edges()) {
+    const double length = mesh.calc_edge_length(e);
+    outside += length > max + slack || length < panels_.min_edge_length - slack;
+  }
+  m->push_back({"out_of_range_edges", static_cast<double>(outside)});
 }
 
 PolyMesh MeshProblem::Result() const {

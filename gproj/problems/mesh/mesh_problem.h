@@ -38,6 +38,10 @@ class MeshProblem : public GuidedProblem {
   std::vector<int> FacesAtAngleBound() const;
   // The edges of the current iterate on their length bound (vertex pairs).
   std::vector<std::array<int, 2>> EdgesAtLengthBound() const;
+  // Whether `m` has no edge outside the asked edge_length range (true when none was asked).
+  static bool EdgesInRange(const NamedValues& m) {
+    return !(ValueOf(m, "out_of_range_edges") > 0.0);
+  }
 
  protected:
   // Normalises `mesh` and adds the vertex block (#V × 3), the layout's first. The derived
@@ -52,6 +56,10 @@ class MeshProblem : public GuidedProblem {
   BlockItems vertices() const { return BlockItems(problem_.layout(), vertex_block_); }
   // x as a mesh in input units with held vertices restored (current_, rewritten in place).
   const PolyMesh& MeshAt(const Eigen::VectorXd& x) const;
+  // With an edge_length range asked, adds out_of_range_edges to `m`: the edges of `mesh` (input
+  // units) longer than its maximum or shorter than its minimum by more than `tolerance` mean
+  // edge lengths (the problem's tolerance, on the scale of its planarity measures).
+  void AddEdgeRange(const PolyMesh& mesh, double tolerance, NamedValues* m) const;
   // `solver` with the fairness weight ω_f² scaled by StartSoftScale(start_residual): fairness
   // guides a start far from the target and stays out of the way of one already near it.
   static SolverOptions WithStartSoftScale(SolverOptions solver, double start_residual);
@@ -62,6 +70,7 @@ class MeshProblem : public GuidedProblem {
   Problem problem_;
   int vertex_block_ = -1;
   PanelBounds bounds_;
+  PanelBoundsOptions panels_;
   VertexControl control_;
 };
 

@@ -87,16 +87,14 @@ PanelBounds AddPanelBounds(const PolyMesh& mesh, const MeshNormalization& norm, 
   };
   // Lengths in x are in problem units: input units × norm.scale.
   if (options.min_edge_length > 0.0)
-    out.min_edges = add_edges("min_edge_length", true, [&](double length) {
-      return std::min(options.min_edge_length * norm.scale, length);
-    });
+    out.min_edges = add_edges("min_edge_length", true,
+                              [&](double length) { return options.min_edge_length * norm.scale; });
   else if (options.min_edge_fraction > 0.0)
     out.min_edges = add_edges("min_edge_length", true,
                               [&](double length) { return options.min_edge_fraction * length; });
   if (options.max_edge_length > 0.0)
-    out.max_edges = add_edges("max_edge_length", false, [&](double length) {
-      return std::max(options.max_edge_length * norm.scale, length);
-    });
+    out.max_edges = add_edges("max_edge_length", false,
+                              [&](double) { return options.max_edge_length * norm.scale; });
   return out;
 }
 

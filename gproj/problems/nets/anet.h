@@ -125,10 +125,12 @@ class ANet : public MeshProblem {
   SolverOptions solver_options() const override;
   CeresOptions ceres_options(int max_iterations) const override;
   NamedValues MeasureAt(const Eigen::VectorXd& x) const override {
-    return ToNamedValues(MeasuresAt(x));
+    NamedValues m = ToNamedValues(MeasuresAt(x));
+    AddEdgeRange(MeshAt(x), options_.tolerance, &m);
+    return m;
   }
   bool MeetsTolerance(const NamedValues& m) const override {
-    return ValueOf(m, "max_star_planarity") <= options_.tolerance;
+    return ValueOf(m, "max_star_planarity") <= options_.tolerance && EdgesInRange(m);
   }
 
   StarPlanarityMeasures Measures() const { return MeasuresAt(problem_.x()); }

@@ -63,6 +63,10 @@ void AddShortfalls(const PQPlanarization& pq, RunResult* result) {
     result->shortfalls.push_back(std::to_string(held.size()) +
                                  " quads sit on their corner-angle bound (`min_angle` " + bound +
                                  "): " + FaceList(held));
+  const double outside = ValueOf(pq.MeasureAt(pq.problem().x()), "out_of_range_edges");
+  if (outside > 0.0)
+    result->shortfalls.push_back(std::to_string(static_cast<int>(outside)) +
+                                 " edges end outside the `edge_length` range");
   const std::vector<std::array<int, 2>> edges = pq.EdgesAtLengthBound();
   if (!edges.empty())
     result->shortfalls.push_back(

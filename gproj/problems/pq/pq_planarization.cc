@@ -183,7 +183,7 @@ PlanarityMeasures PQPlanarization::MeasuresAt(const Eigen::VectorXd& x) const {
 }
 
 bool PQPlanarization::MeetsTolerance(const NamedValues& m) const {
-  return ValueOf(m, "max_planarity") <= options_.tolerance &&
+  return ValueOf(m, "max_planarity") <= options_.tolerance && EdgesInRange(m) &&
          (!options_.circular || ValueOf(m, "max_concyclicity") <= options_.tolerance);
 }
 

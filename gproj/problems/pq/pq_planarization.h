@@ -86,7 +86,9 @@ class PQPlanarization : public MeshProblem {
   SolverOptions solver_options() const override;
   CeresOptions ceres_options(int max_iterations) const override;
   NamedValues MeasureAt(const Eigen::VectorXd& x) const override {
-    return ToNamedValues(MeasuresAt(x));
+    NamedValues m = ToNamedValues(MeasuresAt(x));
+    AddEdgeRange(MeshAt(x), options_.tolerance, &m);
+    return m;
   }
   // Planarity, and concyclicity when circular, within the tolerance.
   bool MeetsTolerance(const NamedValues& m) const override;

@@ -247,6 +247,10 @@ nlohmann::json RunResultJson(const ProblemSpec& spec, const RunResult& result,
     first = false;
   }
   extra["output"] = output;
+  for (const auto& [name, map] : inputs.weld_maps) {
+    const int welded = map.empty() ? 0 : *std::max_element(map.begin(), map.end()) + 1;
+    extra["welded"][name] = {{"input_vertices", map.size()}, {"vertices", welded}};
+  }
   nlohmann::json report = ReportJson(spec.name, result.report, extra);
   for (size_t i = 0; i < result.history_facts.size() && i < report["history"].size(); ++i)
     report["history"][i].update(result.history_facts[i]);

@@ -78,6 +78,8 @@ struct RunInputs {
   std::map<std::string, std::vector<Eigen::Vector3d>> curves;
   std::map<std::string, BSplineSurface> surfaces;
   std::map<std::string, std::string> texts;  // inputs of kind kText
+  // Meshes welded as read (MeshRequirements::weld): input vertex -> vertex of the mesh.
+  std::map<std::string, std::vector<int>> weld_maps;
   // Where each input came from ("in.obj", "V"), for messages.
   std::map<std::string, std::string> sources;
 

@@ -17,7 +17,8 @@ bool IsCountMeasure(const std::string& name) {
     return name.size() >= s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0;
   };
   return name == "quads" || name == "patches" || name == "round" || ends("_quads") ||
-         ends("_vertices") || ends("_faces") || ends("iterations") || name.rfind("worst_", 0) == 0;
+         ends("_vertices") || ends("_faces") || ends("_edges") || ends("iterations") ||
+         name.rfind("worst_", 0) == 0;
 }
 
 nlohmann::json MeasureJson(const NamedValue& v) {

@@ -9,9 +9,9 @@
 
 #include "gproj/problems/weingarten/weingarten.h"
 #include "gproj/problems/weingarten/weingarten_options.h"
-#include "python/conversions.h"
-#include "python/module.h"
-#include "python/run_bridge.h"
+#include "python/extension/conversions.h"
+#include "python/extension/module.h"
+#include "python/extension/run_bridge.h"
 
 namespace gproj::python {
 namespace {
@@ -40,9 +40,8 @@ py::dict BSplineCurvature(const py::object& surface, const std::vector<int>& sam
   return result;
 }
 
-const char* const kCurvatureDoc = R"(bspline_curvature(surface, samples=None) -> dict
-
-Mean and Gaussian curvature of a B-spline (exact, from its derivatives) at the samples
+const char* const kCurvatureDoc =
+    R"(Mean and Gaussian curvature of a B-spline (exact, from its derivatives) at the samples
 `gproj weingarten` uses: the centres of a uniform NU x NV subdivision of the parameter domain.
 
     surface: the B-spline as a dict (as for weingarten).

@@ -1,11 +1,11 @@
 // The `gproj` Python module: guided projection from numpy.
-#include "python/module.h"
+#include "python/extension/module.h"
 
 #include "gproj/common/input_error.h"
 #include "gproj/problems/run/option_schema.h"
 #include "gproj/problems/run/registry.h"
 
-PYBIND11_MODULE(gproj, m) {
+PYBIND11_MODULE(_core, m) {
   m.doc() = R"(gproj: guided projection for architectural geometry, from numpy.
 
 Meshes are numpy arrays: V (n, 3) float64 vertex positions and F (m, k) int32 faces (0-based

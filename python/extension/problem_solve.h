@@ -8,7 +8,7 @@
 #include "gproj/solver/ceres_adapter.h"
 #include "gproj/solver/guided_projection.h"
 #include "gproj/solver/problem.h"
-#include "python/python_term.h"
+#include "python/extension/python_term.h"
 
 namespace gproj::python {
 

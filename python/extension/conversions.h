@@ -21,7 +21,11 @@ std::vector<Eigen::Vector3d> PointsFromArray(const py::handle& array, const std:
 // F: (m, k) integer array, or a sequence of sequences of vertex indices → #F faces.
 std::vector<std::vector<int>> FacesFromPython(const py::handle& faces, const std::string& name);
 // The mesh of (V, F), validated like a mesh file (quads only when `quads_only`).
-PolyMesh MeshFromArrays(const py::handle& vertices, const py::handle& faces, bool quads_only);
+// "(3, 1600)", "(4,)": an array's shape as numpy prints it.
+std::string ShapeText(const py::array& array);
+
+PolyMesh MeshFromArrays(const py::handle& vertices, const py::handle& faces,
+                        const MeshRequirements& requirements, std::vector<int>* weld_map = nullptr);
 
 // #V × 3 float64 array of the mesh's points.
 py::array_t<double> VerticesToArray(const PolyMesh& mesh);

@@ -4,6 +4,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -15,11 +16,12 @@
 #include "gproj/problems/run/guided_problem.h"
 #include "gproj/solver/ceres_adapter.h"
 #include "gproj/solver/guided_projection.h"
-#include "python/module.h"
-#include "python/problem_solve.h"
-#include "python/python_term.h"
-#include "python/run_bridge.h"
-#include "python/solver_args.h"
+#include "python/extension/conversions.h"
+#include "python/extension/module.h"
+#include "python/extension/problem_solve.h"
+#include "python/extension/python_term.h"
+#include "python/extension/run_bridge.h"
+#include "python/extension/solver_args.h"
 
 namespace gproj::python {
 namespace {
@@ -88,12 +90,33 @@ py::array_t<double> BlockValues(const PyProblem& p, int b) {
   return out;
 }
 
+// `value` as the block's (items, dim) float64 values: that exact shape ((items,) too when dim is
+// 1), finite; a transposed or flattened array is refused naming `what`.
+py::array_t<double, py::array::c_style> BlockArray(const VariableBlock& block,
+                                                   const py::object& value,
+                                                   const std::string& what) {
+  const std::string needs = "(" + std::to_string(block.num_items) + ", " +
+                            std::to_string(block.item_dim) + ") for block '" + block.name + "'";
+  const py::array raw = py::array::ensure(value);
+  const char kind = raw ? raw.dtype().kind() : '?';
+  if (!raw || (kind != 'f' && kind != 'i' && kind != 'u'))
+    throw py::type_error(what + ": expected a float array of shape " + needs);
+  const bool exact =
+      raw.ndim() == 2 && raw.shape(0) == block.num_items && raw.shape(1) == block.item_dim;
+  const bool column = block.item_dim == 1 && raw.ndim() == 1 && raw.shape(0) == block.num_items;
+  if (!exact && !column)
+    throw InputError(what + ": shape " + ShapeText(raw) + ", expected " + needs);
+  const auto array = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(raw);
+  for (py::ssize_t i = 0; i < array.size(); ++i)
+    if (!std::isfinite(array.data()[i]))
+      throw InputError(what + ": item " + std::to_string(i / block.item_dim) +
+                       " has a non-finite value");
+  return array;
+}
+
 void SetBlockValues(PyProblem& p, int b, const py::object& values) {
   const VariableBlock& block = p.Block(b);
-  const auto array = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(values);
-  if (!array || array.size() != block.size())
-    throw InputError("block '" + block.name + "' needs " + std::to_string(block.num_items) + " x " +
-                     std::to_string(block.item_dim) + " values");
+  const auto array = BlockArray(block, values, "values");
   std::copy_n(array.data(), block.size(), p.problem.x().data() + block.offset);
 }
 
@@ -136,11 +159,8 @@ void AddCloseness(PyProblem& p, int b, double weight, const std::string& name,
                   const std::string& role, const py::object& targets) {
   const VariableBlock& block = p.Block(b);
   p.CheckName(name);
-  const auto values = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(
-      targets.is_none() ? py::object(BlockValues(p, b)) : targets);
-  if (!values || values.size() != block.size())
-    throw InputError("targets must be " + std::to_string(block.num_items) + " x " +
-                     std::to_string(block.item_dim) + " values");
+  const auto values =
+      BlockArray(block, targets.is_none() ? py::object(BlockValues(p, b)) : targets, "targets");
   auto* closeness = p.problem.AddFamily<Closeness>(block.item_dim, weight, name, RoleOf(role));
   for (int i = 0; i < block.num_items; ++i)
     closeness->AddTarget(block.first_item + i, values.data() + i * block.item_dim);
@@ -161,14 +181,19 @@ void AddFairness(PyProblem& p, int b, const py::object& stencils, double weight,
   }
 }
 
-void AddPythonTerm(PyProblem& p, const std::string& name, const py::function& function, int rows,
+void AddPythonTerm(PyProblem& p, const std::string& name, const py::object& function, int rows,
                    const py::object& items, const std::string& role, double weight) {
   p.CheckName(name);
   if (rows < 1) throw InputError("a term has at least one row");
+  if (!PyCallable_Check(function.ptr()))
+    throw py::type_error(
+        "function: expected a callable function(x, element) -> (values, "
+        "jacobian), not " +
+        std::string(py::str(py::type::handle_of(function).attr("__name__"))));
   const VariableLayout& layout = p.problem.layout();
   const auto elements = IndexRows(items, 0, layout.num_items(), "items");
-  auto* term =
-      p.problem.AddFamily<PythonTerm>(name, rows, function, RoleOf(role), weight, p.errors);
+  auto* term = p.problem.AddFamily<PythonTerm>(
+      name, rows, py::reinterpret_borrow<py::function>(function), RoleOf(role), weight, p.errors);
   for (const std::vector<int>& element : elements) {
     int local_dim = 0;
     for (int item : element) local_dim += layout.ItemDim(item);
@@ -208,9 +233,7 @@ const char* const kProblemDoc = R"(A problem of your own: unknowns in named bloc
 )";
 
 const char* const kAddTermDoc =
-    R"(add_term(name, function, rows, items, role="constraint", weight=1.0)
-
-A term written in Python (for prototyping; every element calls back into Python).
+    R"(A term written in Python (for prototyping; every element calls back into Python).
 
     name: identifier of the term, unique in the problem (a key of the per-term residuals).
     function: function(x, element) -> (values, jacobian), where x: (d,) float64 is the element's
@@ -224,9 +247,7 @@ A term written in Python (for prototyping; every element calls back into Python)
 An exception in the function stops the solve and is raised by solve().
 )";
 
-const char* const kSolveDoc = R"(solve(solver="gp", callback=None, ...) -> summary
-
-Solves in place (x holds the result afterwards).
+const char* const kSolveDoc = R"(Solves in place (x holds the result afterwards).
 
     solver: "gp" (guided projection) or "ceres" (Levenberg-Marquardt on the same rows,
         weights fixed: soft and fairness rows times soft_scale).
@@ -253,14 +274,15 @@ void BindGenericProblem(py::module_& m) {
       .def(py::init<>())
       .def("add_block", &AddBlock, py::arg("name"), py::arg("items"), py::arg("dim"),
            py::arg("eliminable") = false,
-           "add_block(name, items, dim, eliminable=False) -> block id\n\nAppends `items` "
+           "Returns the block id. Appends `items` "
            "items of `dim` scalars to x (zeros). eliminable: per-element auxiliaries, no row "
            "touches two of them (the solver may eliminate them first).")
-      .def("values", &BlockValues, py::arg("block"), "values(block) -> (items, dim) float64 copy")
+      .def("values", &BlockValues, py::arg("block"),
+           "A copy of the block's values, (items, dim) float64.")
       .def("set_values", &SetBlockValues, py::arg("block"), py::arg("values"),
-           "set_values(block, values): values (items, dim)")
+           "Sets the block's values: (items, dim).")
       .def("items", &Items, py::arg("block"),
-           "items(block) -> (items,) int32 global item ids, for add_term's items")
+           "The block's global item ids, (items,) int32, for add_term's items.")
       .def_property(
           "x",
           [](const PyProblem& p) {
@@ -283,18 +305,17 @@ void BindGenericProblem(py::module_& m) {
           "Names of the terms, in order.")
       .def("add_planarity", &AddPlanarity, py::arg("block"), py::arg("faces"),
            py::arg("weight") = 1.0, py::arg("name") = "planarity",
-           "add_planarity(block, faces, weight=1.0, name='planarity') -> normal block\n\n"
            "Quad planarity (004 §3.2): faces (m, 4) indices into `block` (3D points); adds the "
-           "eliminable block '<name>_normals' of unit normals, initialised from the diagonals.")
+           "eliminable block '<name>_normals' of unit normals, initialised from the diagonals, and "
+           "returns its id.")
       .def("add_closeness", &AddCloseness, py::arg("block"), py::arg("weight") = 1.0,
            py::arg("name") = "closeness", py::arg("role") = "soft", py::arg("targets") = py::none(),
-           "add_closeness(block, weight=1.0, name='closeness', role='soft', targets=None)\n\n"
            "Every item of the block near its target: targets (items, dim), default the values "
            "now. role 'constraint' holds them exactly.")
       .def("add_fairness", &AddFairness, py::arg("block"), py::arg("stencils"),
            py::arg("weight") = 1.0, py::arg("name") = "fairness",
-           "add_fairness(block, stencils, weight=1.0, name='fairness')\n\nPolyline fairness: "
-           "stencils (k, 3) item indices (second differences a - 2b + c) or (k, 4) (third).")
+           "Polyline fairness: stencils (k, 3) item indices (second differences a - 2b + c) or (k, "
+           "4) (third).")
       .def("add_term", &AddPythonTerm, py::arg("name"), py::arg("function"), py::arg("rows"),
            py::arg("items"), py::arg("role") = "constraint", py::arg("weight") = 1.0, kAddTermDoc)
       .def("solve", &Solve, kSolveDoc, py::arg("solver") = "gp", py::kw_only(),

@@ -3,8 +3,8 @@
 #include <vector>
 
 #include "gproj/geometry/mesh/quad_shape.h"
-#include "python/conversions.h"
-#include "python/module.h"
+#include "python/extension/conversions.h"
+#include "python/extension/module.h"
 
 namespace gproj::python {
 namespace {
@@ -13,21 +13,22 @@ py::tuple ReadMeshArrays(const std::string& path) {
   PolyMesh mesh;
   {
     py::gil_scoped_release release;
-    mesh = ReadMesh(path);
+    mesh = ReadMesh(path, MeshRequirements{false, false, false});  // checked when run
   }
   return MeshToPython(mesh);
 }
 
 void WriteMeshArrays(const std::string& path, const py::object& vertices, const py::object& faces) {
   CheckMeshExtension(path);
-  const PolyMesh mesh = MeshFromArrays(vertices, faces, false);
+  const PolyMesh mesh = MeshFromArrays(vertices, faces, MeshRequirements{false, false, false});
   py::gil_scoped_release release;
   WriteMeshAtomically(mesh, path);
 }
 
 // Per quad: the columns of `--face-values` (MeasureFaceValues), as arrays.
 py::dict FaceValueArrays(const py::object& vertices, const py::object& faces, bool circular) {
-  const FaceValues values = MeasureFaceValues(MeshFromArrays(vertices, faces, true), circular);
+  const FaceValues values = MeasureFaceValues(
+      MeshFromArrays(vertices, faces, MeshRequirements{true, false, false}), circular);
   const auto array = [](const std::vector<double>& v) {
     return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
   };
@@ -46,9 +47,8 @@ py::dict FaceValueArrays(const py::object& vertices, const py::object& faces, bo
 }  // namespace
 
 void BindMeshIo(py::module_& m) {
-  m.def("read_mesh", &ReadMeshArrays, py::arg("path"), R"(read_mesh(path) -> (V, F)
-
-Reads an .obj, .off or .ply polygon mesh, checked like the command line's inputs.
+  m.def("read_mesh", &ReadMeshArrays, py::arg("path"),
+        R"(Reads an .obj, .off or .ply polygon mesh, checked like the command line's inputs.
 
     path: the file.
 
@@ -57,9 +57,7 @@ faces (lists of 0-based vertex indices). Raises ValueError naming the file, line
 bad file (the command line's message).
 )");
   m.def("write_mesh", &WriteMeshArrays, py::arg("path"), py::arg("V"), py::arg("F"),
-        R"(write_mesh(path, V, F)
-
-Writes a mesh atomically (temporary file, then rename) with exact double coordinates.
+        R"(Writes a mesh atomically (temporary file, then rename) with exact double coordinates.
 
     path: .obj, .off or .ply.
     V: (n, 3) float64 vertex positions.
@@ -68,10 +66,10 @@ Writes a mesh atomically (temporary file, then rename) with exact double coordin
 Raises ValueError for a bad mesh (non-finite coordinate, index out of range, degenerate or
 non-manifold face) or a path that cannot be written.
 )");
-  m.def("face_values", &FaceValueArrays, py::arg("V"), py::arg("F"), py::kw_only(),
-        py::arg("circular") = false, R"(face_values(V, F, circular=False) -> dict
-
-The per-quad measures of `--face-values` (and of the report's maxima), as arrays of shape (m,).
+  m.def(
+      "face_values", &FaceValueArrays, py::arg("V"), py::arg("F"), py::kw_only(),
+      py::arg("circular") = false,
+      R"(The per-quad measures of `--face-values` (and of the report's maxima), as arrays of shape (m,).
 
     V: (n, 3) float64, F: (m, 4) integer quads.
     circular: also give each quad's concyclicity.

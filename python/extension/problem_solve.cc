@@ -1,4 +1,4 @@
-#include "python/problem_solve.h"
+#include "python/extension/problem_solve.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include "gproj/common/input_error.h"
 #include "gproj/problems/run/guided_problem.h"
-#include "python/run_bridge.h"
+#include "python/extension/run_bridge.h"
 
 namespace gproj::python {
 namespace {

@@ -1,9 +1,11 @@
-#include "python/python_term.h"
+#include "python/extension/python_term.h"
 
 #include <pybind11/numpy.h>
 
 #include <cmath>
 #include <limits>
+
+#include "python/extension/conversions.h"
 
 namespace gproj::python {
 
@@ -64,11 +66,18 @@ void PythonTerm::Call(int e, const double* x_local, double* phi, double* jac) co
       result.cast<py::tuple>()[0]);
   const auto jacobian = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(
       result.cast<py::tuple>()[1]);
-  if (!values || values.size() != rows)
-    throw std::invalid_argument(where + "values must have " + std::to_string(rows) + " entries");
-  if (!jacobian || jacobian.size() != static_cast<py::ssize_t>(rows) * d)
-    throw std::invalid_argument(where + "the jacobian must be " + std::to_string(rows) + " x " +
-                                std::to_string(d));
+  if (!values || values.ndim() > 1 || values.size() != rows)
+    throw std::invalid_argument(where + "values must have shape (" + std::to_string(rows) +
+                                ",), not " + (values ? ShapeText(values) : "a non-array"));
+  // (rows, d) exactly, (d,) for one row: a transposed jacobian is refused.
+  const bool exact =
+      jacobian && jacobian.ndim() == 2 && jacobian.shape(0) == rows && jacobian.shape(1) == d;
+  const bool one_row = jacobian && rows == 1 && jacobian.ndim() == 1 && jacobian.shape(0) == d;
+  if (!exact && !one_row)
+    throw std::invalid_argument(where + "the jacobian must have shape (" + std::to_string(rows) +
+                                ", " + std::to_string(d) +
+                                ") (rows x the element's scalars), not " +
+                                (jacobian ? ShapeText(jacobian) : "a non-array"));
   std::copy(values.data(), values.data() + rows, phi);
   std::copy(jacobian.data(), jacobian.data() + rows * d, jac);
 }

@@ -1,7 +1,7 @@
-#include "python/run_bridge.h"
+#include "python/extension/run_bridge.h"
 
 #include "gproj/problems/run/report_json.h"
-#include "python/conversions.h"
+#include "python/extension/conversions.h"
 
 namespace gproj::python {
 

@@ -1,4 +1,4 @@
-#include "python/conversions.h"
+#include "python/extension/conversions.h"
 
 #include <pybind11/stl.h>
 
@@ -13,13 +13,6 @@ namespace {
 
 // The name of an array's dtype, e.g. "complex128".
 std::string DtypeName(const py::array& array) { return py::str(array.dtype()).cast<std::string>(); }
-
-std::string ShapeText(const py::array& array) {
-  std::string text = "(";
-  for (py::ssize_t d = 0; d < array.ndim(); ++d)
-    text += (d ? ", " : "") + std::to_string(array.shape(d));
-  return text + (array.ndim() == 1 ? ",)" : ")");
-}
 
 // The library's message for a face index outside the vertices (gproj/geometry/io/mesh_io.cc).
 [[noreturn]] void IndexOutOfRange(std::size_t face, long long index, std::size_t num_vertices) {
@@ -87,6 +80,13 @@ std::vector<std::vector<int>> FacesFrom(const py::handle& faces, const std::stri
 
 }  // namespace
 
+std::string ShapeText(const py::array& array) {
+  std::string text = "(";
+  for (py::ssize_t d = 0; d < array.ndim(); ++d)
+    text += (d ? ", " : "") + std::to_string(array.shape(d));
+  return text + (array.ndim() == 1 ? ",)" : ")");
+}
+
 std::vector<Eigen::Vector3d> PointsFromArray(const py::handle& value, const std::string& name) {
   const py::array array = py::array::ensure(value);
   if (!array) throw InputError(name + " must be an (n, 3) array of floats");
@@ -107,11 +107,12 @@ std::vector<std::vector<int>> FacesFromPython(const py::handle& faces, const std
   return FacesFrom(faces, name, 0);
 }
 
-PolyMesh MeshFromArrays(const py::handle& vertices, const py::handle& faces, bool quads_only) {
+PolyMesh MeshFromArrays(const py::handle& vertices, const py::handle& faces,
+                        const MeshRequirements& requirements, std::vector<int>* weld_map) {
   PolygonSoup soup;
   soup.vertices = PointsFromArray(vertices, "V");
   soup.faces = FacesFrom(faces, "F", soup.vertices.size());
-  return BuildMesh(soup, "mesh", MeshRequirements{quads_only});
+  return BuildMesh(soup, "mesh", requirements, weld_map);
 }
 
 py::array_t<double> VerticesToArray(const PolyMesh& mesh) {

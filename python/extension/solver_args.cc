@@ -1,4 +1,4 @@
-#include "python/solver_args.h"
+#include "python/extension/solver_args.h"
 
 #include "gproj/common/input_error.h"
 

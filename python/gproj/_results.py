@@ -1,0 +1,103 @@
+"""What a run gives back: the result mesh, the other outputs, and a typed report."""
+
+from __future__ import annotations
+
+import copy
+from typing import Any, Dict, Iterator, List, Mapping, NamedTuple, Optional, Union
+
+import numpy as np
+import numpy.typing as npt
+
+
+class Mesh(NamedTuple):
+    """A polygon mesh as arrays: `V, F = mesh` unpacks it."""
+
+    vertices: npt.NDArray[np.float64]  # (n, 3)
+    faces: Union[npt.NDArray[np.int32], List[List[int]]]  # (m, k) int32, or a list of faces of mixed sizes
+
+
+class Report(Mapping[str, Any]):
+    """The report of a run: the keys of the command line's `--report`, as attributes.
+
+    `report.converged`, `report.status`, `report.final["max_planarity"]`, ...; `report["key"]`
+    and `to_dict()` give the same values. Counts are integers.
+    """
+
+    def __init__(self, data: Mapping[str, Any]):
+        self._data: Dict[str, Any] = dict(data)
+
+    def __getattr__(self, name: str) -> Any:
+        if name.startswith("_"):
+            raise AttributeError(name)
+        try:
+            return self._data[name]
+        except KeyError:
+            raise AttributeError(
+                f"the report has no '{name}' (it has: {', '.join(sorted(self._data))})"
+            ) from None
+
+    def __getitem__(self, key: str) -> Any:
+        return self._data[key]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._data)
+
+    def __len__(self) -> int:
+        return len(self._data)
+
+    def to_dict(self) -> Dict[str, Any]:
+        """A deep copy of the report as plain dicts and lists (what `--report` writes)."""
+        return copy.deepcopy(self._data)
+
+    def __repr__(self) -> str:
+        command = self._data.get("command", "?")
+        status = self._data.get("status", "?")
+        return f"<gproj.Report {command}: {status}, {self._data.get('iterations', 0)} iterations>"
+
+
+class Result:
+    """One run: `report`, the main output (`vertices` and `faces` when it is a mesh, else
+    `output`), every other output by its name (None unless asked with `outputs=`), and the
+    problem's arrays (e.g. `weights`) by name."""
+
+    problem: str = ""
+    report: Report
+    output: Any
+    vertices: Optional[npt.NDArray[np.float64]]
+    faces: Union[npt.NDArray[np.int32], List[List[int]], None]
+
+    def __init__(self, report: Report, output: Any, outputs: Mapping[str, Any],
+                 arrays: Mapping[str, npt.NDArray[Any]]):
+        self.report = report
+        self.output = output
+        self.vertices, self.faces = (output.vertices, output.faces) if isinstance(
+            output, Mesh) else (None, None)
+        self.outputs: Dict[str, Any] = dict(outputs)
+        self.arrays: Dict[str, npt.NDArray[Any]] = dict(arrays)
+        # With weld=True: input vertex -> vertex of the welded mesh (and of the result), for the
+        # first mesh input, and per mesh input by name.
+        self.weld_map: Optional[npt.NDArray[np.int32]] = None
+        self.weld_maps: Dict[str, npt.NDArray[np.int32]] = {}
+        for name, value in list(self.outputs.items()) + list(self.arrays.items()):
+            setattr(self, name, value)
+
+    @property
+    def converged(self) -> bool:
+        """Whether the problem's tolerance is met (the report's `converged`)."""
+        return bool(self.report.converged)
+
+    @property
+    def status(self) -> str:
+        """CONVERGENCE, DIRECT, COMPLETED (converged) or NO_CONVERGENCE, STALLED, USER_ABORT,
+        FAILURE."""
+        return str(self.report.status)
+
+    @property
+    def mesh(self) -> Optional[Mesh]:
+        """The main output as a Mesh, when it is one."""
+        return self.output if isinstance(self.output, Mesh) else None
+
+    def __repr__(self) -> str:
+        what = (f"{len(self.vertices)} vertices" if self.vertices is not None else
+                type(self.output).__name__)
+        return f"<gproj.{type(self).__name__}: {self.status}, {what}>"
