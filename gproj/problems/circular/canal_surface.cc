@@ -318,7 +318,8 @@ class RecordingCallback final : public ceres::IterationCallback {
     skip_first_ = skip_first;
     calls_ = 0;
   }
-  int recorded() const { return calls_; }  // iterates of the current solve seen so far
+  int recorded() const { return calls_; }    // iterates of the current solve seen so far
+  bool stopped() const { return stopped_; }  // the run's callback returned false
 
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
     if (calls_++ == 0 && skip_first_) return ceres::SOLVER_CONTINUE;
@@ -330,7 +331,9 @@ class RecordingCallback final : public ceres::IterationCallback {
     record.seconds = s.iteration_time_in_seconds;
     record.measures = {{"smoothness_energy", energy_()}};
     history_->push_back(record);
-    return !callback_ || callback_(record) ? ceres::SOLVER_CONTINUE : ceres::SOLVER_ABORT;
+    if (stopped_) return ceres::SOLVER_ABORT;
+    stopped_ = callback_ && !callback_(record);
+    return stopped_ ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
   }
 
  private:
@@ -339,6 +342,7 @@ class RecordingCallback final : public ceres::IterationCallback {
   std::vector<RunRecord>* history_;
   int offset_ = 0, calls_ = 0;
   bool skip_first_ = false;
+  bool stopped_ = false;
 };
 
 // The mean edge length of the strip, which makes the objective scale-free.
@@ -606,10 +610,12 @@ CanalSmoothingSummary SmoothCanalStrip(const CircularStripInput& input, const Fr
     stalled = summary.termination_type == ceres::CONVERGENCE &&
               summary.iterations.back().step_norm == 0.0;
     const bool lowered = summary.final_cost < start_cost * (1.0 - options.function_tolerance);
-    if (!stalled || out.iterations >= options.max_iterations || !lowered) break;
+    if (!stalled || out.iterations >= options.max_iterations || !lowered || recording.stopped())
+      break;
     ++restarts;
   }
-  out.converged = summary.termination_type == ceres::CONVERGENCE && !stalled;
+  out.converged =
+      summary.termination_type == ceres::CONVERGENCE && !stalled && !recording.stopped();
   out.termination =
       stalled
           ? "ceres-bfgs NO_CONVERGENCE: the line search found no lower point (BFGS restarted " +
@@ -617,6 +623,9 @@ CanalSmoothingSummary SmoothCanalStrip(const CircularStripInput& input, const Fr
           : std::string("ceres-bfgs ") + ceres::TerminationTypeToString(summary.termination_type) +
                 ": " + (restarts > 0 ? "after " + std::to_string(restarts) + " restart(s), " : "") +
                 summary.message;
+  // A stop on the iterate where BFGS ended by itself (recorded after the solve) is a stop too.
+  if (recording.stopped() && summary.termination_type != ceres::USER_FAILURE)
+    out.termination = "USER_ABORT: stopped by the callback (" + out.termination + ")";
   out.message = summary.BriefReport();
   out.initial_energy = MakeCyclidicStrip(strip, angles).energy;
   CircularStripInput result = input;

@@ -492,23 +492,70 @@ std::string UnusableWeight(const std::vector<double>& w) {
 
 struct VertexUpdateResult {
   bool failed = false, converged = false;
+  bool stopped = false;  // by the run's callback: x holds the last iterate
   int steps = 0;
   std::string message;
 };
 
-// One vertex update: guided projection with `options`, or (kCeres) Ceres' LM on the same rows
-// with the soft terms at the options' initial soft scale.
-VertexUpdateResult SolveVertexUpdate(const SolverOptions& options, SolverKind solver,
-                                     VertexUpdate* update) {
-  if (solver != SolverKind::kCeres) {
-    const SolverSummary s = gproj::Solve(options, &update->problem);
-    return {s.termination == TerminationType::kFailure, s.converged(), s.num_steps(), s.message};
+// The vertex update's iterates as records for the run's callback: numbered after `offset`
+// earlier iterations, with the star measures of the vertices (`mesh` with the update's vertices,
+// held ones restored, against `input`). The update's start is the iterate before it, already
+// recorded: it is not passed again.
+class VertexUpdateRecords {
+ public:
+  VertexUpdateRecords(const VertexUpdate& update, const PolyMesh& mesh, const PolyMesh& input,
+                      int offset, StopTracker* stop)
+      : update_(update), current_(mesh), input_(input), offset_(offset), stop_(stop) {}
+
+  // false when the run must stop.
+  bool Record(RunRecord record) {
+    if (record.iteration == 0) return !stop_->stopped();
+    record.iteration += offset_;
+    StoreVertices(update_.problem, update_.vertex_block, update_.norm, &current_);
+    update_.control.RestoreHeld(update_.start, &current_);
+    record.measures = ToNamedValues(MeasureStarPlanarity(current_, input_));
+    return stop_->Record(record);
   }
+  bool listening() const { return stop_->listening(); }
+  bool stopped() const { return stop_->stopped(); }
+
+ private:
+  const VertexUpdate& update_;
+  PolyMesh current_;
+  const PolyMesh& input_;
+  int offset_;
+  StopTracker* stop_;
+};
+
+// One vertex update: guided projection with `options`, or (kCeres) Ceres' LM on the same rows
+// with the soft terms at the options' initial soft scale. Every iterate goes to `records` (none
+// without a listener); it stops the update when it returns false.
+VertexUpdateResult SolveVertexUpdate(const SolverOptions& options, SolverKind solver,
+                                     VertexUpdate* update, VertexUpdateRecords* records) {
+  const bool listening = records->listening();
+  if (solver != SolverKind::kCeres) {
+    const IterationCallback on_iteration = [records](const IterationRecord& r,
+                                                     const Eigen::VectorXd&) {
+      return records->Record(ToRunRecord(r)) ? CallbackResult::kContinue : CallbackResult::kAbort;
+    };
+    const SolverSummary s =
+        gproj::Solve(options, &update->problem, listening ? on_iteration : nullptr);
+    const bool stopped = s.termination == TerminationType::kUserAbort;
+    return {s.termination == TerminationType::kFailure, s.converged() && !stopped, stopped,
+            s.num_steps(), s.message};
+  }
+  const CeresIterationCallback on_iteration = [records](const CeresIterationRecord& r,
+                                                        const Eigen::VectorXd&) {
+    return records->Record(ToRunRecord(r));
+  };
   const CeresSummary s =
       SolveWithCeres(CeresOptionsFor(options, options.max_iterations, options.initial_soft_scale),
-                     &update->problem);
+                     &update->problem, listening ? on_iteration : nullptr);
+  // Ceres reads a stop by the callback as a success (USER_SUCCESS).
+  const bool stopped = records->stopped();
   return {s.termination == TerminationType::kFailure,
-          s.termination == TerminationType::kConvergence, s.num_steps(), s.message};
+          s.termination == TerminationType::kConvergence && !stopped, stopped, s.num_steps(),
+          s.message};
 }
 
 // The largest distance of a vertex of `mesh` to the surface `reference`, over the reference's
@@ -535,20 +582,13 @@ constexpr size_t kReportedEdges = 100;
 
 }  // namespace
 
-bool HNet::RunANetStep(const PolyMesh& reference, const IterationCallback& on_iteration,
-                       HNetSummary* summary) {
+bool HNet::RunANetStep(const PolyMesh& reference, StopTracker* stop, HNetSummary* summary) {
   RunReport& report = summary->report;
   report.initial = ToNamedValues(MeasureStarPlanarity(mesh_, input_));
   report.solver = options_.solver;
   if (MeasureStarPlanarity(mesh_, mesh_).max_star_planarity <= options_.anet.tolerance) return true;
   ANet anet(mesh_, &reference, options_.anet);
-  bool stopped = false;  // the callback asked to stop: the whole run stops, without rounds
-  const RunCallback tracked = [&on_iteration, &stopped](const RunRecord& r) {
-    const bool go = !on_iteration || on_iteration(r);
-    stopped = stopped || !go;
-    return go;
-  };
-  const RunReport step = anet.RunWith(options_.solver, tracked);
+  const RunReport step = anet.RunWith(options_.solver, stop->callback());
   report.history = step.history;
   report.iterations = step.iterations;
   report.summary = step.summary;
@@ -559,7 +599,7 @@ bool HNet::RunANetStep(const PolyMesh& reference, const IterationCallback& on_it
     return false;
   }
   mesh_ = anet.Result();
-  if (stopped) {
+  if (stop->stopped()) {  // the whole run stops, without rounds
     report.termination = "USER_ABORT: stopped by the callback in the A-net step";
     return false;
   }
@@ -595,7 +635,7 @@ HNetRound HNet::MeasureRound(int round) {
 // 004 §3 where no exact extension need exist (not simply connected): round 0 measures the
 // weights propagated over a spanning tree (inconsistent around the holes); round 1 solves for
 // the vertices and the weights together.
-void HNet::RunJoint(const PolyMesh& reference, const RoundCallback& on_round,
+void HNet::RunJoint(const PolyMesh& reference, const RoundCallback& on_round, StopTracker* stop,
                     HNetSummary* summary) {
   RunReport& report = summary->report;
   summary->equitwist_violations = EquitwistViolations(mesh_, colour_);
@@ -604,8 +644,13 @@ void HNet::RunJoint(const PolyMesh& reference, const RoundCallback& on_round,
   propagated.seconds = SecondsSince(start_time);
   summary->rounds.push_back(propagated);
   if (on_round) on_round(propagated);
-  const bool met = SolveJointly(1, 1.0, reference, on_round, summary);
+  const bool met = SolveJointly(1, 1.0, reference, on_round, stop, summary);
   if (report.failed) return;
+  if (stop->stopped()) {
+    report.termination =
+        "USER_ABORT: stopped by the callback in the joint solve of vertices and weights";
+    return;
+  }
   report.converged = met;
   report.termination = met ? "vertices and weights optimised together (no exact extension "
                              "exists for this topology; frame rows met)"
@@ -614,7 +659,7 @@ void HNet::RunJoint(const PolyMesh& reference, const RoundCallback& on_round,
 }
 
 bool HNet::SolveJointly(int round, double soft_scale, const PolyMesh& reference,
-                        const RoundCallback& on_round, HNetSummary* summary) {
+                        const RoundCallback& on_round, StopTracker* stop, HNetSummary* summary) {
   RunReport& report = summary->report;
   const auto start_time = std::chrono::steady_clock::now();
   // Start from the current weights where they are usable, 1 elsewhere.
@@ -626,7 +671,9 @@ bool HNet::SolveJointly(int round, double soft_scale, const PolyMesh& reference,
   SolverOptions solver_options = options_.anet.solver;
   solver_options.residual_tolerance = options_.residual_tolerance;
   solver_options.initial_soft_scale = soft_scale;
-  const VertexUpdateResult s = SolveVertexUpdate(solver_options, options_.solver, update.get());
+  VertexUpdateRecords records(*update, mesh_, input_, report.iterations, stop);
+  const VertexUpdateResult s =
+      SolveVertexUpdate(solver_options, options_.solver, update.get(), &records);
   if (s.failed) {
     report.failed = true;
     report.termination = "joint vertex and weight update failed: " + s.message;
@@ -644,11 +691,11 @@ bool HNet::SolveJointly(int round, double soft_scale, const PolyMesh& reference,
   report.iterations += s.steps;
   summary->rounds.push_back(joint);
   if (on_round) on_round(joint);
-  return s.converged && joint.min_w > 0.0 &&
+  return !s.stopped && s.converged && joint.min_w > 0.0 &&
          joint.star.max_star_planarity <= options_.anet.tolerance;
 }
 
-void HNet::RunRounds(const PolyMesh& reference, const RoundCallback& on_round,
+void HNet::RunRounds(const PolyMesh& reference, const RoundCallback& on_round, StopTracker* stop,
                      HNetSummary* summary) {
   RunReport& report = summary->report;
   const std::unique_ptr<VertexUpdate> update =
@@ -678,10 +725,28 @@ void HNet::RunRounds(const PolyMesh& reference, const RoundCallback& on_round,
         return;
       }
       FreezeWeights(w_, update.get());
-      const VertexUpdateResult s = SolveVertexUpdate(solver_options, options_.solver, update.get());
+      VertexUpdateRecords records(*update, mesh_, input_, report.iterations, stop);
+      const VertexUpdateResult s =
+          SolveVertexUpdate(solver_options, options_.solver, update.get(), &records);
       if (s.failed) {
         report.failed = true;
         report.termination = "vertex update failed: " + s.message;
+        return;
+      }
+      if (s.stopped) {
+        // The round ends at the last iterate, the result: its vertices with the round's weights.
+        StoreVertices(update->problem, update->vertex_block, update->norm, &mesh_);
+        update->control.RestoreHeld(update->start, &mesh_);
+        HNetRound at = MeasureRound(round);
+        at.weight_change = r.weight_change;
+        at.max_inconsistency = r.max_inconsistency;
+        at.solver_iterations = s.steps;
+        at.seconds = SecondsSince(round_start);
+        report.iterations += s.steps;
+        summary->rounds.push_back(at);
+        if (on_round) on_round(at);
+        report.termination = "USER_ABORT: stopped by the callback in the vertex update of round " +
+                             std::to_string(round);
         return;
       }
       r.vertex_update_converged = s.converged;
@@ -700,8 +765,13 @@ void HNet::RunRounds(const PolyMesh& reference, const RoundCallback& on_round,
           settled ? "weights and vertices settled" : "maximum number of rounds reached";
       if (settled && !report.converged) {
         report.converged =
-            SolveJointly(round + 1, options_.round_soft_scale, reference, on_round, summary);
+            SolveJointly(round + 1, options_.round_soft_scale, reference, on_round, stop, summary);
         if (report.failed) return;
+        if (stop->stopped()) {
+          report.termination =
+              "USER_ABORT: stopped by the callback in the joint solve of vertices and weights";
+          return;
+        }
         report.termination = report.converged
                                  ? "weights settled; a joint solve of vertices and weights made "
                                    "the stars planar"
@@ -719,11 +789,12 @@ HNetSummary HNet::Run(const IterationCallback& on_iteration, const RoundCallback
   summary.simply_connected = topology_note_.empty();
   const PolyMesh& reference = reference_ != nullptr ? *reference_ : input_;
   // 1. The A-net step, unless the stars are already planar to tolerance; 2. the rounds.
-  if (RunANetStep(reference, on_iteration, &summary)) {
+  StopTracker stop(on_iteration);
+  if (RunANetStep(reference, &stop, &summary)) {
     if (summary.simply_connected)
-      RunRounds(reference, on_round, &summary);
+      RunRounds(reference, on_round, &stop, &summary);
     else
-      RunJoint(reference, on_round, &summary);
+      RunJoint(reference, on_round, &stop, &summary);
   }
   RunReport& report = summary.report;
   if (!summary.rounds.empty()) {

@@ -154,7 +154,11 @@ class HNet {
   HNet(const PolyMesh& mesh, const PolyMesh* reference, const HNetOptions& options);
 
   using RoundCallback = std::function<void(const HNetRound&)>;
-  using IterationCallback = RunCallback;  // the A-net step's records
+  // The records of every iterate: the A-net step's, then the vertex updates' (numbered on after
+  // the A-net step's; each update's start, the previous iterate, is not passed again), with the
+  // star measures. Returning false stops the run at that iterate: no later update or round
+  // starts, and the termination reads USER_ABORT.
+  using IterationCallback = RunCallback;
   HNetSummary Run(const IterationCallback& on_iteration = nullptr,
                   const RoundCallback& on_round = nullptr);
 
@@ -169,18 +173,20 @@ class HNet {
  private:
   // Runs the A-net step when the stars are not planar to tolerance; false (with the message in
   // *summary) when it fails.
-  bool RunANetStep(const PolyMesh& reference, const IterationCallback& on_iteration,
-                   HNetSummary* summary);
+  bool RunANetStep(const PolyMesh& reference, StopTracker* stop, HNetSummary* summary);
   // The alternation of weight and vertex updates (004 §3.2).
-  void RunRounds(const PolyMesh& reference, const RoundCallback& on_round, HNetSummary* summary);
+  void RunRounds(const PolyMesh& reference, const RoundCallback& on_round, StopTracker* stop,
+                 HNetSummary* summary);
   // Meshes that are not simply connected: the weights propagated (round 0, for comparison), then
   // the vertices and weights optimised together (round 1).
-  void RunJoint(const PolyMesh& reference, const RoundCallback& on_round, HNetSummary* summary);
+  void RunJoint(const PolyMesh& reference, const RoundCallback& on_round, StopTracker* stop,
+                HNetSummary* summary);
   // One solve of the vertices and the weights together (frame rows with W as unknowns), from the
   // current state, recorded as round `round`; true when its rows are met, W > 0 and the stars
-  // planar to the tolerance. Sets report.failed on a numerical failure.
+  // planar to the tolerance. Sets report.failed on a numerical failure; stopped by `stop`, the
+  // round holds the last iterate.
   bool SolveJointly(int round, double soft_scale, const PolyMesh& reference,
-                    const RoundCallback& on_round, HNetSummary* summary);
+                    const RoundCallback& on_round, StopTracker* stop, HNetSummary* summary);
   // Shape parameters and corner weights from the current vertices, with the round's measures.
   HNetRound UpdateWeights(int round, const PolyMesh& reference);
   // Corner weights from w_ and the round's measures.

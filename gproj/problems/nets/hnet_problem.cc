@@ -1,5 +1,7 @@
 // `hnet` in the registry: an A-net extended to smoothly joined rational bilinear patches.
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "gproj/geometry/render/svg_render.h"
 #include "gproj/problems/nets/anet_options.h"
@@ -42,7 +44,13 @@ const OptionSchema<HNetSettings>& Schema() {
   return schema;
 }
 
-// One H-net round as a line of the log's table, with the table's header before round 0.
+// The live log's columns: the star measures of every iterate, the A-net step's and the rounds'.
+std::vector<std::string> LogMeasures() {
+  return {"max_star_planarity", "mean_star_planarity", "non_convex_quads", "min_corner_angle_deg"};
+}
+
+// One H-net round as a line of the log's table, with the table's header before round 0; the
+// iterates of the next vertex update get their header again.
 void LogRound(const HNetRound& r, const RunContext& context) {
   char line[256];
   if (r.round == 0) {
@@ -55,6 +63,7 @@ void LogRound(const HNetRound& r, const RunContext& context) {
                 r.max_tangent_angle_deg, r.weight_change, r.min_w, r.max_w,
                 r.star.max_star_planarity, r.solver_iterations);
   context.Info(line);
+  context.Columns(LogMeasures());
 }
 
 // The log's lines and the warnings after a run with rounds.
@@ -162,8 +171,7 @@ ProblemSpec HNetSpec() {
                    "a triangle mesh sampling every patch on a (samples + 1)^2 grid"},
                   {"picture", OutputKind::kSvg, "a shaded picture of the patchwork"}};
   spec.options = Schema().specs();
-  spec.log_measures = {"max_star_planarity", "mean_star_planarity", "non_convex_quads",
-                       "min_corner_angle_deg"};
+  spec.log_measures = LogMeasures();
   spec.run = Run;
   return spec;
 }

@@ -19,8 +19,10 @@ void Conclude(const GuidedProblem& problem, Clock::time_point start, bool aborte
     report->final = problem.Measure();
     FailOnNonFiniteMeasures(report);
   }
-  report->converged = !report->failed &&
-                      (problem.HasTolerance() ? problem.MeetsTolerance(report->final) : !aborted);
+  // A run stopped by its callback is not converged, even at an iterate that meets the tolerance
+  // (guided projection asks the callback before the tolerance; Ceres' stop reads USER_SUCCESS).
+  report->converged = !report->failed && !aborted &&
+                      (!problem.HasTolerance() || problem.MeetsTolerance(report->final));
   // The iterations asked ran out (the solver's NO_CONVERGENCE) and the run counts as converged:
   // the tolerance is judged at the end, or none was asked.
   const size_t ran_out = report->termination.find("NO_CONVERGENCE");

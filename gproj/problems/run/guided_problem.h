@@ -9,6 +9,7 @@
 #include <chrono>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gproj/solver/ceres_adapter.h"
@@ -116,6 +117,36 @@ double StartSoftScale(double start_residual, double floor);
 
 // Called with every record (the start and each step); returning false stops the run.
 using RunCallback = std::function<bool(const RunRecord&)>;
+
+// The callback of a run in stages (an A-net step and then rounds of updates, levels, a
+// minimisation and then a mesh): passes the records of every stage on to `callback` until it
+// returns false, and remembers that, so that the stage running stops at its next iterate, no
+// later stage starts (each asks stopped() first) and `callback` sees no record after the stop.
+class StopTracker {
+ public:
+  explicit StopTracker(RunCallback callback) : callback_(std::move(callback)) {}
+  StopTracker(const StopTracker&) = delete;
+  StopTracker& operator=(const StopTracker&) = delete;
+
+  // Passes `record` on; false when the run must stop (then, and ever after, without calling
+  // `callback`).
+  bool Record(const RunRecord& record) {
+    if (stopped_) return false;
+    stopped_ = callback_ && !callback_(record);
+    return !stopped_;
+  }
+  // Record() as a callback for a stage's solver; it refers to this tracker.
+  RunCallback callback() {
+    return [this](const RunRecord& record) { return Record(record); };
+  }
+  bool stopped() const { return stopped_; }
+  // Whether anyone listens: without a callback a stage need not measure its iterates.
+  bool listening() const { return static_cast<bool>(callback_); }
+
+ private:
+  RunCallback callback_;
+  bool stopped_ = false;
+};
 
 class GuidedProblem {
  public:

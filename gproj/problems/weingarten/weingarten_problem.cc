@@ -233,7 +233,11 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   result.tolerance_measure = run.tolerance > 0.0 ? options.target_measure() : "";
   result.tolerance = run.tolerance;
   std::optional<PanelComparison> panels;
-  if (!run.report.failed && s.panels.enabled()) {
+  // Paneling is a stage of its own (seconds on a 10 x 10 paneling): a stopped run skips it.
+  const bool stopped = StatusOf(run.report) == RunStatus::kUserAbort;
+  if (stopped && s.panels.enabled())
+    result.Info("paneling skipped: the run was stopped before it (no panel report or pictures)");
+  if (!run.report.failed && !stopped && s.panels.enabled()) {
     context.Headline("paneling the input and the result (" + std::to_string(s.panels.panels_u) +
                      " x " + std::to_string(s.panels.panels_v) + " panels)...");
     panels = ComparePaneling(input, run.result, s.panels);
