@@ -121,7 +121,7 @@ int ExitCodeOf(const RunReport& report) {
 }
 
 int ConcludeRun(const std::string& command, const RunReport& report, const std::string& measure,
-                double tolerance, const std::vector<std::string>& written) {
+                double tolerance, const std::vector<std::string>& written, bool interrupted) {
   std::printf("%s after %d iterations, %.3f s\n", report.termination.c_str(), report.iterations,
               report.seconds);
   const int code = ExitCodeOf(report);
@@ -134,6 +134,14 @@ int ConcludeRun(const std::string& command, const RunReport& report, const std::
   for (const std::string& path : written)
     if (!path.empty()) files += (files.empty() ? "" : ", ") + path;
   std::printf("wrote %s\n", files.c_str());
+  if (interrupted) {
+    std::fflush(stdout);
+    std::fprintf(stderr,
+                 "gproj %s: stopped by Ctrl-C (SIGINT); the result at the stop was written, exit "
+                 "code %d\n",
+                 command.c_str(), kExitInterrupted);
+    return kExitInterrupted;
+  }
   if (code == kExitNotConverged && measure.empty())
     std::fprintf(stderr, "gproj %s: not converged (%s); the result was written, exit code %d\n",
                  command.c_str(), report.termination.c_str(), kExitNotConverged);

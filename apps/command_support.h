@@ -17,6 +17,7 @@ constexpr int kExitOk = 0;
 constexpr int kExitInputError = 1;     // bad file, mesh or option value: nothing written
 constexpr int kExitNotConverged = 3;   // finished without meeting the tolerance: result written
 constexpr int kExitSolverFailure = 4;  // numerical failure: nothing written
+constexpr int kExitInterrupted = 130;  // stopped by Ctrl-C: the result at the stop written
 
 // Throws InputError naming `option` and `path` when the path cannot be written: its directory
 // is missing or not writable, or the path is a directory. An empty path (option not given)
@@ -64,10 +65,12 @@ class IterationLog {
 // 0 converged, 3 tolerance not met (result written), 4 numerical failure (nothing written).
 int ExitCodeOf(const RunReport& report);
 
-// Prints how the run ended and what was written, and the error line for a failure or a missed
+// Prints how the run ended and what was written, and the error line for a failure, a missed
 // tolerance (naming `measure` and `tolerance`; with no measure, the termination, for runs
-// whose tolerance is the solver's own); returns ExitCodeOf(report).
+// whose tolerance is the solver's own) or a stop by Ctrl-C (`interrupted`); returns
+// ExitCodeOf(report), or kExitInterrupted for an interrupted run that did not fail.
 int ConcludeRun(const std::string& command, const RunReport& report, const std::string& measure,
-                double tolerance, const std::vector<std::string>& written);
+                double tolerance, const std::vector<std::string>& written,
+                bool interrupted = false);
 
 }  // namespace gproj

@@ -2,7 +2,10 @@
 // paths (required) or --NAME paths, outputs as -o/--output and --NAME paths plus --report, and
 // one option per schema entry (--kebab-case; switches as flags, with their negation). The
 // handler reads, runs by the one protocol, logs, writes and maps the exit code.
+#include <signal.h>
+
 #include <algorithm>
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -32,6 +35,36 @@ std::string HelpOf(const OptionSpec& spec) {
     help += spec.default_value.get<bool>() ? " (default: on)" : " (default: off)";
   return help;
 }
+
+// Ctrl-C during a run: the first SIGINT asks the run to stop (at its next iterate, or between
+// the steps of a stage without iterates); the run ends USER_ABORT, writes what it has and the
+// command exits 130. The handler is one-shot (SA_RESETHAND): a second Ctrl-C terminates at
+// once. Outside the run (reading, writing) SIGINT keeps its default action.
+volatile std::sig_atomic_t interrupted = 0;
+
+extern "C" void OnInterrupt(int) { interrupted = 1; }
+
+class InterruptScope {
+ public:
+  InterruptScope() {
+    interrupted = 0;
+    struct sigaction action = {};
+    action.sa_handler = OnInterrupt;
+    action.sa_flags = SA_RESETHAND | SA_RESTART;
+    sigemptyset(&action.sa_mask);
+    installed_ = sigaction(SIGINT, &action, &previous_) == 0;
+  }
+  ~InterruptScope() {
+    if (installed_) sigaction(SIGINT, &previous_, nullptr);
+  }
+  InterruptScope(const InterruptScope&) = delete;
+  InterruptScope& operator=(const InterruptScope&) = delete;
+  static bool Requested() { return interrupted != 0; }
+
+ private:
+  struct sigaction previous_ = {};
+  bool installed_ = false;
+};
 
 struct ProblemArgs {
   std::map<std::string, std::string> paths;   // input and output name -> path ("report" too)
@@ -158,6 +191,7 @@ int RunProblemCommand(const ProblemSpec& spec, const ProblemArgs& args) {
     } else {
       std::printf("%s%s\n", m.kind == RunMessage::Kind::kHeadline ? (name + ": ").c_str() : "",
                   SpellOptions(m.text, true).c_str());
+      std::fflush(stdout);  // progress shows when stdout is a pipe or a log file too
     }
   };
   for (const OutputSpec& output : spec.outputs)
@@ -167,7 +201,11 @@ int RunProblemCommand(const ProblemSpec& spec, const ProblemArgs& args) {
   std::vector<std::string> written;
   try {
     const RunInputs inputs = ReadInputs(spec, args);
-    result = RunProblem(spec, inputs, options, context);
+    {
+      InterruptScope scope;
+      context.stop_requested = &InterruptScope::Requested;
+      result = RunProblem(spec, inputs, options, context);
+    }
     result.report.termination = SpellOptions(result.report.termination, true);
     written = WriteResult(spec, args, inputs, options, result);
   } catch (const InputError& e) {
@@ -180,8 +218,8 @@ int RunProblemCommand(const ProblemSpec& spec, const ProblemArgs& args) {
     std::printf("wrote %s\n", written.front().c_str());
     return kExitOk;
   }
-  const int code =
-      ConcludeRun(spec.name, result.report, result.tolerance_measure, result.tolerance, written);
+  const int code = ConcludeRun(spec.name, result.report, result.tolerance_measure, result.tolerance,
+                               written, InterruptScope::Requested() && !result.report.converged);
   if (code == kExitNotConverged)
     for (const std::string& shortfall : result.shortfalls)
       std::fprintf(stderr, "%s: %s\n", name.c_str(), SpellOptions(shortfall, true).c_str());

@@ -152,6 +152,7 @@ class Minimizer {
 
   bool Finish(TerminationType type, const std::string& message) {
     summary_.termination = type;
+    if (type == TerminationType::kFailure) summary_.usable = false;
     summary_.message = message;
     summary_.total_seconds = SecondsSince(start_);
     return false;

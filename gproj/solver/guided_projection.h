@@ -134,7 +134,8 @@ struct SolverSummary {
 
   int num_steps() const { return static_cast<int>(iterations.size()) - 1; }
   bool converged() const { return termination == TerminationType::kConvergence; }
-  // x holds finite values (every outcome but kFailure at the start).
+  // x holds an iterate the solver vouches for: every outcome but kFailure (after a numerical
+  // failure x holds the last accepted iterate, finite, but the run did not end by its rules).
   bool usable = false;
   std::string BriefReport() const;
   std::string FullReport() const;

@@ -41,9 +41,9 @@ class Problem {
   // Holds an item (e.g. a fixed vertex) at its value in x: no row gets a derivative for it,
   // guided projection's steps leave it untouched bit for bit and the Ceres cross-check makes its
   // parameter block constant. Items of eliminable blocks cannot be held.
-  void SetConstant(int item) {
+  void SetConstant(int item, bool constant = true) {
     if (static_cast<int>(constant_.size()) <= item) constant_.resize(layout_.num_items(), false);
-    constant_[item] = true;
+    constant_[item] = constant;
   }
   bool IsConstant(int item) const {
     return item < static_cast<int>(constant_.size()) && constant_[item];

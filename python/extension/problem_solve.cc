@@ -9,6 +9,7 @@
 
 #include "gproj/common/input_error.h"
 #include "gproj/problems/run/guided_problem.h"
+#include "python/extension/python_term.h"
 #include "python/extension/run_bridge.h"
 
 namespace gproj::python {
@@ -104,6 +105,13 @@ py::dict SolveProblem(Problem* problem, ErrorSlot* errors, const std::string& so
   std::string why;
   if (!args.ceres.IsValid(&why)) throw InputError("invalid option: " + why);
   errors->error.reset();
+  // Terms written in Python: derivatives probed and checked once, slacks at the start.
+  for (int f = 0; f < problem->num_families(); ++f)
+    if (auto* term = dynamic_cast<PythonTerm*>(&problem->family(f))) {
+      term->PrepareDerivatives(*problem);
+      term->Project(problem->layout(), &problem->x());
+      errors->RethrowIfAny();
+    }
   RunBridge bridge(callback);
   const auto go_on = [&](const RunRecord& record) {
     return bridge.OnRecord(record) && errors->empty();

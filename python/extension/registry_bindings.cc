@@ -8,6 +8,8 @@
 
 #include <string>
 
+#include "gproj/geometry/io/text_input.h"
+#include "gproj/problems/mesh/vertex_control.h"
 #include "gproj/problems/run/registry.h"
 #include "python/extension/conversions.h"
 #include "python/extension/module.h"
@@ -125,10 +127,37 @@ std::string TextFromPython(const std::string& name, const py::handle& value) {
   return value.cast<std::string>();
 }
 
+// The path a value names: an os.PathLike, or a str for the kinds no str can be otherwise (a
+// curve, a B-spline, vertex ids); empty for anything else.
+std::string PathOf(const InputSpec& input, const py::handle& value) {
+  const py::module_ os = py::module_::import("os");
+  const bool path_like = py::isinstance(value, os.attr("PathLike"));
+  if (!path_like && !py::isinstance<py::str>(value)) return "";
+  if (input.kind != InputKind::kCurve && input.kind != InputKind::kBSpline &&
+      input.kind != InputKind::kVertexIds)
+    return "";
+  const py::object path = os.attr("fspath")(value);
+  if (!py::isinstance<py::str>(path))
+    TypeError(input.name + ": expected a path as str or os.PathLike[str], not bytes");
+  return path.cast<std::string>();
+}
+
 // One input from its Python value: (V, F) for a mesh passed as a keyword, an array for a curve,
-// a dict for a B-spline, a str for a text, ids or a mask for vertex ids.
+// a dict for a B-spline, a str for a text, ids or a mask for vertex ids; a path (str or
+// os.PathLike) for a curve, a B-spline or vertex ids, read as the command line reads it.
 void ReadInput(const InputSpec& input, const py::handle& value, int num_vertices, bool weld,
                RunInputs* inputs) {
+  const std::string path = PathOf(input, value);
+  if (!path.empty()) {
+    if (input.kind == InputKind::kCurve)
+      inputs->curves[input.name] = ReadPoints(path, 2);
+    else if (input.kind == InputKind::kBSpline)
+      inputs->surfaces[input.name] = ReadBSplineJson(path);
+    else
+      inputs->vertex_ids[input.name] = ReadVertexIds(path, num_vertices);
+    inputs->sources[input.name] = path;
+    return;
+  }
   if (input.kind == InputKind::kVertexIds)
     inputs->vertex_ids[input.name] = VertexIdsFromPython(input.name, value, num_vertices);
   else if (input.kind == InputKind::kCurve)
@@ -265,6 +294,7 @@ py::tuple Run(const std::string& name, const py::tuple& positional, const py::di
   RunBridge bridge(call.callback);
   RunContext context;
   context.on_record = bridge.callback();
+  context.stop_requested = bridge.stop_poll();
   context.outputs = call.outputs;
   RunResult result =
       bridge.Call([&] { return RunProblem(spec, call.inputs, call.options, context); });

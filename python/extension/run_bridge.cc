@@ -36,6 +36,14 @@ bool RunBridge::OnRecord(const RunRecord& record) {
   return false;
 }
 
+bool RunBridge::StopRequested() {
+  py::gil_scoped_acquire acquire;
+  if (error_) return true;
+  if (PyErr_CheckSignals() == 0) return false;
+  error_ = std::make_unique<py::error_already_set>();
+  return true;
+}
+
 void RunBridge::RethrowIfAny() {
   if (!error_) return;
   std::unique_ptr<py::error_already_set> error = std::move(error_);

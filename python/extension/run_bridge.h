@@ -2,11 +2,12 @@
 // Runs a library solve from Python: the GIL is released while the solver works and taken back
 // for every iteration record, which goes to the Python callback as a dict (the keys of the
 // report's history entries). Returning False from the callback stops the run cleanly; an
-// exception in the callback, or Ctrl-C (checked at every record), stops it and is raised again
-// when the run has returned.
+// exception in the callback, or Ctrl-C (checked at every record and at every poll of a stage
+// without records), stops it and is raised again when the run has returned.
 
 #include <pybind11/pybind11.h>
 
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -33,6 +34,12 @@ class RunBridge {
     return [this](const RunRecord& record) { return OnRecord(record); };
   }
 
+  // The poll for the stages that send no records (RunContext::stop_requested): true after
+  // Ctrl-C or an error in the callback.
+  std::function<bool()> stop_poll() {
+    return [this] { return StopRequested(); };
+  }
+
   // run() with the GIL released; then raises what the callback raised, or KeyboardInterrupt.
   template <typename Run>
   auto Call(Run run) {
@@ -48,6 +55,8 @@ class RunBridge {
 
   // Takes the GIL; false when the run must stop.
   bool OnRecord(const RunRecord& record);
+  // Takes the GIL; true when a signal handler raised (Ctrl-C) or the callback failed.
+  bool StopRequested();
   void RethrowIfAny();
 
  private:

@@ -107,7 +107,7 @@ def planarize(
     *,
     options: Optional[PlanarizeOptions] = None,
     reference: Optional[Tuple[ArrayLike, ArrayLike]] = None,
-    fixed: Optional[ArrayLike] = None,
+    fixed: Union[ArrayLike, str, os.PathLike[str], None] = None,
     weld: bool = False,
     solver: Literal['gp', 'ceres'] = 'gp',
     tolerance: float = 1e-09,
@@ -140,7 +140,7 @@ Arguments:
     F: (m, k) integer faces, 0-based (a list of faces for mixed sizes).
     options: a PlanarizeOptions; keyword arguments override its fields.
     reference: a mesh (V, F). Reference surface (triangle or polygon mesh): vertices keep close to it through the tangent plane of their closest point (sliding along it) instead of to their start.
-    fixed: 0-based vertex ids, or a boolean mask over the vertices. Vertices that do not move at all (0-based ids; returned bit for bit).
+    fixed: 0-based vertex ids, a boolean mask over the vertices, or the path of a file of ids. Vertices that do not move at all (0-based ids; returned bit for bit).
     weld: merge the input meshes' coincident vertices (within 1e-9 of the bounding-box diagonal) first, as unwelded exports need; without it such a mesh is refused. Vertex ids (fixed, ...) then number the welded mesh; result.weld_map maps each input vertex to it.
     solver: (choice) gp: guided projection; ceres: Levenberg-Marquardt on the same rows (cross-check).
     tolerance: (number, > 0) Stop when max planarity (diagonal distance / mean edge length) is <= this.
@@ -262,7 +262,7 @@ def anet(
     *,
     options: Optional[AnetOptions] = None,
     reference: Optional[Tuple[ArrayLike, ArrayLike]] = None,
-    fixed: Optional[ArrayLike] = None,
+    fixed: Union[ArrayLike, str, os.PathLike[str], None] = None,
     weld: bool = False,
     solver: Literal['gp', 'ceres'] = 'gp',
     star_form: Literal['normals', 'quads'] = 'normals',
@@ -295,7 +295,7 @@ Arguments:
     F: (m, k) integer faces, 0-based (a list of faces for mixed sizes).
     options: a AnetOptions; keyword arguments override its fields.
     reference: a mesh (V, F). Reference surface (polygon mesh) to stay close to; default: the input itself.
-    fixed: 0-based vertex ids, or a boolean mask over the vertices. Vertices that do not move at all (0-based ids; returned bit for bit).
+    fixed: 0-based vertex ids, a boolean mask over the vertices, or the path of a file of ids. Vertices that do not move at all (0-based ids; returned bit for bit).
     weld: merge the input meshes' coincident vertices (within 1e-9 of the bounding-box diagonal) first, as unwelded exports need; without it such a mesh is refused. Vertex ids (fixed, ...) then number the welded mesh; result.weld_map maps each input vertex to it.
     solver: (choice) gp: guided projection; ceres: Levenberg-Marquardt on the same rows (cross-check).
     star_form: (choice) Vertex-star planarity: normals (auxiliary normal per inner vertex) or quads (n-2 quads of each star).
@@ -427,7 +427,7 @@ def hnet(
     *,
     options: Optional[HnetOptions] = None,
     reference: Optional[Tuple[ArrayLike, ArrayLike]] = None,
-    fixed: Optional[ArrayLike] = None,
+    fixed: Union[ArrayLike, str, os.PathLike[str], None] = None,
     weld: bool = False,
     solver: Literal['gp', 'ceres'] = 'gp',
     star_form: Literal['normals', 'quads'] = 'normals',
@@ -464,7 +464,7 @@ Arguments:
     F: (m, k) integer faces, 0-based (a list of faces for mixed sizes).
     options: a HnetOptions; keyword arguments override its fields.
     reference: a mesh (V, F). Reference surface (polygon mesh) to stay close to; default: the input itself.
-    fixed: 0-based vertex ids, or a boolean mask over the vertices. Vertices that do not move at all (0-based ids; returned bit for bit).
+    fixed: 0-based vertex ids, a boolean mask over the vertices, or the path of a file of ids. Vertices that do not move at all (0-based ids; returned bit for bit).
     weld: merge the input meshes' coincident vertices (within 1e-9 of the bounding-box diagonal) first, as unwelded exports need; without it such a mesh is refused. Vertex ids (fixed, ...) then number the welded mesh; result.weld_map maps each input vertex to it.
     solver: (choice) gp: guided projection; ceres: Levenberg-Marquardt on the same rows (cross-check).
     star_form: (choice) Vertex-star planarity: normals (auxiliary normal per inner vertex) or quads (n-2 quads of each star).
@@ -952,7 +952,7 @@ class MrevolutionResult(Result):
     """a shaded picture of the M-revolution mesh (None unless asked in outputs=)"""
 
 def mrevolution(
-    curve: ArrayLike,
+    curve: Union[ArrayLike, str, os.PathLike[str]],
     *,
     options: Optional[MrevolutionOptions] = None,
     p2: Sequence[float],
@@ -1089,7 +1089,7 @@ class WeingartenResult(Result):
     """with panels: gaps and kinks at the seams, input against result (None unless asked in outputs=)"""
 
 def weingarten(
-    surface: Mapping[str, Any],
+    surface: Union[Mapping[str, Any], str, os.PathLike[str]],
     *,
     options: Optional[WeingartenOptions] = None,
     preset: Literal['fig1', 'fig2b', 'fig2c', 'fig2d', 'fig3', 'fig4b', 'fig4c', 'fig9b', 'fig9c', 'fig10'] = 'fig1',
@@ -1343,10 +1343,10 @@ class CanalResult(Result):
     """a shaded picture of the canal mesh (None unless asked in outputs=)"""
 
 def canal(
-    curve: ArrayLike,
+    curve: Union[ArrayLike, str, os.PathLike[str]],
     *,
     options: Optional[CanalOptions] = None,
-    second_curve: Optional[ArrayLike] = None,
+    second_curve: Union[ArrayLike, str, os.PathLike[str], None] = None,
     first_point: Optional[Sequence[float]] = None,
     lengths: Optional[Sequence[float]] = None,
     length: Optional[float] = None,
@@ -1370,7 +1370,7 @@ def canal(
 Arguments:
     curve: Curve points P_0..P_n.
     options: a CanalOptions; keyword arguments override its fields.
-    second_curve: an (n, 3) array of points. Fit the canal surface to this second curve instead (000 §4.1): the curve is then a line of curvature and normal the surface normal at P_0.
+    second_curve: an (n, 3) array of points, or the path of a text file of x y z lines. Fit the canal surface to this second curve instead (000 §4.1): the curve is then a line of curvature and normal the surface normal at P_0.
     first_point: (numbers, 3 values) The point that fixes the first circle (with P_0 and P_1).
     lengths: (numbers, > 0) |P_k Q_k| for every curve point.
     length: (number, > 0) The same |P_k Q_k| for every curve point.

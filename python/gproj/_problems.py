@@ -44,15 +44,15 @@ _OPTION_TYPES = {
 _KEYWORD_INPUT_TYPES = {
     "mesh": "Optional[Tuple[ArrayLike, ArrayLike]]",
     "quad_mesh": "Optional[Tuple[ArrayLike, ArrayLike]]",
-    "vertex_ids": "Optional[ArrayLike]",
-    "curve": "Optional[ArrayLike]",
-    "bspline": "Optional[Mapping[str, Any]]",
+    "vertex_ids": "Union[ArrayLike, str, os.PathLike[str], None]",
+    "curve": "Union[ArrayLike, str, os.PathLike[str], None]",
+    "bspline": "Union[Mapping[str, Any], str, os.PathLike[str], None]",
     "text": "Union[str, os.PathLike[str], None]",
 }
 
 _POSITIONAL_INPUT_TYPES = {
-    "curve": "ArrayLike",
-    "bspline": "Mapping[str, Any]",
+    "curve": "Union[ArrayLike, str, os.PathLike[str]]",
+    "bspline": "Union[Mapping[str, Any], str, os.PathLike[str]]",
     "text": "Union[str, os.PathLike[str]]",
 }
 
@@ -185,9 +185,10 @@ def parameters(spec: Mapping[str, Any]) -> List[Parameter]:
 
 def _input_doc(i: Mapping[str, Any]) -> str:
     what = {
-        "vertex_ids": "0-based vertex ids, or a boolean mask over the vertices",
-        "curve": "an (n, 3) array of points",
-        "bspline": "a dict, the B-spline's JSON",
+        "vertex_ids": "0-based vertex ids, a boolean mask over the vertices, or the path of "
+                      "a file of ids",
+        "curve": "an (n, 3) array of points, or the path of a text file of x y z lines",
+        "bspline": "a dict, the B-spline's JSON, or the path of its .json file",
         "text": "a path (pathlib.Path or str naming a file) or the file's text",
     }.get(i["kind"], "a mesh (V, F)")
     return f"{what}. {i['doc']}."

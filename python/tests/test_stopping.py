@@ -220,3 +220,67 @@ def test_a_callback_that_never_stops_changes_nothing():
     assert without_seconds(quiet.report["rounds"]) == without_seconds(watched.report["rounds"])
     assert quiet.report["final"] == watched.report["final"]
     assert quiet.output == watched.output
+
+
+def test_ctrl_c_during_weingarten_paneling_raises_keyboard_interrupt_within_a_fraction():
+    """Paneling sends no records (7 s here unstopped, trying mold counts down for a tolerance):
+    the run polls for signals between its steps."""
+    import threading
+    import time
+
+    sent = []
+
+    def interrupt():
+        sent.append(time.monotonic())
+        os.kill(os.getpid(), signal.SIGINT)
+
+    timer = threading.Timer(1.0, interrupt)  # the optimisation takes ~0.1 s, the paneling 7 s
+    records = []
+
+    def callback(record):
+        if not records:
+            timer.start()
+        records.append(record)
+        return True
+
+    with pytest.raises(KeyboardInterrupt):
+        try:
+            gproj.weingarten(freeform(), max_iterations=2, panels=[10, 10],
+                             panel_tolerance=[0.01, 10], callback=callback)
+        finally:
+            timer.cancel()
+    raised = time.monotonic()
+    assert sent, "the run ended before the signal"
+    assert raised - sent[0] < 2.0, raised - sent[0]
+
+
+def triangulated_hypar(n):
+    V, F = gproj.grid(nu=n, nv=n, surface="hypar")
+    return V, np.vstack([F[:, [0, 1, 2]], F[:, [0, 2, 3]]])
+
+
+@pytest.mark.parametrize("name", ["field", "remesh"])
+def test_ctrl_c_during_a_jet_fit_or_an_integer_grid_map_raises_within_a_fraction(name):
+    """A 40,000-vertex triangulation: the field's jet fit takes ~3 s and sends no records, nor
+    does the remeshing's map; both poll for signals between their steps."""
+    import threading
+    import time
+
+    V, T = triangulated_hypar(200)
+    sent = []
+
+    def interrupt():
+        sent.append(time.monotonic())
+        os.kill(os.getpid(), signal.SIGINT)
+
+    timer = threading.Timer(0.5, interrupt)
+    kwargs = {"edge_length": 0.02} if name == "remesh" else {}
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        try:
+            getattr(gproj, name)(V, T, **kwargs)
+        finally:
+            timer.cancel()
+    raised = time.monotonic()
+    assert sent, "the run ended before the signal"
+    assert raised - sent[0] < 1.0, raised - sent[0]

@@ -81,6 +81,7 @@ std::vector<VertexCurvature> FitAtUnitScale(const PolyMesh& mesh,
   std::vector<int> ring, next, neighbourhood;
   std::vector<Kernel::Point_3> points;
   for (auto v : mesh.vertices()) {
+    if (v.idx() % 1024 == 0) PollStop(options.stop, "the jet fit");
     if (mesh.is_isolated(v)) continue;
     // Rings around v until the neighbourhood is large enough.
     neighbourhood.assign(1, v.idx());
@@ -233,7 +234,8 @@ std::vector<double> IndicesAtUnitScale(const PolyMesh& mesh,
 
 std::vector<Eigen::Vector3d> SmoothAtUnitScale(const PolyMesh& mesh,
                                                const std::vector<VertexCurvature>& curvature,
-                                               double alignment_weight, int symmetry = 2) {
+                                               double alignment_weight, int symmetry = 2,
+                                               const StopPoll& stop = nullptr) {
   const double n_fold = symmetry;
   const int n = static_cast<int>(mesh.n_vertices());
   // Tangent frames: the fitted normal (or the faces') and any orthogonal e1, e2 = n × e1.
@@ -287,7 +289,11 @@ std::vector<Eigen::Vector3d> SmoothAtUnitScale(const PolyMesh& mesh,
   }
   Eigen::SparseMatrix<double> a(2 * n, 2 * n);
   a.setFromTriplets(entries.begin(), entries.end());
-  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(a);
+  PollStop(stop, "the field's smoothing");
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
+  solver.analyzePattern(a);
+  PollStop(stop, "the field's smoothing");
+  solver.factorize(a);
   if (solver.info() != Eigen::Success)
     throw InputError("the field smoothing system could not be factorised");
   const Eigen::VectorXd z = solver.solve(rhs);
@@ -407,7 +413,8 @@ DirectionField EstimateDirectionField(const PolyMesh& mesh, DirectionKind kind,
   field.symmetry = symmetry;
   if (smoothing > 0.0) {
     const std::vector<Eigen::Vector3d> smooth =
-        SmoothAtUnitScale(scaled, field.curvature, smoothing, symmetry);
+        SmoothAtUnitScale(scaled, field.curvature, smoothing, symmetry, options.stop);
+    PollStop(options.stop, "the field's smoothing");
     for (size_t v = 0; v < n; ++v) {
       VertexCurvature& c = field.curvature[v];
       if (!c.fitted || !(smooth[v].norm() > 0.0)) continue;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "gproj/common/run_stopped.h"
 #include "gproj/geometry/io/mesh_io.h"
 
 namespace gproj {
@@ -32,6 +33,9 @@ struct CurvatureFitOptions {
   int monge_degree = 2;  // degree of the Monge form returned (≤ fit_degree)
   int min_points = 20;   // rings are added until the neighbourhood has this many vertices
   int max_rings = 64;
+  // Asked between vertices and between the field's steps (null: never): true throws
+  // RunStopped (gproj/common/run_stopped.h).
+  StopPoll stop;
   bool IsValid(std::string* why) const;
 };
 

@@ -625,7 +625,7 @@ CanalSmoothingSummary SmoothCanalStrip(const CircularStripInput& input, const Fr
                 summary.message;
   // A stop on the iterate where BFGS ended by itself (recorded after the solve) is a stop too.
   if (recording.stopped() && summary.termination_type != ceres::USER_FAILURE)
-    out.termination = "USER_ABORT: stopped by the callback (" + out.termination + ")";
+    out.termination = "USER_ABORT: stopped on request (" + out.termination + ")";
   out.message = summary.BriefReport();
   out.initial_energy = MakeCyclidicStrip(strip, angles).energy;
   CircularStripInput result = input;

@@ -866,7 +866,7 @@ RunReport CyclidicRunReport(const CyclidicMeshResult& result, double tangent_tol
           : fault;
   if (result.fairing.aborted) {
     report.converged = false;
-    report.termination = "USER_ABORT: the frame's minimisation was stopped by the callback";
+    report.termination = "USER_ABORT: the frame's minimisation was stopped on request";
   }
   return report;
 }

@@ -600,7 +600,7 @@ bool HNet::RunANetStep(const PolyMesh& reference, StopTracker* stop, HNetSummary
   }
   mesh_ = anet.Result();
   if (stop->stopped()) {  // the whole run stops, without rounds
-    report.termination = "USER_ABORT: stopped by the callback in the A-net step";
+    report.termination = "USER_ABORT: stopped on request in the A-net step";
     return false;
   }
   return true;
@@ -648,7 +648,7 @@ void HNet::RunJoint(const PolyMesh& reference, const RoundCallback& on_round, St
   if (report.failed) return;
   if (stop->stopped()) {
     report.termination =
-        "USER_ABORT: stopped by the callback in the joint solve of vertices and weights";
+        "USER_ABORT: stopped on request in the joint solve of vertices and weights";
     return;
   }
   report.converged = met;
@@ -745,8 +745,8 @@ void HNet::RunRounds(const PolyMesh& reference, const RoundCallback& on_round, S
         report.iterations += s.steps;
         summary->rounds.push_back(at);
         if (on_round) on_round(at);
-        report.termination = "USER_ABORT: stopped by the callback in the vertex update of round " +
-                             std::to_string(round);
+        report.termination =
+            "USER_ABORT: stopped on request in the vertex update of round " + std::to_string(round);
         return;
       }
       r.vertex_update_converged = s.converged;
@@ -769,7 +769,7 @@ void HNet::RunRounds(const PolyMesh& reference, const RoundCallback& on_round, S
         if (report.failed) return;
         if (stop->stopped()) {
           report.termination =
-              "USER_ABORT: stopped by the callback in the joint solve of vertices and weights";
+              "USER_ABORT: stopped on request in the joint solve of vertices and weights";
           return;
         }
         report.termination = report.converged

@@ -148,7 +148,8 @@ void Describe(const PolyMesh& mesh, const DirectionField& field, const FieldSett
 }
 
 RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunContext& context) {
-  const FieldSettings settings = Schema().Apply(values);
+  FieldSettings settings = Schema().Apply(values);
+  settings.fit.stop = [&context] { return context.StopRequested(); };
   const PolyMesh& mesh = inputs.Mesh("mesh");
   const DirectionKind kind =
       settings.directions == "principal" ? DirectionKind::kPrincipal : DirectionKind::kAsymptotic;
@@ -166,7 +167,14 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
                   settings.smooth);
     context.Info(line);
   }
-  const DirectionField field = EstimateDirectionField(mesh, kind, settings.fit, settings.smooth);
+  DirectionField field;
+  try {
+    field = EstimateDirectionField(mesh, kind, settings.fit, settings.smooth);
+  } catch (const RunStopped& e) {
+    RunResult stopped;
+    stopped.report = construction.Stopped(e);
+    return stopped;
+  }
   construction.Stop();
   const double seconds = construction.seconds();
   const NamedValues measures = {{"fitted_vertices", static_cast<double>(field.fitted)},

@@ -485,10 +485,12 @@ class MapSystem {
     std::string message;
     const Eigen::VectorXd rhs = at * b;
     Eigen::VectorXd y(free);
-    if (!solver_->Analyze(a, MatrixForm::kAAt, &message) ||
-        !solver_->Factorize(a, 1e-9, &message) || !solver_->Solve(rhs.data(), y.data(), &message) ||
-        !y.allFinite())
-      throw InputError("the parametrisation system could not be solved: " + message);
+    PollStop(options_.fit.stop, "the integer-grid map");
+    bool solved = solver_->Analyze(a, MatrixForm::kAAt, &message);
+    PollStop(options_.fit.stop, "the integer-grid map");
+    solved = solved && solver_->Factorize(a, 1e-9, &message) &&
+             solver_->Solve(rhs.data(), y.data(), &message) && y.allFinite();
+    if (!solved) throw InputError("the parametrisation system could not be solved: " + message);
     for (int i = 0; i < n_; ++i) x_[i] = column[i] >= 0 ? y[column[i]] : fixed_[i];
   }
 
@@ -587,6 +589,7 @@ FieldParametrization ParametrizeAlongField(const PolyMesh& triangles, const Dire
   const PolyMesh m = UnitScaleCopy(triangles, &unit);
   const double h = UnitEdgeLength(options, unit);
   Surface s = Frames(m, field, options);
+  PollStop(options.fit.stop, "the integer-grid map");
   FieldParametrization out;
   out.edge_length = h * unit.length;
   out.singularities = FrameSingularities(s);
@@ -595,6 +598,7 @@ FieldParametrization ParametrizeAlongField(const PolyMesh& triangles, const Dire
   CombFrames(m, cuts, &s);
   FindPathTurns(m, s, &cuts);
   FindRightSides(m, s, &cuts);
+  PollStop(options.fit.stop, "the integer-grid map");
   MapSystem system(m, s, cuts, h, options);
   system.Solve();
   if (!out.singularities.empty()) {
@@ -644,8 +648,10 @@ QuadRemeshResult RemeshAlongField(const PolyMesh& triangles, const QuadRemeshOpt
   CheckTriangulatedDisk(triangles);
   out.field = EstimateDirectionField(triangles, options.directions, options.fit, options.smoothing);
   out.seconds_field = lap();
+  PollStop(options.fit.stop, "the integer-grid map");
   out.parametrization = ParametrizeAlongField(triangles, out.field, options);
   out.seconds_map = lap();
+  PollStop(options.fit.stop, "the quads' extraction");
   UnitFrame unit;
   const PolyMesh scaled = UnitScaleCopy(triangles, &unit);
   out.extraction = ExtractQuads(scaled, out.parametrization.map);

@@ -127,6 +127,7 @@ void Describe(const QuadRemeshResult& r, double smoothing, RunResult* result) {
 RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunContext& context) {
   RemeshSettings settings = Schema().Apply(values);
   QuadRemeshOptions& options = settings.remesh;
+  options.fit.stop = [&context] { return context.StopRequested(); };
   options.directions =
       settings.directions == "principal" ? DirectionKind::kPrincipal : DirectionKind::kAsymptotic;
   const PolyMesh& mesh = inputs.Mesh("mesh");
@@ -144,6 +145,10 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
     r = RemeshAlongField(mesh, options);
   } catch (const InputError& e) {
     throw InputError(source + ": " + e.what());
+  } catch (const RunStopped& e) {
+    RunResult stopped;
+    stopped.report = construction.Stopped(e);
+    return stopped;
   }
   construction.Stop();
   const FieldParametrization& p = r.parametrization;

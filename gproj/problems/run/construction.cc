@@ -37,4 +37,10 @@ RunReport Construction::Finish(const NamedValues& initial, const NamedValues& fi
   return report;
 }
 
+RunReport Construction::Stopped(const RunStopped& stop) const {
+  RunReport report = Finish({}, {}, false);
+  report.termination = std::string("USER_ABORT: ") + stop.what();
+  return report;
+}
+
 }  // namespace gproj

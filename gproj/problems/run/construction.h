@@ -7,6 +7,7 @@
 #include <chrono>
 #include <string>
 
+#include "gproj/common/run_stopped.h"
 #include "gproj/problems/run/guided_problem.h"
 
 namespace gproj {
@@ -35,6 +36,9 @@ class Construction {
   // The report now: solver "direct" ("ceres" for kBfgs), the method, iterations 0, the measures
   // `initial` and `final`, converged when `met`, failed when a final measure is not finite.
   RunReport Finish(const NamedValues& initial, const NamedValues& final, bool met) const;
+  // The report of a build stopped on request (RunStopped): USER_ABORT, not converged, no
+  // measures.
+  RunReport Stopped(const RunStopped& stop) const;
   // Stops the timer: the build is done (for a run that builds when it is made, to check its
   // input, and reports later).
   void Stop() { seconds_ = SecondsSince(start_); }

@@ -113,7 +113,7 @@ void ConcludeStatus(RunReport* report) {
                        (!report->converged && Contains(t, "USER_SUCCESS"));
   if (aborted) {
     report->converged = false;
-    if (words != "USER_ABORT") prefix("USER_ABORT", "stopped by the callback");
+    if (words != "USER_ABORT") prefix("USER_ABORT", "stopped on request");
     return;
   }
   if (report->converged) {

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "gproj/common/run_stopped.h"
 #include "gproj/solver/ceres_adapter.h"
 #include "gproj/solver/guided_projection.h"
 #include "gproj/solver/problem.h"

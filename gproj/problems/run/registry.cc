@@ -303,11 +303,19 @@ std::string ReferenceMarkdown(const ProblemSpec& spec) {
       "edit. -->\n\n";
   md += spec.summary + "\n\n## Inputs\n\n";
   md += "| name | kind | command line | Python | |\n|---|---|---|---|---|\n";
-  for (const InputSpec& input : spec.inputs)
+  for (const InputSpec& input : spec.inputs) {
+    const bool mesh = input.kind == InputKind::kMesh || input.kind == InputKind::kQuadMesh;
+    const std::string python =
+        mesh ? (input.IsPositional() ? "`V, F` arrays" : "`" + input.name + "=(V, F)`")
+             : (input.IsPositional() ? "positional " : "`" + input.name + "=` ") +
+                   std::string(input.kind == InputKind::kCurve     ? "(n, 3) array or path"
+                               : input.kind == InputKind::kBSpline ? "dict or path"
+                               : input.kind == InputKind::kText    ? "str (text) or path"
+                                                                   : "ids, mask or path");
     md += "| `" + input.name + "` | " + InputKindName(input.kind) + " | " +
-          (input.required ? "positional path" : "`" + FlagOf(input.name) + " FILE`") + " | " +
-          (input.required ? "`V, F` arrays" : "`" + input.name + "=`") + " | " + Cell(input.doc) +
-          " |\n";
+          (input.IsPositional() ? "positional path" : "`" + FlagOf(input.name) + " FILE`") + " | " +
+          python + " | " + Cell(input.doc) + " |\n";
+  }
   md += "\n## Outputs\n\n| name | kind | command line | |\n|---|---|---|---|\n";
   for (const OutputSpec& output : spec.outputs)
     md += "| `" + output.name + "` | " + OutputKindName(output.kind) + " | `" +

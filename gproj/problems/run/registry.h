@@ -110,9 +110,16 @@ struct RunContext {
   // the spec's log_measures throughout.
   std::function<void(const std::vector<std::string>&)> on_columns;
   std::set<std::string> outputs;  // names of the outputs asked for
+  // Polled by the stages that send no records (paneling, long constructions) between their
+  // steps, and before every record: true stops the run as a false from on_record does (Ctrl-C
+  // on the command line, a signal in Python). Null: never.
+  std::function<bool()> stop_requested;
 
   bool Wants(const std::string& output) const { return outputs.count(output) > 0; }
-  bool Record(const RunRecord& record) const { return !on_record || on_record(record); }
+  bool StopRequested() const { return stop_requested && stop_requested(); }
+  bool Record(const RunRecord& record) const {
+    return !StopRequested() && (!on_record || on_record(record));
+  }
   void Headline(const std::string& text) const;
   void Columns(const std::vector<std::string>& columns) const {
     if (on_columns) on_columns(columns);

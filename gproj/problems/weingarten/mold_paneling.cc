@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "gproj/common/input_error.h"
+#include "gproj/common/run_stopped.h"
 #include "gproj/problems/weingarten/curvature_diagram.h"
 
 namespace gproj::weingarten {
@@ -316,7 +317,7 @@ class SeamPositioning {
   }
 
   // Runs at most `iterations` LM steps and applies the motions to the placements.
-  void Run(int iterations) {
+  void Run(int iterations, const std::function<bool()>& stop) {
     Eigen::VectorXd theta = Eigen::VectorXd::Zero(6 * n_), gradient(6 * n_);
     double energy = Energy(theta), lambda = 1e-4;
     Eigen::SparseMatrix<double> normal(6 * n_, 6 * n_);
@@ -326,6 +327,7 @@ class SeamPositioning {
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
     bool analysed = false;
     for (int it = 0; it < iterations; ++it) {
+      PollStop(stop, "the paneling");
       Linearize(theta, &gradient);
       triplets.clear();
       for (const auto& [key, index] : block_of_)
@@ -515,6 +517,7 @@ Paneling PanelSurface(const BSplineSurface& surface, const PanelingOptions& opti
   for (size_t i = 0; i < panels.size(); ++i) p.placement[i] = panels[i].frame;
   p.molds.resize(p.num_molds);
   for (int c = 0; c < p.num_molds; ++c) {
+    PollStop(options.stop, "the paneling");
     std::vector<const DesignPanel*> members;
     std::vector<Eigen::Isometry3d*> placements;
     double scale = 0.0;
@@ -546,7 +549,7 @@ Paneling PanelSurface(const BSplineSurface& surface, const PanelingOptions& opti
   p.fitted_seams = MeasureSeams(panels, p, seams);
   if (options.seam_positioning && panels.size() > 1)
     SeamPositioning(panels, seams, p.fitted_seams, options.hold_weight, &p)
-        .Run(options.positioning_iterations);
+        .Run(options.positioning_iterations, options.stop);
   p.seams = MeasureSeams(panels, p, seams);
   int points = 0;
   for (size_t i = 0; i < panels.size(); ++i)

@@ -24,6 +24,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,9 @@ struct PanelingOptions {
   bool seam_positioning = true;
   double hold_weight = 0.3;
   int positioning_iterations = 15;
+  // Polled between molds and positioning steps (null: never): true throws RunStopped, so that
+  // a run stopped during its paneling ends there.
+  std::function<bool()> stop;
 
   // Throws InputError naming the rule broken.
   void Validate() const;
@@ -83,7 +87,8 @@ struct Paneling {
 };
 
 // Panels, molds, placements and seam measures of `surface`. Throws InputError on invalid
-// options or a degenerate surface (s_u × s_v = 0 at a panel centre).
+// options or a degenerate surface (s_u × s_v = 0 at a panel centre), RunStopped when
+// options.stop asks.
 Paneling PanelSurface(const BSplineSurface& surface, const PanelingOptions& options);
 
 // The fewest molds from which on every larger number meets max gap ≤ max_gap and max kink ≤

@@ -64,7 +64,7 @@ void PanelSettings::Validate() const {
 }
 
 PanelComparison ComparePaneling(const BSplineSurface& input, const BSplineSurface& result,
-                                const PanelSettings& settings) {
+                                const PanelSettings& settings, const std::function<bool()>& stop) {
   settings.Validate();
   PanelComparison c;
   c.settings = settings;
@@ -72,6 +72,7 @@ PanelComparison ComparePaneling(const BSplineSurface& input, const BSplineSurfac
   o.panels_u = settings.panels_u;
   o.panels_v = settings.panels_v;
   o.molds = settings.molds_asked();
+  o.stop = stop;
   c.initial = PanelSurface(input, o);
   c.final = PanelSurface(result, o);
   if (settings.with_tolerance()) {

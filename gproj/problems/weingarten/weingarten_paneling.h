@@ -3,6 +3,7 @@
 // (same panel grid, same number of molds asked), their seams' gaps and kinks side by side, and
 // with a tolerance the number of molds each needs to meet it.
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -33,8 +34,10 @@ struct PanelComparison {
   int initial_molds_needed = 0, final_molds_needed = 0;
 };
 
+// `stop` is polled between the panelings' steps (null: never); true throws RunStopped.
 PanelComparison ComparePaneling(const BSplineSurface& input, const BSplineSurface& result,
-                                const PanelSettings& settings);
+                                const PanelSettings& settings,
+                                const std::function<bool()>& stop = nullptr);
 
 // The report's "panels" object: count, grid, molds (asked), mold_factor, and initial / final
 // each with molds (used), mean_gap, max_gap, mean_kink_deg, max_kink_deg, mean_deviation,

@@ -240,7 +240,14 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   if (!run.report.failed && !stopped && s.panels.enabled()) {
     context.Headline("paneling the input and the result (" + std::to_string(s.panels.panels_u) +
                      " x " + std::to_string(s.panels.panels_v) + " panels)...");
-    panels = ComparePaneling(input, run.result, s.panels);
+    try {
+      panels = ComparePaneling(input, run.result, s.panels,
+                               [&context] { return context.StopRequested(); });
+    } catch (const RunStopped&) {
+      result.Info("paneling stopped: the run was stopped during it (no panel report or pictures)");
+      result.report.converged = false;
+      result.report.termination = "USER_ABORT: stopped during the paneling";
+    }
   }
   result.facts = WeingartenReportFacts(options, run);
   result.facts["preset"] = s.settings.preset;
