@@ -54,7 +54,7 @@ EXIT_FAILED = 2
 EXIT_INCOMPLETE = 3
 EXIT_INTERRUPTED = 130
 
-ENTRY_KEYS = ("name", "problem", "inputs", "options", "outputs", "sweep", "timeout")
+ENTRY_KEYS = ("name", "problem", "inputs", "options", "outputs", "sweep", "timeout", "weld")
 MESH_EXTENSIONS = (".obj", ".off", ".ply")
 GLOB_CHARACTERS = "*?["
 SUMMARY_FILES = ("summary.csv", "summary.json")
@@ -129,12 +129,13 @@ class Job:
     timeout: Optional[float]  # seconds the run may take; None: no limit
     swept: Dict[str, Any]  # what varies in its entry: swept options, globbed inputs (relative)
     base: str  # the job file's folder: input paths in the summary are relative to it
+    weld: bool = False  # merge the input meshes' coincident vertices first (weld=True)
 
     def description(self) -> Dict[str, Any]:
         """The job as plain data (job.json)."""
         return {"name": self.name, "folder": self.folder, "problem": self.problem,
                 "inputs": self.inputs, "options": self.options, "outputs": list(self.outputs),
-                "timeout": self.timeout, "swept": self.swept}
+                "timeout": self.timeout, "swept": self.swept, "weld": self.weld}
 
 
 def _where(index: int, entry: Any) -> str:
@@ -223,6 +224,7 @@ def expand_entry(index: int, entry: Any, base: str,
             _fail(where, key, f"not a key of a job{_hint(key, ENTRY_KEYS)} (the keys: "
                   f"{', '.join(ENTRY_KEYS)})")
     spec = _problem(where, entry.get("problem"))
+    weld = _weld(where, spec, entry.get("weld", False))
     options = _mapping(where, "options", entry.get("options", {}))
     _check_option_names(where, "options", spec, options)
     _check_options(where, "options", spec, options)
@@ -252,7 +254,7 @@ def expand_entry(index: int, entry: Any, base: str,
             _check_options(where, f"sweep ({_swept_text(swept, sweep)})", spec, job_options)
         name = _job_name(where, template, spec["name"], position, job_inputs, job_options, swept)
         jobs.append(Job(index, name, "", spec["name"], job_inputs, job_options, outputs, timeout,
-                        swept, base))
+                        swept, base, weld))
     return jobs
 
 
@@ -417,6 +419,14 @@ def _outputs(where: str, spec: Mapping[str, Any], outputs: Any) -> Tuple[str, ..
         if name in outputs[:i]:
             _fail(where, f"outputs[{i}]", f"{json.dumps(name)} is listed twice")
     return tuple(outputs)
+
+
+def _weld(where: str, spec: Mapping[str, Any], value: Any) -> bool:
+    if not isinstance(value, bool):
+        _fail(where, "weld", f"expected true or false, not {json.dumps(value)}")
+    if value and not any(i["kind"] in ("mesh", "quad_mesh") for i in spec["inputs"]):
+        _fail(where, "weld", f"{spec['name']} has no mesh input to weld")
+    return value
 
 
 def _timeout(where: str, value: Any) -> Optional[float]:
@@ -594,6 +604,8 @@ def run_job(job: Job, stop: Optional[str] = None) -> Outcome:
         with captured_warnings(outcome.warnings):
             arguments = load_inputs(job)
             guard = Guard(job.timeout, stop)
+            if job.weld:
+                arguments["weld"] = True
             result = gproj.run(job.problem, **arguments, options=job.options,
                                outputs=list(job.outputs), callback=guard)
         outcome.report = result.report.to_dict()
@@ -628,63 +640,14 @@ def load_inputs(job: Job) -> Dict[str, Any]:
 
 
 def load_input(kind: str, value: Any) -> Any:
-    """One input's value from its path (or inline data, passed on as it is)."""
+    """One input's value from its path (or inline data, passed on as it is): meshes are read
+    here (the functions take arrays); curves, B-splines, vertex ids and texts go to gproj as
+    paths, read by the command line's readers (errors naming the file and line)."""
     if not isinstance(value, str):
         return np.asarray(value, dtype=np.float64) if kind == "curve" else value
     if is_mesh_kind(kind):
         return gproj.read_mesh(value)
-    if kind == "vertex_ids":
-        return [_vertex_id(value, number, word) for number, words in _text_lines(value)
-                for word in words]
-    if kind == "curve":
-        return np.array([_point(value, number, words) for number, words in _text_lines(value)],
-                        dtype=np.float64)
-    if kind == "bspline":
-        try:
-            return json.loads(read_text(value))
-        except json.JSONDecodeError as e:
-            raise ValueError(f"{value}: not valid JSON: {e.msg} (line {e.lineno})") from None
-    return pathlib.Path(value)  # a text input: gproj reads the file (a str could be its text)
-
-
-def read_text(path: str) -> str:
-    """A UTF-8 text file's text (a byte-order mark dropped); ValueError naming the file."""
-    try:
-        with open(path, encoding="utf-8-sig") as f:
-            return f.read()
-    except OSError as e:
-        raise ValueError(f"{path}: cannot open the file for reading: {e.strerror}") from None
-    except UnicodeDecodeError:
-        raise ValueError(f"{path}: not a UTF-8 text file") from None
-
-
-def _text_lines(path: str) -> List[Tuple[int, List[str]]]:
-    """(line number, words) of the non-empty lines, '#' comments dropped (the command line's
-    rules for id and curve files)."""
-    lines = []
-    for number, line in enumerate(read_text(path).split("\n"), 1):
-        words = line.split("#", 1)[0].split()
-        if words:
-            lines.append((number, words))
-    if not lines:
-        raise ValueError(f"{path}: the file is empty")
-    return lines
-
-
-def _vertex_id(path: str, number: int, word: str) -> int:
-    if not re.fullmatch(r"[0-9]+", word):
-        raise ValueError(f"{path}:{number}: {word!r} is not a vertex id (0, 1, 2, ...)")
-    return int(word)
-
-
-def _point(path: str, number: int, words: List[str]) -> List[float]:
-    try:
-        point = [float(w) for w in words]
-    except ValueError:
-        point = []
-    if len(point) != 3 or not all(math.isfinite(x) for x in point):
-        raise ValueError(f"{path}:{number}: expected a point 'x y z' (three finite numbers)")
-    return point
+    return pathlib.Path(value)
 
 
 def gproj_version() -> str:

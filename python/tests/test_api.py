@@ -81,3 +81,38 @@ def test_required_options_can_come_from_an_options_object():
         gproj.beams(V, F)
     with pytest.raises(TypeError, match="height"):
         gproj.BeamsOptions()
+
+
+def test_curves_b_splines_and_vertex_ids_may_be_paths(tmp_path):
+    """A path (str or pathlib.Path) is read as the command line reads the file; the result is
+    the array's, and a bad file is named with its line."""
+    import json
+    import pathlib
+
+    data = pathlib.Path(__file__).resolve().parents[2] / "examples" / "data"
+    curve = data / "canal_curve.txt"
+    canal = {"first_point": [-0.5, 0.5, 2], "length": 2}
+    from_array = gproj.canal(np.loadtxt(curve), **canal)
+    for path in (curve, str(curve)):
+        assert np.array_equal(gproj.canal(path, **canal).vertices, from_array.vertices)
+
+    surface = data / "freeform_10x10.json"
+    options = {"max_iterations": 2}
+    from_dict = gproj.weingarten(json.loads(surface.read_text()), **options)
+    assert gproj.weingarten(surface, **options).output == from_dict.output
+
+    V, F = gproj.grid(nu=6, nv=6, noise=0.05)
+    ids = tmp_path / "fixed.txt"
+    ids.write_text("# corners\n0 5\n30 35\n")
+    assert np.array_equal(gproj.planarize(V, F, fixed=ids).vertices,
+                          gproj.planarize(V, F, fixed=[0, 5, 30, 35]).vertices)
+
+    bad = tmp_path / "bad_curve.txt"
+    bad.write_text("0 0 0\n1 x 0\n")
+    with pytest.raises(ValueError, match=r"bad_curve.txt:2: "):
+        gproj.canal(bad, **canal)
+    with pytest.raises(ValueError, match=r"nope.txt"):
+        gproj.canal(tmp_path / "nope.txt", **canal)
+    ids.write_text("0 99\n")
+    with pytest.raises(ValueError, match=r"fixed.txt:1: .*99"):
+        gproj.planarize(V, F, fixed=ids)

@@ -238,6 +238,9 @@ def test_a_timeout_cancels_the_job(tmp_path, scheduler):
      "jobs[0]: outputs[0]: planarize has no optional output \"pictures\"; did you mean "
      "'picture'?"),
     ([{"problem": "grid"}], "jobs[0]: problem: grid is a generator"),
+    ([{"problem": "planarize", "inputs": {"mesh": "m.obj"}, "weld": "yes"}],
+     'jobs[0]: weld: expected true or false, not "yes"'),
+    ([{"problem": "canal", "weld": True}], "jobs[0]: weld: canal has no mesh input to weld"),
 ])
 def test_a_bad_job_file_exits_1_naming_the_job_and_writes_nothing(tmp_path, jobs, message):
     path = write_jobs(tmp_path, jobs)
@@ -275,7 +278,8 @@ def test_entries_expand_into_named_jobs_with_unique_folders(tmp_path):
     assert expanded[1].swept == {"mesh": "meshes/a.obj", "closeness": 10, "fairness": 0.5}
     assert expanded[1].options == {"closeness": 10, "fairness": 0.5}
     assert [j.timeout for j in expanded[-2:]] == [60, 5]
-    assert batch.load_inputs(expanded[0])["fixed"] == [0, 1, 5]
+    # Files other than meshes go to gproj as paths (its readers name the file and line).
+    assert batch.load_inputs(expanded[0])["fixed"] == tmp_path / "fixed.txt"
     assert batch.load_inputs(expanded[4])["fixed"] == [0, 3]
     listed = subprocess.run([sys.executable, "-m", "gproj.batch", str(jobs), "--check"],
                             capture_output=True, text=True, env=environment())
@@ -314,3 +318,22 @@ def test_ctrl_c_cancels_the_rest_and_writes_the_summary(tmp_path, scheduler):
 
 def executing(dask_worker):
     return dask_worker.state.executing_count
+
+
+def test_weld_in_a_job_merges_an_unwelded_mesh(tmp_path):
+    """An unwelded export (each quad with its own corners) fails its job unless the job says
+    "weld": true; then it runs on the welded mesh."""
+    V, F = gproj.grid(nu=6, nv=6, noise=0.05)
+    gproj.write_mesh(tmp_path / "unwelded.obj", V[F.ravel()], np.arange(F.size).reshape(F.shape))
+    entries = [{"name": "plain", "problem": "planarize", "inputs": {"mesh": "unwelded.obj"}},
+               {"name": "welded", "problem": "planarize", "inputs": {"mesh": "unwelded.obj"},
+                "weld": True, "options": {"tolerance": 1e-8}}]
+    plain, welded = batch.load_jobs(str(write_jobs(tmp_path, entries)))
+    assert (plain.weld, welded.weld) == (False, True) and welded.description()["weld"]
+    failed = batch.run_job(plain)
+    assert "coincides with vertex" in failed.error and "weld" in failed.error
+    done = batch.run_job(welded)
+    assert done.error is None, done.error
+    assert done.report["converged"] and done.report["welded"]["mesh"] == {
+        "input_vertices": F.size, "vertices": len(V)}
+    assert len(done.main[0]) == len(V)
