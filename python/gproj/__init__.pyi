@@ -1305,7 +1305,7 @@ class CanalOptions:
     length_weight: float
     """(number, >= 0) Weight keeping the lengths near the input during smooth."""
     fixed_lengths: bool
-    """(bool) Keep the lengths; smooth over the frame only."""
+    """(bool) With smooth: keep the lengths, smooth over the frame only."""
     max_iterations: int
     """(int, >= 1, <= 100000) BFGS iterations at most (smooth, C-canal)."""
     surface_segments: Optional[int]
@@ -1383,7 +1383,7 @@ Arguments:
     frame_tolerance: (number, deg, >= 0) With closed: the frame closes around the curve when it misses itself by at most this.
     smooth: (bool) Minimise the smoothness energy of 000 eq. 5.
     length_weight: (number, >= 0) Weight keeping the lengths near the input during smooth.
-    fixed_lengths: (bool) Keep the lengths; smooth over the frame only.
+    fixed_lengths: (bool) With smooth: keep the lengths, smooth over the frame only.
     max_iterations: (int, >= 1, <= 100000) BFGS iterations at most (smooth, C-canal).
     surface_segments: (int, >= 1, <= 1000) Fine quads along every arc of the smooth surface (not given: 8).
     outputs: optional outputs to make as well (strip, surface, surface_picture, picture); each is an attribute of the result.

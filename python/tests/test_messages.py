@@ -67,3 +67,24 @@ def test_the_command_line_spells_the_same_message_with_flags(cli):
     assert run.returncode == 1, run.stderr
     assert "pass --allow-not-simply-connected to optimise anyway" in run.stderr, run.stderr
     assert "`" not in run.stderr, run.stderr
+
+
+def test_options_that_would_have_no_effect_are_refused():
+    """An option whose condition is missing changed nothing before, silently; now the run says
+    what it needs."""
+    curve = np.loadtxt(DATA / "canal_curve.txt")
+    message = message_of(gproj.canal, curve, first_point=[-0.5, 0.5, 2], length=2,
+                         fixed_lengths=True)
+    assert message.startswith("fixed_lengths needs smooth"), message
+    gproj.canal(curve, first_point=[-0.5, 0.5, 2], length=2, fixed_lengths=True, smooth=True)
+
+    V, F = gproj.grid(nu=5, nv=5, noise=0.05)
+    message = message_of(gproj.planarize, V, F, ceres_soft_scale=0.01)
+    assert message == "ceres_soft_scale applies to solver ceres only", message
+    gproj.planarize(V, F, ceres_soft_scale=0.01, solver="ceres", max_iterations=3)
+    gproj.planarize(V, F, options=gproj.PlanarizeOptions())  # the default is no misuse
+
+    surface = DATA / "freeform_10x10.json"
+    message = message_of(gproj.weingarten, surface, relation_on="auxiliaries", max_iterations=1)
+    assert message.startswith("relation_on places a fixed relation (linear"), message
+    gproj.weingarten(surface, relation_on="auxiliaries", linear=[0, 1, 0], max_iterations=1)

@@ -91,7 +91,8 @@ void AddModeOptions(OptionSchema<CanalSettings>* s) {
                    "Weight keeping the lengths near the input during smooth",
                    [](S& x) -> double& { return x.options.smoothing.length_weight; })
       .NonNegative();
-  s->Field<bool>("fixed_lengths", OptionType::kBool, "Keep the lengths; smooth over the frame only",
+  s->Field<bool>("fixed_lengths", OptionType::kBool,
+                 "With smooth: keep the lengths, smooth over the frame only",
                  [](S& x) -> bool& { return x.fixed_lengths; });
   s->Field<int>("max_iterations", OptionType::kInt, "BFGS iterations at most (smooth, C-canal)",
                 [](S& x) -> int& { return x.options.smoothing.max_iterations; })
@@ -415,6 +416,8 @@ std::string Misuse(const RunInputs& inputs, const CanalSettings& s, const RunCon
     return "`section_scales` builds a C-canal surface from a circular strip: `second_curve`, "
            "`smooth`, `strip`, `surface` and `surface_picture` do not apply";
   if (!inputs.Has("second_curve")) {
+    if (s.fixed_lengths && !s.options.smooth)
+      return "`fixed_lengths` needs `smooth` (it keeps the lengths while the frame is smoothed)";
     if (s.first_point.empty())
       return "`first_point` x,y,z is needed (or `second_curve` with `normal`)";
     return "";

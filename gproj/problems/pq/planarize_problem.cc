@@ -86,6 +86,8 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   if (!options.IsValid(&why)) throw InputError("invalid option: " + why);
   PQPlanarization pq(input, options, inputs.OptionalMesh("reference"));
   const bool ceres = settings.solver == SolverKind::kCeres;
+  if (!ceres && options.ceres_soft_scale != PQPlanarizationOptions().ceres_soft_scale)
+    throw InputError("`ceres_soft_scale` applies to `solver` ceres only");
 
   char line[512];
   const PlanarityMeasures initial = pq.Measures();

@@ -24,6 +24,10 @@ void ApplyRelation(const WeingartenSettings& s, WeingartenOptions* o) {
     if (o->linear_relation_weight == 0.0) o->linear_relation_weight = 1.0;
     o->bspline_relation_weight = 0.0;
   }
+  if (!s.relation_on.empty() && !o->fixed_linear_relation)
+    throw InputError(
+        "`relation_on` places a fixed relation (`linear`, or a preset with one); preset " +
+        s.preset + " with these options has none");
   if (!s.relation_on.empty()) o->relation_on_surface = s.relation_on == "surface";
 }
 
