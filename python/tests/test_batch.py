@@ -209,7 +209,9 @@ def test_a_timeout_cancels_the_job(tmp_path, scheduler):
     long, quick = read_summary(out)[1]
     assert (long["outcome"], long["status"], long["converged"]) == ("cancelled", "USER_ABORT",
                                                                     False)
-    assert 1.0 <= long["seconds"] < 10 and "timeout of 1 s" in long["error"]
+    # The summary's seconds are the report's: the solve alone. The timeout counts from the
+    # job's start, the problem's setup included, so under load the solve gets a little less.
+    assert 0.5 <= long["seconds"] < 10 and "timeout of 1 s" in long["error"]
     assert quick["outcome"] == "converged"
     assert list(quick)[-3:] == ["max_planarity", "warnings", "error"]
     assert json.loads((out / "long" / "report.json").read_text())["status"] == "USER_ABORT"
