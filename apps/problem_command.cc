@@ -112,6 +112,7 @@ RunInputs ReadInputs(const ProblemSpec& spec, const ProblemArgs& args) {
     const std::string& path = args.paths.at(input.name);
     if (path.empty()) continue;
     read.sources[input.name] = path;
+    read.files[input.name] = path;
     if (input.kind == InputKind::kVertexIds) {
       read.vertex_ids[input.name] = ReadVertexIds(path, num_vertices);
       continue;
@@ -161,7 +162,7 @@ std::vector<std::string> WriteResult(const ProblemSpec& spec, const ProblemArgs&
   }
   if (!args.paths.at("report").empty()) {
     const nlohmann::json report =
-        RunResultJson(spec, result, options, inputs, true,
+        RunResultJson(spec, result, options, inputs,
                       args.paths.count("output") ? args.paths.at("output") : "");
     files.AddText(args.paths.at("report"), report.dump(2) + "\n");
     written.push_back(args.paths.at("report"));

@@ -38,6 +38,16 @@ bool ParseLinearSolverType(const std::string& name, LinearSolverType* type) {
   return false;
 }
 
+CscMatrix ToCsc(const Eigen::SparseMatrix<double>& a) {
+  CscMatrix out;
+  out.num_rows = static_cast<int>(a.rows());
+  out.num_cols = static_cast<int>(a.cols());
+  out.col_begin.assign(a.outerIndexPtr(), a.outerIndexPtr() + a.cols() + 1);
+  out.row_index.assign(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros());
+  out.values.assign(a.valuePtr(), a.valuePtr() + a.nonZeros());
+  return out;
+}
+
 std::unique_ptr<SparseCholesky> CreateSparseCholesky(LinearSolverType type, int num_threads,
                                                      FillOrdering ordering) {
   if (type == LinearSolverType::kEigen) return CreateEigenCholesky();

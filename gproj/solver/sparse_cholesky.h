@@ -4,6 +4,7 @@
 // Schur complement once per-element auxiliaries are eliminated). The pattern is fixed per
 // problem: Analyze once (ordering + symbolic factorisation), then Factorize per iteration.
 
+#include <Eigen/SparseCore>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -20,6 +21,9 @@ struct CscMatrix {
   std::vector<double> values;  // nnz
   int nnz() const { return static_cast<int>(row_index.size()); }
 };
+
+// The CSC form of a compressed Eigen matrix (makeCompressed()).
+CscMatrix ToCsc(const Eigen::SparseMatrix<double>& a);
 
 enum class LinearSolverType {
   kCholmod,  // CHOLMOD supernodal (default)

@@ -156,6 +156,7 @@ void ReadInput(const InputSpec& input, const py::handle& value, int num_vertices
     else
       inputs->vertex_ids[input.name] = ReadVertexIds(path, num_vertices);
     inputs->sources[input.name] = path;
+    inputs->files[input.name] = path;
     return;
   }
   if (input.kind == InputKind::kVertexIds)
@@ -309,7 +310,7 @@ py::tuple Run(const std::string& name, const py::tuple& positional, const py::di
     weld_maps[input.c_str()] = py::array_t<int>(static_cast<py::ssize_t>(map.size()), map.data());
   return py::make_tuple(
       values, arrays,
-      JsonToPython(RunResultJson(spec, result, call.options, call.inputs, false, nullptr)),
+      JsonToPython(RunResultJson(spec, result, call.options, call.inputs, nullptr)),
       messages, weld_maps);
 }
 

@@ -1,18 +1,22 @@
 """Writes the package's type stubs, `__init__.pyi`, from the registry.
 
     python3 -m gproj._stubgen [OUT.pyi]     (default: print to stdout)
+    python3 -m gproj._stubgen --core STUBGEN.pyi [OUT.pyi]
 
 The stubs declare every problem's function (its signature with the schema's types and
 defaults), options class and result class, and re-export the typed pure-Python classes and the
-extension's own (whose stubs, `_core.pyi`, are written by mypy's stubgen from the extension:
-`stubgen -p gproj._core`). The test suite checks that the shipped stubs are the ones this
-writes, and type-checks a script against them with mypy.
+extension's own (whose stubs, `_core.pyi`, are written by mypy's stubgen from the extension,
+`stubgen -p gproj._core`, and completed by `--core`: stubgen leaves a function whose signature
+has keyword-only arguments as `(*args, **kwargs) -> Any`, and `--core` writes it from the
+signature line of its docstring). The test suite checks that the shipped stubs are the ones
+these write, and type-checks a script against them with mypy.
 """
 
 from __future__ import annotations
 
+import re
 import sys
-from typing import Any, List, Mapping
+from typing import Any, List, Mapping, Optional
 
 from gproj import _core
 from gproj._problems import (Parameter, camel, docstring, main_output, option_annotation,
@@ -112,8 +116,78 @@ def stubs() -> str:
     return "\n".join(parts)
 
 
+def _split_top_level(text: str) -> List[str]:
+    """`text` split at the commas outside brackets and quotes."""
+    parts, depth, quote, start = [], 0, "", 0
+    for i, c in enumerate(text):
+        if quote:
+            quote = "" if c == quote else quote
+        elif c in "'\"":
+            quote = c
+        elif c in "([{":
+            depth += 1
+        elif c in ")]}":
+            depth -= 1
+        elif c == "," and depth == 0:
+            parts.append(text[start:i].strip())
+            start = i + 1
+    if text[start:].strip():
+        parts.append(text[start:].strip())
+    return parts
+
+
+def _stub_signature(doc: Optional[str], method: bool) -> Optional[str]:
+    """The stub's `(params) -> type` from a pybind11 docstring's first line, with the module
+    prefix dropped and the defaults as `...` (None: no single signature there)."""
+    if not doc:
+        return None
+    match = re.match(r"\w+\((.*)\) -> (.+)$", doc.split("\n", 1)[0])
+    if match is None:
+        return None
+    params = []
+    for i, part in enumerate(_split_top_level(match.group(1))):
+        if method and i == 0:
+            params.append("self")
+            continue
+        if part == "*":
+            params.append(part)
+            continue
+        name, _, rest = part.partition(":")
+        annotation, equals, _default_value = rest.partition("=")
+        annotation = annotation.strip().replace("gproj._core.", "")
+        params.append(f"{name.strip()}: {annotation}" + (" = ..." if equals else ""))
+    returns = match.group(2).strip().replace("gproj._core.", "")
+    return f"({', '.join(params)}) -> {returns}"
+
+
+def core_stubs(stubgen_text: str) -> str:
+    """mypy stubgen's `_core.pyi` with each `([self, ]*args, **kwargs) -> Any` written out."""
+    lines, owner = [], None
+    for line in stubgen_text.splitlines():
+        klass = re.match(r"class (\w+)", line)
+        if klass:
+            owner = getattr(_core, klass.group(1))
+        elif line and not line.startswith(" "):
+            owner = None
+        blank = re.match(r"(\s*)def (\w+)\((?:self, )?\*args, \*\*kwargs\) -> Any: \.\.\.$", line)
+        if blank:
+            indent, name = blank.groups()
+            method = bool(indent)
+            target = getattr(owner if method else _core, name)
+            signature = _stub_signature(target.__doc__, method)
+            if signature is not None:
+                line = f"{indent}def {name}{signature}: ..."
+        lines.append(line)
+    return "\n".join(lines) + "\n"
+
+
 def main(argv: List[str]) -> int:
-    text = stubs()
+    if len(argv) > 2 and argv[1] == "--core":
+        with open(argv[2], encoding="utf-8") as f:
+            text = core_stubs(f.read())
+        argv = argv[2:]
+    else:
+        text = stubs()
     if len(argv) > 1:
         with open(argv[1], "w", encoding="utf-8") as f:
             f.write(text)

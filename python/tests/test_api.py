@@ -93,8 +93,11 @@ def test_curves_b_splines_and_vertex_ids_may_be_paths(tmp_path):
     curve = data / "canal_curve.txt"
     canal = {"first_point": [-0.5, 0.5, 2], "length": 2}
     from_array = gproj.canal(np.loadtxt(curve), **canal)
+    assert from_array.report.to_dict()["input"] is None
     for path in (curve, str(curve)):
-        assert np.array_equal(gproj.canal(path, **canal).vertices, from_array.vertices)
+        from_path = gproj.canal(path, **canal)
+        assert np.array_equal(from_path.vertices, from_array.vertices)
+        assert from_path.report.to_dict()["input"] == str(curve)
 
     surface = data / "freeform_10x10.json"
     options = {"max_iterations": 2}
@@ -104,8 +107,11 @@ def test_curves_b_splines_and_vertex_ids_may_be_paths(tmp_path):
     V, F = gproj.grid(nu=6, nv=6, noise=0.05)
     ids = tmp_path / "fixed.txt"
     ids.write_text("# corners\n0 5\n30 35\n")
-    assert np.array_equal(gproj.planarize(V, F, fixed=ids).vertices,
+    from_file = gproj.planarize(V, F, fixed=ids)
+    assert np.array_equal(from_file.vertices,
                           gproj.planarize(V, F, fixed=[0, 5, 30, 35]).vertices)
+    assert from_file.report.to_dict()["fixed"] == str(ids)
+    assert from_file.report.to_dict()["input"] is None
 
     bad = tmp_path / "bad_curve.txt"
     bad.write_text("0 0 0\n1 x 0\n")

@@ -67,7 +67,9 @@ def test_shipped_stubs_are_current():
 
 
 def test_core_stubs_are_current(tmp_path):
-    """python/gproj/_core.pyi is what mypy's stubgen writes from the built extension."""
+    """python/gproj/_core.pyi is what mypy's stubgen writes from the built extension, completed
+    by `python3 -m gproj._stubgen --core` (keyword-only signatures, which stubgen leaves as
+    `(*args, **kwargs)`); none is left without its signature."""
     stubgen = shutil.which("stubgen")
     if stubgen is None:
         pytest.skip("mypy's stubgen is not installed")
@@ -75,10 +77,11 @@ def test_core_stubs_are_current(tmp_path):
                    capture_output=True, cwd=tmp_path,
                    env=dict(os.environ, PYTHONPATH=os.path.dirname(os.path.dirname(
                        gproj.__file__))))
-    written = (tmp_path / "gproj" / "_core.pyi").read_text(encoding="utf-8")
+    written = _stubgen.core_stubs((tmp_path / "gproj" / "_core.pyi").read_text(encoding="utf-8"))
+    assert "*args" not in written
     assert (PACKAGE / "_core.pyi").read_text(encoding="utf-8") == written, (
-        "run: PYTHONPATH=build/python stubgen -p gproj._core -o /tmp/s && "
-        "cp /tmp/s/gproj/_core.pyi python/gproj/")
+        "run: PYTHONPATH=build/python stubgen -p gproj._core -o /tmp/s && PYTHONPATH=build/python "
+        "python3 -m gproj._stubgen --core /tmp/s/gproj/_core.pyi python/gproj/_core.pyi")
 
 
 SAMPLE = '''
@@ -99,6 +102,10 @@ net: gproj.HnetResult = gproj.hnet(V, F, tolerance=1e-6)
 patchwork = net.output
 values = gproj.face_values(V, F, circular=True)
 mesh = gproj.read_mesh(pathlib.Path("in.obj"))
+problem = gproj.Problem()
+block = problem.add_block("x", 2, 1)
+problem.add_term("t", lambda x: x, 1, [[0], [1]], jac="cs", check_jac=False)
+summary = problem.solve("gp", max_iterations=5, monotone=True)
 '''
 
 
@@ -120,11 +127,13 @@ def test_stubs_type_check_a_script(tmp_path):
     good = mypy(tmp_path, SAMPLE)
     assert good.returncode == 0, good.stdout + good.stderr
     bad = mypy(tmp_path, SAMPLE + 'gproj.planarize(V, F, tolerance="tight")\n'
-               'gproj.anet(V, F, tolerence=1e-3)\nresult.report_\n')
+               'gproj.anet(V, F, tolerence=1e-3)\nresult.report_\n'
+               'problem.solve(max_iteration=5)\n')
     assert bad.returncode == 1
     assert 'Argument "tolerance" to "planarize" has incompatible type "str"' in bad.stdout
     assert 'Unexpected keyword argument "tolerence" for "anet"' in bad.stdout
     assert '"PlanarizeResult" has no attribute "report_"' in bad.stdout
+    assert 'Unexpected keyword argument "max_iteration" for "solve" of "Problem"' in bad.stdout
 
 
 def copy_source(destination):

@@ -225,16 +225,6 @@ PolyMesh::HalfedgeHandle HalfedgeBetween(const PolyMesh& m, int a, int b) {
   return m.find_halfedge(m.vertex_handle(a), m.vertex_handle(b));
 }
 
-CscMatrix ToCsc(const Eigen::SparseMatrix<double>& a) {
-  CscMatrix out;
-  out.num_rows = static_cast<int>(a.rows());
-  out.num_cols = static_cast<int>(a.cols());
-  out.col_begin.assign(a.outerIndexPtr(), a.outerIndexPtr() + a.cols() + 1);
-  out.row_index.assign(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros());
-  out.values.assign(a.valuePtr(), a.valuePtr() + a.nonZeros());
-  return out;
-}
-
 }  // namespace
 
 void CheckTriangulatedDisk(const PolyMesh& m) {
@@ -446,7 +436,7 @@ class MapSystem {
         n_(2 * static_cast<int>(m.n_vertices())),
         fixed_(n_, std::numeric_limits<double>::quiet_NaN()),
         x_(Eigen::VectorXd::Zero(n_)),
-        solver_(CreateSparseCholesky(options.linear_solver, 1)) {}
+        solver_(CreateSparseCholesky(options.linear_solver, 0)) {}
 
   // The map at corner k of face f, component `component`: Σ coeff x[var] over *terms.
   void CornerTerms(int f, int k, int component, std::vector<std::pair<int, double>>* terms) const {
@@ -491,6 +481,7 @@ class MapSystem {
     solved = solved && solver_->Factorize(a, 1e-9, &message) &&
              solver_->Solve(rhs.data(), y.data(), &message) && y.allFinite();
     if (!solved) throw InputError("the parametrisation system could not be solved: " + message);
+    PollStop(options_.fit.stop, "the integer-grid map");
     for (int i = 0; i < n_; ++i) x_[i] = column[i] >= 0 ? y[column[i]] : fixed_[i];
   }
 

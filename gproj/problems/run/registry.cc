@@ -233,7 +233,7 @@ RunResult RunProblem(const ProblemSpec& spec, const RunInputs& inputs,
 }
 
 nlohmann::json RunResultJson(const ProblemSpec& spec, const RunResult& result,
-                             const nlohmann::json& options, const RunInputs& inputs, bool paths,
+                             const nlohmann::json& options, const RunInputs& inputs,
                              const nlohmann::json& output) {
   nlohmann::json extra = result.facts;
   extra["options"] = CompleteOptions(spec.options, options);
@@ -241,9 +241,9 @@ nlohmann::json RunResultJson(const ProblemSpec& spec, const RunResult& result,
   bool first = true;
   for (const InputSpec& input : spec.inputs) {
     if (!inputs.Has(input.name)) continue;
-    const nlohmann::json source =
-        paths ? nlohmann::json(inputs.Source(input.name)) : nlohmann::json(nullptr);
-    extra[first ? "input" : input.name] = source;
+    const auto file = inputs.files.find(input.name);
+    extra[first ? "input" : input.name] =
+        file == inputs.files.end() ? nlohmann::json(nullptr) : nlohmann::json(file->second);
     first = false;
   }
   extra["output"] = output;

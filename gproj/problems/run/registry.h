@@ -82,6 +82,8 @@ struct RunInputs {
   std::map<std::string, std::vector<int>> weld_maps;
   // Where each input came from ("in.obj", "V"), for messages.
   std::map<std::string, std::string> sources;
+  // The file each input was read from, for those read from one (the report names it).
+  std::map<std::string, std::string> files;
 
   const PolyMesh& Mesh(const std::string& name) const;          // a required mesh input
   const PolyMesh* OptionalMesh(const std::string& name) const;  // null when not given
@@ -201,10 +203,10 @@ RunResult RunProblem(const ProblemSpec& spec, const RunInputs& inputs,
 
 // The run's report (gproj/problems/run/report_json.h) with the problem's facts, the complete
 // options under "options", "input" (the first input given) and "output", and a key per other input
-// given (e.g. "reference"): its source with `paths` (the command line's file names), else null
-// (front ends without files, such as Python).
+// given (e.g. "reference"): the file it was read from (RunInputs::files), else null (an input
+// given as arrays).
 nlohmann::json RunResultJson(const ProblemSpec& spec, const RunResult& result,
-                             const nlohmann::json& options, const RunInputs& inputs, bool paths,
+                             const nlohmann::json& options, const RunInputs& inputs,
                              const nlohmann::json& output);
 
 // Messages of a run name options as `name` (backquoted); a front end spells them its way: the

@@ -178,7 +178,7 @@ TEST(MeshProblemTest, OneClassAndOneRegistrationRunThroughTheRunProtocol) {
   }
   // The report names the complete options as the schema does.
   const nlohmann::json report =
-      RunResultJson(spec, result, {{"tolerance", 1e-8}}, inputs, false, nullptr);
+      RunResultJson(spec, result, {{"tolerance", 1e-8}}, inputs, nullptr);
   EXPECT_EQ(report["options"]["tolerance"].get<double>(), 1e-8);
   EXPECT_TRUE(report["converged"].get<bool>());
   // A bad option is refused by name before anything runs.
