@@ -161,9 +161,8 @@ std::vector<std::string> WriteResult(const ProblemSpec& spec, const ProblemArgs&
     written.push_back(path);
   }
   if (!args.paths.at("report").empty()) {
-    const nlohmann::json report =
-        RunResultJson(spec, result, options, inputs,
-                      args.paths.count("output") ? args.paths.at("output") : "");
+    const nlohmann::json report = RunResultJson(
+        spec, result, options, inputs, args.paths.count("output") ? args.paths.at("output") : "");
     files.AddText(args.paths.at("report"), report.dump(2) + "\n");
     written.push_back(args.paths.at("report"));
   }

@@ -47,11 +47,7 @@ LocalGlobalPlanarizer::LocalGlobalPlanarizer(const PolyMesh& mesh, double closen
   Eigen::SparseMatrix<double> upper(n, n);  // Σ_f S_fᵀ (I − ¼ 11ᵀ) S_f, upper triangle
   upper.setFromTriplets(triplets.begin(), triplets.end());
   upper.makeCompressed();
-  CscMatrix m;
-  m.num_rows = m.num_cols = n;
-  m.col_begin.assign(upper.outerIndexPtr(), upper.outerIndexPtr() + n + 1);
-  m.row_index.assign(upper.innerIndexPtr(), upper.innerIndexPtr() + upper.nonZeros());
-  m.values.assign(upper.valuePtr(), upper.valuePtr() + upper.nonZeros());
+  const CscMatrix m = ToCsc(upper);
   factor_->cholesky = CreateSparseCholesky(LinearSolverType::kCholmod, 0);
   std::string message;
   if (!factor_->cholesky->Analyze(m, MatrixForm::kSymmetric, &message) ||

@@ -309,8 +309,7 @@ py::tuple Run(const std::string& name, const py::tuple& positional, const py::di
   for (const auto& [input, map] : call.inputs.weld_maps)
     weld_maps[input.c_str()] = py::array_t<int>(static_cast<py::ssize_t>(map.size()), map.data());
   return py::make_tuple(
-      values, arrays,
-      JsonToPython(RunResultJson(spec, result, call.options, call.inputs, nullptr)),
+      values, arrays, JsonToPython(RunResultJson(spec, result, call.options, call.inputs, nullptr)),
       messages, weld_maps);
 }
 

@@ -177,8 +177,7 @@ TEST(MeshProblemTest, OneClassAndOneRegistrationRunThroughTheRunProtocol) {
     EXPECT_NEAR(flat.point(v)[2], centre, 1e-8) << v.idx();
   }
   // The report names the complete options as the schema does.
-  const nlohmann::json report =
-      RunResultJson(spec, result, {{"tolerance", 1e-8}}, inputs, nullptr);
+  const nlohmann::json report = RunResultJson(spec, result, {{"tolerance", 1e-8}}, inputs, nullptr);
   EXPECT_EQ(report["options"]["tolerance"].get<double>(), 1e-8);
   EXPECT_TRUE(report["converged"].get<bool>());
   // A bad option is refused by name before anything runs.
