@@ -10,6 +10,14 @@
 //   BM_PlanarizeToTolerance/n/s/e   a full solve to max planarity ≤ 10^-e (s = 0: gproj, 1: Ceres):
 //                                   seconds, iterations, time in numeric factorisations
 //                                   (over_factor), Ceres over gproj, peak memory per quad
+//   BM_PlanarizeStepControl/n/p/c/e a full solve of an n × n non-conjugate saddle grid with noise
+//                                   p% of the spacing
+//                                   to 10^-e with step control c (0 damping, 1 dogleg):
+//                                   iterations, numeric factorisations, trial points,
+//                                   factorisation-equivalents including the analysis
+//   BM_PlanarizeWarmResolve/n       a planarised n × n grid, one inner vertex moved by 5% of an
+//                                   edge, re-solved from the last result (Resolve) to 1e-6:
+//                                   iterations, milliseconds per iteration, the whole re-solve
 //   BM_PlanarizeLocalGlobal/n/e     gproj against a prefactored local–global planariser
 //                                   (ShapeOp's method) to max planarity ≤ 10^-e
 #include <benchmark/benchmark.h>
@@ -23,6 +31,7 @@
 
 #include "dense_rate.h"
 #include "gproj/geometry/mesh/quad_grid.h"
+#include "gproj/geometry/mesh/scale_free.h"
 #include "gproj/problems/pq/pq_planarization.h"
 #include "local_global_planarizer.h"
 #include "solver_counters.h"
@@ -37,6 +46,17 @@ PolyMesh NoisyGrid(int n) {
   grid.nu = grid.nv = n;
   grid.noise = 0.05;
   grid.seed = 1;
+  return MakeQuadGrid(grid);
+}
+
+// A harder grid: a saddle with a twist and a wave, whose grid lines are far from conjugate,
+// with noise `noise` of the spacing (the runs that reject steps).
+PolyMesh NonConjugateGrid(int n, double noise) {
+  QuadGridOptions grid;
+  grid.nu = grid.nv = n;
+  grid.a = 0.3, grid.b = -0.2, grid.c = 0.1, grid.wave = 0.05;
+  grid.noise = noise;
+  grid.seed = 7;
   return MakeQuadGrid(grid);
 }
 
@@ -166,6 +186,79 @@ BENCHMARK(BM_PlanarizeToTolerance)
     ->Args({201, 0, 9})
     ->Iterations(1)
     ->Unit(benchmark::kSecond);
+
+// What a rejected step costs under each step control: damping refactorises per rejection, the
+// dogleg keeps the iteration's factor. factor_equivalents = numeric factorisations + the
+// analysis time over the mean factorisation time.
+void BM_PlanarizeStepControl(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const PolyMesh mesh = NonConjugateGrid(n, 0.01 * static_cast<double>(state.range(1)));
+  pq::PQPlanarizationOptions options;
+  options.solver.step_control = state.range(2) == 1 ? StepControl::kDogleg : StepControl::kDamping;
+  options.tolerance = std::pow(10.0, -static_cast<double>(state.range(3)));
+  double seconds = 0.0, reached = 0.0;
+  SolverSummary summary;
+  for (auto _ : state) {
+    const auto t = Clock::now();
+    pq::PQPlanarization pq(mesh, options);
+    summary = pq.Run().summary;
+    seconds = Since(t);
+    reached = pq.Measures().max_planarity;
+  }
+  int factorizations = 0, trials = 0;
+  double factor_seconds = 0.0;
+  for (const IterationRecord& r : summary.iterations) {
+    factorizations += r.factorizations;
+    trials += r.trials;
+    factor_seconds += r.factorization_seconds;
+  }
+  state.counters["seconds"] = seconds;
+  state.counters["max_planarity"] = reached;
+  state.counters["iterations"] = summary.num_steps();
+  state.counters["factorizations"] = factorizations;
+  state.counters["trials"] = trials;
+  state.counters["factor_equivalents"] =
+      factorizations +
+      (factorizations > 0 ? summary.analysis_seconds / (factor_seconds / factorizations) : 0.0);
+  state.counters["quads"] = static_cast<double>(mesh.n_faces());
+  if (reached > options.tolerance) state.SkipWithError("tolerance not reached");
+  state.SetLabel(StepControlName(options.solver.step_control));
+}
+BENCHMARK(BM_PlanarizeStepControl)
+    ->ArgsProduct({{41, 81, 201}, {5, 8}, {0, 1}, {3, 6}})
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond);
+
+// The cost of a designer's drag: after a cold run to 1e-6, each benchmark iteration moves one
+// inner vertex by 5% of the mean edge (alternately up and back) and re-solves warm.
+void BM_PlanarizeWarmResolve(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  pq::PQPlanarizationOptions options;
+  options.tolerance = 1e-6;
+  pq::PQPlanarization pq(NoisyGrid(n), options);
+  if (!pq.Run().converged) state.SkipWithError("the cold run did not converge");
+  const PolyMesh start = pq.Result();
+  const int v = (n / 2) * n + n / 3;
+  const auto p = start.point(start.vertex_handle(v));
+  const Eigen::Vector3d origin(p[0], p[1], p[2]);
+  const double offset = 0.05 * MeanEdgeLength(start);
+  double iterations = 0.0, seconds = 0.0, converged = 0.0, runs = 0.0;
+  for (auto _ : state) {
+    const double sign = static_cast<int>(runs) % 2 == 0 ? 1.0 : 0.0;
+    const auto t = Clock::now();
+    const RunReport report = pq.Resolve({v}, {origin + sign * offset * Eigen::Vector3d::UnitZ()});
+    seconds += Since(t);
+    iterations += report.iterations;
+    converged += report.converged ? 1.0 : 0.0;
+    runs += 1.0;
+  }
+  state.counters["iterations"] = iterations / runs;
+  state.counters["resolve_ms"] = 1e3 * seconds / runs;
+  state.counters["iteration_ms"] = iterations > 0.0 ? 1e3 * seconds / iterations : 0.0;
+  state.counters["converged_fraction"] = converged / runs;
+  state.counters["quads"] = static_cast<double>((n - 1) * (n - 1));
+}
+BENCHMARK(BM_PlanarizeWarmResolve)->Arg(41)->Arg(81)->Unit(benchmark::kMillisecond);
 
 // Max vertex displacement from `reference` / the reference's bounding-box diagonal.
 double MaxDisplacement(const Eigen::MatrixX3d& v, const Eigen::MatrixX3d& reference) {

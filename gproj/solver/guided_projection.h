@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,11 @@
 #include "gproj/solver/sparse_cholesky.h"
 
 namespace gproj {
+
+// See SolverOptions::step_control.
+enum class StepControl { kDamping, kDogleg };
+const char* StepControlName(StepControl control);  // "damping", "dogleg"
+bool ParseStepControl(const std::string& name, StepControl* control);
 
 struct SolverOptions {
   // Iterations (linear solves) at most.
@@ -56,6 +62,17 @@ struct SolverOptions {
   // assembly per step.
   bool monotone = false;
   int max_rejections = 12;
+  // How a monotone step that does not lower the energy (or is refused) is shortened.
+  //  kDamping: ε² grows and the step is refactorised from the same linearisation, as above.
+  //  kDogleg: ε follows the gain ratio as with kDamping, but a rejection keeps the factor of
+  //    the iteration: the step moves along the dogleg path from the Gauss–Newton step d
+  //    towards the Cauchy point (the model's minimiser along the gradient, both scaled by
+  //    D = diag(A Aᵀ + ε² I)^½) inside a trust radius ‖D s‖ ≤ Δ. A rejection halves Δ below
+  //    the trial's ‖D s‖; a kept step with gain ratio > 3/4 lets it grow to 3 ‖D s‖, one below
+  //    1/4 halves it (Powell's dogleg, as Ceres' DOGLEG); Δ carries over to later iterations.
+  //    A rejected trial then costs one evaluation, not a factorisation; a run without
+  //    rejections takes the same steps as with kDamping.
+  StepControl step_control = StepControl::kDogleg;
   // Exact constraints by shifted targets (Bregman iteration; the method of multipliers for
   // non-linear rows): after each step every kConstraint row's target moves against its
   // residual, so the iterates converge to a point where the constraint rows hold exactly and
@@ -100,6 +117,9 @@ struct IterationRecord {
   double epsilon = 0.0;           // ε used for the step that led here
   double soft_scale = 1.0;        // soft-weight factor in effect for this iteration's energy
   int retries = 0;                // ε increases needed for that step
+  int factorizations = 0;         // numeric factorisations for that step
+  int trials = 0;                 // trial points assessed for it (1: the first one was kept)
+  double radius = 0.0;            // dogleg: trust radius after it (∞: not yet bounded); else 0
   double assembly_seconds = 0.0;  // family updates + evaluation + assembly (+ Schur complement)
   double factorization_seconds = 0.0;  // numeric factorisation (of the step that led here)
   double solve_seconds = 0.0;          // triangular solves (of the step that led here)
@@ -129,6 +149,7 @@ struct SolverSummary {
   int eliminated_variables = 0;  // removed by the Schur complement before factorising
   std::string elimination_note;  // why no elimination happened, when it did not
   double analysis_seconds = 0.0;
+  bool analysis_reused = false;  // a GuidedProjectionSolver's re-solve: no new analysis
   double total_seconds = 0.0;
   LinearSolverType linear_solver = LinearSolverType::kCholmod;
 
@@ -150,6 +171,30 @@ using IterationCallback =
 // step that would is rejected (and retried with a larger ε).
 SolverSummary Solve(const SolverOptions& options, Problem* problem,
                     const IterationCallback& callback = nullptr);
+
+// Guided projection that keeps its set-up between solves of one problem: the pattern of the
+// rows, the elimination and the symbolic analysis are built by the first Solve and reused by
+// the next ones (their summaries have analysis_reused set and analysis_seconds 0), so a warm
+// re-solve after an edit costs its iterations only. Between solves x, the held items and the
+// rows' data may change; when the families, their elements or the linear-algebra options
+// (linear_solver, num_threads, ordering, eliminate_auxiliaries, block_ordering) change, the
+// set-up is rebuilt. The problem must outlive the solver.
+class GuidedProjectionSolver {
+ public:
+  explicit GuidedProjectionSolver(Problem* problem);
+  ~GuidedProjectionSolver();
+  GuidedProjectionSolver(const GuidedProjectionSolver&) = delete;
+  GuidedProjectionSolver& operator=(const GuidedProjectionSolver&) = delete;
+
+  SolverSummary Solve(const SolverOptions& options, const IterationCallback& callback = nullptr);
+  Problem* problem() const { return problem_; }
+
+  struct SetUp;  // internal
+
+ private:
+  Problem* problem_;
+  std::unique_ptr<SetUp> set_up_;
+};
 
 // Weighted objective ½ Σ w φ² + ½ ω_f² ‖P x‖² at x with fixed weights (soft scale 1).
 double EvaluateObjective(Problem* problem, double fairness_weight, const Eigen::VectorXd& x);

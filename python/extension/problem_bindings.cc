@@ -313,8 +313,8 @@ py::dict Solve(PyProblem& p, const std::string& solver, const py::object& callba
                int max_iterations, double fairness, double epsilon, double soft_decay,
                double soft_floor, double soft_residual, double epsilon_min,
                double residual_tolerance, double step_tolerance, const std::string& linear_solver,
-               int threads, double soft_scale, bool monotone, bool shifted_constraints,
-               double initial_soft_scale) {
+               int threads, double soft_scale, bool monotone, const std::string& step_control,
+               bool shifted_constraints, double initial_soft_scale) {
   GenericSolveArgs args;
   SolverArgs{max_iterations, fairness,    epsilon,       soft_decay, soft_floor,
              soft_residual,  epsilon_min, linear_solver, threads}
@@ -322,6 +322,8 @@ py::dict Solve(PyProblem& p, const std::string& solver, const py::object& callba
   args.gp.residual_tolerance = residual_tolerance;
   args.gp.step_tolerance = step_tolerance;
   args.gp.monotone = monotone;
+  if (!ParseStepControl(step_control, &args.gp.step_control))
+    throw InputError("step_control must be 'dogleg' or 'damping', not '" + step_control + "'");
   args.gp.shifted_constraints = shifted_constraints;
   args.gp.initial_soft_scale = initial_soft_scale;
   std::string why;
@@ -415,8 +417,11 @@ const char* const kSolveDoc = R"(Solves in place (x holds the result afterwards)
     residual_tolerance: gp converges when every constraint row has |phi| <= this.
     step_tolerance: gp converges when the step's max norm <= this.
     soft_scale: ceres only, factor on the soft and fairness weights.
-    monotone: gp keeps a step only if it lowers the energy (else epsilon grows and the step is
-        recomputed from the same linearisation).
+    monotone: gp keeps a step only if it lowers the energy (else the step is shortened, see
+        step_control).
+    step_control: how gp shortens a monotone step that does not lower the energy: 'dogleg'
+        (a trust region on the iteration's factorisation: a rejected trial costs an
+        evaluation) or 'damping' (epsilon grows and the step is refactorised).
     shifted_constraints: gp moves the constraint rows' targets against their residuals after
         each step (Bregman iteration): the constraints then hold exactly with fixed soft
         weights.
@@ -507,7 +512,9 @@ void BindGenericProblem(py::module_& m) {
            py::arg("step_tolerance") = d.step_tolerance,
            py::arg("linear_solver") = std::string(LinearSolverTypeName(d.linear_solver)),
            py::arg("threads") = d.num_threads, py::arg("soft_scale") = CeresOptions().soft_scale,
-           py::arg("monotone") = d.monotone, py::arg("shifted_constraints") = d.shifted_constraints,
+           py::arg("monotone") = d.monotone,
+           py::arg("step_control") = std::string(StepControlName(d.step_control)),
+           py::arg("shifted_constraints") = d.shifted_constraints,
            py::arg("initial_soft_scale") = d.initial_soft_scale);
 }
 

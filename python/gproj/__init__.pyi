@@ -55,6 +55,8 @@ class PlanarizeOptions:
     """(int, >= 0, <= 256) Threads for BLAS / Ceres (0: default)."""
     monotone: bool
     """(bool) Monotone steps: keep a step only if it lowers the energy, else damp it (plain steps: take every Gauss-Newton step)."""
+    step_control: Literal['dogleg', 'damping']
+    """(choice) How a monotone step that does not lower the energy is shortened: dogleg (a trust region on the iteration's factor: a rejected trial costs an evaluation) or damping (epsilon grows and the step is refactorised)."""
     min_angle: float
     """(number, deg, >= 0, <= 59.9) Every quad corner angle stays within [min_angle, 180 - min_angle] (a corner already outside in the input is kept from getting worse); 0 only keeps quads convex."""
     edge_length: Optional[Sequence[float]]
@@ -84,6 +86,7 @@ class PlanarizeOptions:
         linear_solver: Literal['cholmod', 'eigen'] = 'cholmod',
         threads: int = 0,
         monotone: bool = True,
+        step_control: Literal['dogleg', 'damping'] = 'dogleg',
         min_angle: float = 5.0,
         edge_length: Optional[Sequence[float]] = None,
         allow_folds: bool = False,
@@ -125,6 +128,7 @@ def planarize(
     linear_solver: Literal['cholmod', 'eigen'] = 'cholmod',
     threads: int = 0,
     monotone: bool = True,
+    step_control: Literal['dogleg', 'damping'] = 'dogleg',
     min_angle: float = 5.0,
     edge_length: Optional[Sequence[float]] = None,
     allow_folds: bool = False,
@@ -158,6 +162,7 @@ Arguments:
     linear_solver: (choice) Sparse Cholesky backend for gp: cholmod (supernodal) or eigen.
     threads: (int, >= 0, <= 256) Threads for BLAS / Ceres (0: default).
     monotone: (bool) Monotone steps: keep a step only if it lowers the energy, else damp it (plain steps: take every Gauss-Newton step).
+    step_control: (choice) How a monotone step that does not lower the energy is shortened: dogleg (a trust region on the iteration's factor: a rejected trial costs an evaluation) or damping (epsilon grows and the step is refactorised).
     min_angle: (number, deg, >= 0, <= 59.9) Every quad corner angle stays within [min_angle, 180 - min_angle] (a corner already outside in the input is kept from getting worse); 0 only keeps quads convex.
     edge_length: (numbers, input units, >= 0, 2 values) Every edge length ends within these, to the tolerance (an edge outside in the input is brought in; the run converges only when all are); without it no edge shrinks below 10% of its input length.
     allow_folds: (bool) No corner-angle or default edge bounds: quads may turn non-convex or fold.
@@ -210,6 +215,8 @@ class AnetOptions:
     """(int, >= 0, <= 256) Threads for BLAS / Ceres (0: default)."""
     monotone: bool
     """(bool) Monotone steps: keep a step only if it lowers the energy, else damp it (plain steps: take every Gauss-Newton step)."""
+    step_control: Literal['dogleg', 'damping']
+    """(choice) How a monotone step that does not lower the energy is shortened: dogleg (a trust region on the iteration's factor: a rejected trial costs an evaluation) or damping (epsilon grows and the step is refactorised)."""
     min_angle: float
     """(number, deg, >= 0, <= 59.9) Every quad corner angle stays within [min_angle, 180 - min_angle] (a corner already outside in the input is kept from getting worse); 0 only keeps quads convex."""
     edge_length: Optional[Sequence[float]]
@@ -239,6 +246,7 @@ class AnetOptions:
         linear_solver: Literal['cholmod', 'eigen'] = 'cholmod',
         threads: int = 0,
         monotone: bool = True,
+        step_control: Literal['dogleg', 'damping'] = 'dogleg',
         min_angle: float = 5.0,
         edge_length: Optional[Sequence[float]] = None,
         allow_folds: bool = False,
@@ -280,6 +288,7 @@ def anet(
     linear_solver: Literal['cholmod', 'eigen'] = 'cholmod',
     threads: int = 0,
     monotone: bool = True,
+    step_control: Literal['dogleg', 'damping'] = 'dogleg',
     min_angle: float = 5.0,
     edge_length: Optional[Sequence[float]] = None,
     allow_folds: bool = False,
@@ -313,6 +322,7 @@ Arguments:
     linear_solver: (choice) Sparse Cholesky backend for gp: cholmod (supernodal) or eigen.
     threads: (int, >= 0, <= 256) Threads for BLAS / Ceres (0: default).
     monotone: (bool) Monotone steps: keep a step only if it lowers the energy, else damp it (plain steps: take every Gauss-Newton step).
+    step_control: (choice) How a monotone step that does not lower the energy is shortened: dogleg (a trust region on the iteration's factor: a rejected trial costs an evaluation) or damping (epsilon grows and the step is refactorised).
     min_angle: (number, deg, >= 0, <= 59.9) Every quad corner angle stays within [min_angle, 180 - min_angle] (a corner already outside in the input is kept from getting worse); 0 only keeps quads convex.
     edge_length: (numbers, input units, >= 0, 2 values) Every edge length ends within these, to the tolerance (an edge outside in the input is brought in; the run converges only when all are); without it no edge shrinks below 10% of its input length.
     allow_folds: (bool) No corner-angle or default edge bounds: quads may turn non-convex or fold.
@@ -365,6 +375,8 @@ class HnetOptions:
     """(int, >= 0, <= 256) Threads for BLAS / Ceres (0: default)."""
     monotone: bool
     """(bool) Monotone steps: keep a step only if it lowers the energy, else damp it (plain steps: take every Gauss-Newton step)."""
+    step_control: Literal['dogleg', 'damping']
+    """(choice) How a monotone step that does not lower the energy is shortened: dogleg (a trust region on the iteration's factor: a rejected trial costs an evaluation) or damping (epsilon grows and the step is refactorised)."""
     min_angle: float
     """(number, deg, >= 0, <= 59.9) Every quad corner angle stays within [min_angle, 180 - min_angle] (a corner already outside in the input is kept from getting worse); 0 only keeps quads convex."""
     edge_length: Optional[Sequence[float]]
@@ -402,6 +414,7 @@ class HnetOptions:
         linear_solver: Literal['cholmod', 'eigen'] = 'cholmod',
         threads: int = 0,
         monotone: bool = True,
+        step_control: Literal['dogleg', 'damping'] = 'dogleg',
         min_angle: float = 5.0,
         edge_length: Optional[Sequence[float]] = None,
         allow_folds: bool = False,
@@ -445,6 +458,7 @@ def hnet(
     linear_solver: Literal['cholmod', 'eigen'] = 'cholmod',
     threads: int = 0,
     monotone: bool = True,
+    step_control: Literal['dogleg', 'damping'] = 'dogleg',
     min_angle: float = 5.0,
     edge_length: Optional[Sequence[float]] = None,
     allow_folds: bool = False,
@@ -482,6 +496,7 @@ Arguments:
     linear_solver: (choice) Sparse Cholesky backend for gp: cholmod (supernodal) or eigen.
     threads: (int, >= 0, <= 256) Threads for BLAS / Ceres (0: default).
     monotone: (bool) Monotone steps: keep a step only if it lowers the energy, else damp it (plain steps: take every Gauss-Newton step).
+    step_control: (choice) How a monotone step that does not lower the energy is shortened: dogleg (a trust region on the iteration's factor: a rejected trial costs an evaluation) or damping (epsilon grows and the step is refactorised).
     min_angle: (number, deg, >= 0, <= 59.9) Every quad corner angle stays within [min_angle, 180 - min_angle] (a corner already outside in the input is kept from getting worse); 0 only keeps quads convex.
     edge_length: (numbers, input units, >= 0, 2 values) Every edge length ends within these, to the tolerance (an edge outside in the input is brought in; the run converges only when all are); without it no edge shrinks below 10% of its input length.
     allow_folds: (bool) No corner-angle or default edge bounds: quads may turn non-convex or fold.

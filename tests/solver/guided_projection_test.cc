@@ -224,6 +224,7 @@ TEST(GuidedProjectionMonotoneTest, MonotoneStepsNeverRaiseTheEnergy) {
   EXPECT_GT(p.iterations[1].energy, 10.0 * p.iterations[0].energy);  // the overshoot
 
   options.monotone = true;
+  options.step_control = StepControl::kDamping;
   Problem monotone = MakeRosenbrockProblem();
   Eigen::Vector2d first = Eigen::Vector2d::Zero();
   const SolverSummary m =
@@ -317,11 +318,14 @@ TEST(GuidedProjectionMonotoneTest, TrialPointsAreProjected) {
 // A trial the predicate refuses is never kept: on Rosenbrock's valley with x ≤ 0.5 admissible
 // (the minimum is at x = 1), every iterate stays admissible, plain or monotone, and the run
 // still moves towards the minimum up to the admissible set's edge.
+// Refused trials are never kept, with plain steps, damping and the dogleg (which shrinks its
+// radius instead of refactorising).
 TEST(GuidedProjectionMonotoneTest, RefusedTrialsAreNeverKept) {
-  for (bool monotone : {false, true}) {
+  for (int mode = 0; mode < 3; ++mode) {
     SolverOptions options;
     options.max_iterations = 60;
-    options.monotone = monotone;
+    options.monotone = mode > 0;
+    options.step_control = mode == 2 ? StepControl::kDogleg : StepControl::kDamping;
     int refused = 0;
     options.admissible_trial = [&refused](const Eigen::VectorXd& x) {
       refused += x[0] > 0.5;
@@ -335,10 +339,101 @@ TEST(GuidedProjectionMonotoneTest, RefusedTrialsAreNeverKept) {
           return CallbackResult::kContinue;
         });
     EXPECT_NE(s.termination, TerminationType::kFailure) << s.FullReport();
-    EXPECT_GT(refused, 0) << monotone;
-    EXPECT_LE(worst, 0.5) << monotone;
-    EXPECT_GT(problem.x()[0], 0.3) << monotone << "\n" << s.FullReport();
+    EXPECT_GT(refused, 0) << mode;
+    EXPECT_LE(worst, 0.5) << mode;
+    EXPECT_GT(problem.x()[0], 0.3) << mode << "\n" << s.FullReport();
+    if (mode == 2)
+      for (const IterationRecord& r : s.iterations)
+        EXPECT_LE(r.factorizations, 1) << "iteration " << r.iteration;
   }
+}
+
+TEST(GuidedProjectionDoglegTest, RejectedTrialsCostNoFactorisation) {
+  SolverOptions options;
+  options.max_iterations = 100;
+  options.residual_tolerance = 1e-10;
+  options.monotone = true;
+  options.step_control = StepControl::kDogleg;
+  Problem problem = MakeRosenbrockProblem();
+  Eigen::Vector2d first = Eigen::Vector2d::Zero();
+  const SolverSummary s =
+      Solve(options, &problem, [&](const IterationRecord& r, const Eigen::VectorXd& x) {
+        if (r.iteration == 1) first = x;
+        return CallbackResult::kContinue;
+      });
+  ASSERT_EQ(s.termination, TerminationType::kConvergence) << s.FullReport();
+  EXPECT_NEAR(problem.x()[0], 1.0, 1e-6);
+  EXPECT_NEAR(problem.x()[1], 1.0, 1e-6);
+  int rejected = 0;
+  for (size_t k = 1; k < s.iterations.size(); ++k) {
+    const IterationRecord& r = s.iterations[k];
+    EXPECT_LE(r.energy, s.iterations[k - 1].energy) << "iteration " << k;
+    EXPECT_EQ(r.factorizations, 1) << "iteration " << k;
+    if (k == 1) EXPECT_EQ(r.epsilon, options.epsilon);  // no growth for the rejections
+    rejected += r.trials - 1;
+  }
+  EXPECT_GT(rejected, 0);
+  ASSERT_GT(s.iterations[1].trials, 1) << s.FullReport();
+  // The kept first step is on the dogleg path of the start's linearisation: between the
+  // Cauchy point c and the Gauss–Newton step d (or on the segment from 0 to c), at the D-norm
+  // of d halved once per rejection.
+  const Eigen::Vector2d x0(-1.2, 1.0), r0(10.0 * (x0[1] - x0[0] * x0[0]), 1.0 - x0[0]);
+  Eigen::Matrix2d j0;
+  j0 << -20.0 * x0[0], 10.0, -1.0, 0.0;
+  const double beta = options.epsilon * options.epsilon;
+  const Eigen::Matrix2d normal = j0.transpose() * j0;
+  const Eigen::Vector2d g = -j0.transpose() * r0;
+  const Eigen::Vector2d d = (normal + beta * Eigen::Matrix2d::Identity()).ldlt().solve(g);
+  const Eigen::Vector2d scale2 = normal.diagonal().array() + beta;
+  const Eigen::Vector2d p = g.cwiseQuotient(scale2);
+  const Eigen::Vector2d c = p * (g.dot(p) / (j0 * p).squaredNorm());
+  auto dnorm = [&](const Eigen::Vector2d& v) { return std::sqrt(v.dot(v.cwiseProduct(scale2))); };
+  const Eigen::Vector2d taken = first - x0;
+  EXPECT_NEAR(dnorm(taken), dnorm(d) / std::pow(2.0, s.iterations[1].trials - 1), 1e-10);
+  Eigen::Matrix2d basis;
+  basis << c, d - c;
+  const Eigen::Vector2d coefficients = basis.fullPivLu().solve(taken);  // taken = α c + τ (d − c)
+  const bool on_segment = std::abs(coefficients[0] - 1.0) < 1e-9 && coefficients[1] >= -1e-9 &&
+                          coefficients[1] <= 1.0 + 1e-9;
+  const bool towards_cauchy =
+      std::abs(coefficients[1]) < 1e-9 && coefficients[0] > 0.0 && coefficients[0] <= 1.0 + 1e-9;
+  EXPECT_TRUE(on_segment || towards_cauchy) << coefficients.transpose();
+}
+
+TEST(GuidedProjectionDoglegTest, StopsAtTheStartWhenTheRadiusRunsOut) {
+  SolverOptions options;
+  options.monotone = true;
+  options.step_control = StepControl::kDogleg;
+  options.max_rejections = 0;
+  Problem problem = MakeRosenbrockProblem();
+  const SolverSummary s = Solve(options, &problem);
+  EXPECT_EQ(s.termination, TerminationType::kStalled) << s.FullReport();
+  EXPECT_NE(s.message.find("trust radius reduced to"), std::string::npos) << s.message;
+  EXPECT_EQ(s.num_steps(), 0);
+  EXPECT_EQ(problem.x(), Eigen::Vector2d(-1.2, 1.0));
+}
+
+// A GuidedProjectionSolver keeps its analysis for re-solves of the same rows, and rebuilds it
+// when the linear algebra asked for changes; a re-solve's iterates are those of a fresh solve.
+TEST(GuidedProjectionSolverTest, ReSolvesReuseTheAnalysisUntilTheOptionsChangeIt) {
+  Problem problem = MakeCircleProblem(6, 0.1);
+  Problem fresh = MakeCircleProblem(6, 0.1);
+  const Eigen::VectorXd start = problem.x();
+  SolverOptions options;
+  GuidedProjectionSolver solver(&problem);
+  const SolverSummary first = solver.Solve(options);
+  EXPECT_FALSE(first.analysis_reused);
+  problem.x() = start;
+  const SolverSummary second = solver.Solve(options);
+  EXPECT_TRUE(second.analysis_reused);
+  EXPECT_EQ(second.analysis_seconds, 0.0);
+  EXPECT_EQ(second.eliminated_variables, first.eliminated_variables);
+  const SolverSummary reference = Solve(options, &fresh);
+  EXPECT_EQ(second.num_steps(), reference.num_steps());
+  EXPECT_LT((problem.x() - fresh.x()).lpNorm<Eigen::Infinity>(), 1e-12);
+  options.linear_solver = LinearSolverType::kEigen;
+  problem.x() = start;
+  EXPECT_FALSE(solver.Solve(options).analysis_reused);
 }
 
 TEST(GuidedProjectionFailureTest, InvalidOptionsAreRejected) {

@@ -1,6 +1,10 @@
 #include "gproj/problems/mesh/mesh_problem.h"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "gproj/common/input_error.h"
 
 namespace gproj {
 
@@ -19,6 +23,40 @@ void MeshProblem::AddBoundsAndControl(const PanelBoundsOptions& panels,
   panels_ = panels;
   bounds_ = AddPanelBounds(input_, norm_, vertex_block_, panels, &problem_);
   control_ = ApplyVertexControl(input_, norm_, vertex_block_, vertices, &problem_);
+}
+
+RunReport MeshProblem::Resolve(const std::vector<int>& ids,
+                               const std::vector<Eigen::Vector3d>& positions,
+                               const RunCallback& callback) {
+  if (ids.size() != positions.size())
+    throw InputError("resolve: " + std::to_string(ids.size()) + " vertex ids but " +
+                     std::to_string(positions.size()) + " positions");
+  const int n = static_cast<int>(input_.n_vertices());
+  std::vector<bool> seen(n, false);
+  for (size_t k = 0; k < ids.size(); ++k) {
+    const int v = ids[k];
+    if (v < 0 || v >= n)
+      throw InputError("resolve: vertex " + std::to_string(v) + " is out of range (the mesh has " +
+                       std::to_string(n) + " vertices)");
+    if (seen[v]) throw InputError("resolve: vertex " + std::to_string(v) + " is given twice");
+    seen[v] = true;
+    if (!positions[k].allFinite())
+      throw InputError("resolve: the position of vertex " + std::to_string(v) + " is not finite");
+  }
+  const BlockItems vertex = vertices();
+  const VariableLayout& layout = problem_.layout();
+  for (size_t k = 0; k < ids.size(); ++k) {
+    const int v = ids[k];
+    problem_.x().segment<3>(layout.ItemOffset(vertex[v])) = norm_.ToProblem(positions[k]);
+    problem_.SetConstant(vertex[v]);
+    control_.moved[v] = PolyMesh::Point(positions[k][0], positions[k][1], positions[k][2]);
+    control_.held.push_back(v);
+  }
+  std::sort(control_.held.begin(), control_.held.end());
+  control_.held.erase(std::unique(control_.held.begin(), control_.held.end()), control_.held.end());
+  SolverOptions options = solver_options();
+  options.initial_soft_scale = 0.0;
+  return RunWithOptions(options, callback);
 }
 
 void MeshProblem::AddEdgeRange(const PolyMesh& mesh, double tolerance, NamedValues* m) const {

@@ -43,6 +43,17 @@ class MeshProblem : public GuidedProblem {
     return !(ValueOf(m, "out_of_range_edges") > 0.0);
   }
 
+  // A warm re-solve after an edit (a designer dragging or pinning vertices): holds the vertices
+  // `ids` at `positions` (input units; a held vertex may move again), then runs guided
+  // projection from the current iterate with the soft and fairness weights off: the iterate
+  // moves to the nearest one (in the proximal sense) that meets the constraints with the edit,
+  // and the first run's set-up and symbolic analysis are reused. Throws InputError (nothing
+  // changed) for an id out of range, a repeated id, a non-finite position or sizes that differ.
+  RunReport Resolve(const std::vector<int>& ids, const std::vector<Eigen::Vector3d>& positions,
+                    const RunCallback& callback = nullptr);
+  // The vertices held now (input ids, sorted).
+  const std::vector<int>& held_vertices() const { return control_.held; }
+
  protected:
   // Normalises `mesh` and adds the vertex block (#V × 3), the layout's first. The derived
   // problem checks the mesh and its options first (a base that throws would name neither).

@@ -123,7 +123,11 @@ VertexControl ApplyVertexControl(const PolyMesh& mesh, const MeshNormalization& 
 }
 
 void VertexControl::RestoreHeld(const PolyMesh& input, PolyMesh* mesh) const {
-  for (int v : held) mesh->set_point(mesh->vertex_handle(v), input.point(input.vertex_handle(v)));
+  for (int v : held) {
+    const auto given = moved.find(v);
+    mesh->set_point(mesh->vertex_handle(v),
+                    given != moved.end() ? given->second : input.point(input.vertex_handle(v)));
+  }
 }
 
 double VertexControl::MaxGlideDistance(const VariableLayout& layout,

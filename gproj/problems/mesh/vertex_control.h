@@ -6,6 +6,7 @@
 // tangent plane of the closest point plus a weaker point term (004 §3.2), so vertices slide along
 // the surface instead of being pinned to their start.
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -38,8 +39,11 @@ struct VertexControl {
   double bbox_diagonal = 1.0;        // of the input, in input units
   double scale = 1.0;                // MeshNormalization::scale
 
-  // Copies the held vertices from `input` into `mesh` (the result), so that they are the
-  // input's bit for bit rather than after a round trip through the normalisation.
+  // Positions given to held vertices after the set-up (MeshProblem::Resolve), input units.
+  std::map<int, PolyMesh::Point> moved;
+
+  // Copies the held vertices from `input` (or `moved`) into `mesh` (the result), so that they
+  // are as given bit for bit rather than after a round trip through the normalisation.
   void RestoreHeld(const PolyMesh& input, PolyMesh* mesh) const;
 
   // Max distance of a gliding vertex from its boundary loop / bbox diagonal (0 without).

@@ -141,6 +141,9 @@ RunRecord ToRunRecord(const IterationRecord& r) {
   record.step = r.step_norm;
   record.epsilon = r.epsilon;
   record.soft_scale = r.soft_scale;
+  record.factorizations = r.factorizations;
+  record.trials = r.trials;
+  record.radius = r.radius;
   record.max_constraint = r.max_constraint;
   record.assembly_seconds = r.assembly_seconds;
   record.factorization_seconds = r.factorization_seconds;
@@ -194,22 +197,23 @@ double StartSoftScale(double start_residual, double floor) {
   return std::max(start_residual / kNear, floor);
 }
 
-RunReport GuidedProblem::Run(const RunCallback& callback) {
+RunReport GuidedProblem::RunWithOptions(const SolverOptions& options, const RunCallback& callback) {
   const auto start = Clock::now();
   RunReport report;
   report.solver = SolverKind::kGuidedProjection;
   report.variables = problem().layout().num_variables();
   report.initial = Measure();
-  report.summary =
-      Solve(solver_options(), &problem(), [&](const IterationRecord& r, const Eigen::VectorXd& x) {
-        RunRecord record = ToRunRecord(r);
-        record.measures = MeasureAt(x);
-        report.history.push_back(record);
-        if (callback && !callback(record)) return CallbackResult::kAbort;
-        return HasTolerance() && StopsAtTolerance() && MeetsTolerance(record.measures)
-                   ? CallbackResult::kConverged
-                   : CallbackResult::kContinue;
-      });
+  if (!solver_ || solver_->problem() != &problem())
+    solver_ = std::make_shared<GuidedProjectionSolver>(&problem());
+  report.summary = solver_->Solve(options, [&](const IterationRecord& r, const Eigen::VectorXd& x) {
+    RunRecord record = ToRunRecord(r);
+    record.measures = MeasureAt(x);
+    report.history.push_back(record);
+    if (callback && !callback(record)) return CallbackResult::kAbort;
+    return HasTolerance() && StopsAtTolerance() && MeetsTolerance(record.measures)
+               ? CallbackResult::kConverged
+               : CallbackResult::kContinue;
+  });
   report.termination =
       std::string(TerminationTypeName(report.summary.termination)) + ": " + report.summary.message;
   report.iterations = report.summary.num_steps();

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <chrono>
 #include <functional>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -51,6 +52,9 @@ struct RunRecord {
   double step = 0.0;  // ‖x^k − x^{k−1}‖ (∞-norm for guided projection, 2-norm for Ceres)
   double epsilon = 0.0;
   double soft_scale = 1.0;
+  int factorizations = 0;       // numeric factorisations of the step that led here (Ceres: 0)
+  int trials = 0;               // trial points assessed for it
+  double radius = 0.0;          // dogleg trust radius after it (∞: unbounded; 0: no trust region)
   double max_constraint = 0.0;  // max |φ| over constraint rows (guided projection; NaN for Ceres)
   double seconds = 0.0;         // time of the step that led here
   NamedValues measures;         // the problem's measures at the iterate
@@ -175,8 +179,13 @@ class GuidedProblem {
   NamedValues Measure() const { return MeasureAt(problem().x()); }
 
   // Guided projection on problem().x() until the tolerance is met, the solver stops or the
-  // callback says so.
-  RunReport Run(const RunCallback& callback = nullptr);
+  // callback says so. A later Run of the same problem (after an edit: moved or held vertices,
+  // see MeshProblem::Resolve) reuses the first one's set-up and symbolic analysis.
+  RunReport Run(const RunCallback& callback = nullptr) {
+    return RunWithOptions(solver_options(), callback);
+  }
+  // Run with these options instead of solver_options().
+  RunReport RunWithOptions(const SolverOptions& options, const RunCallback& callback = nullptr);
   // Ceres' Levenberg–Marquardt on the same rows, stopping when the tolerance is met.
   RunReport RunCeres(int max_iterations, const RunCallback& callback = nullptr);
   // Run (kGuidedProjection) or RunCeres for at most solver_options().max_iterations (kCeres);
@@ -188,6 +197,11 @@ class GuidedProblem {
   // not finite).
   RunReport RunDirect(const std::string& method, const std::string& termination,
                       const std::function<void()>& solve);
+
+ private:
+  // Guided projection's set-up, kept between runs (shared by copies; rebuilt for another
+  // Problem object).
+  std::shared_ptr<GuidedProjectionSolver> solver_;
 };
 
 }  // namespace gproj

@@ -47,6 +47,9 @@ nlohmann::json RecordJson(const RunRecord& r) {
   for (const FamilyResidual& f : r.families)
     families[f.name] = {{"max", JsonNumber(f.max_abs)}, {"rms", JsonNumber(f.rms)}};
   j["families"] = families;
+  j["factorizations"] = r.factorizations;
+  j["trials"] = r.trials;
+  j["radius"] = JsonNumber(r.radius);  // null: not yet bounded
   j["assembly_seconds"] = r.assembly_seconds;
   j["factorization_seconds"] = r.factorization_seconds;
   j["solve_seconds"] = r.solve_seconds;

@@ -121,6 +121,17 @@ void AddSolverOptions(OptionSchema<S>* schema, std::function<SolverOptions&(S&)>
                              field(&SolverOptions::monotone))
       .Negation("plain_steps")
       .Group("solver");
+  schema
+      ->Custom("step_control", OptionType::kChoice,
+               "How a monotone step that does not lower the energy is shortened: dogleg (a "
+               "trust region on the iteration's factor: a rejected trial costs an evaluation) or "
+               "damping (epsilon grows and the step is refactorised)",
+               StepControlName(solver(defaults).step_control),
+               [solver](const nlohmann::json& value, S* s) {
+                 ParseStepControl(value.get<std::string>(), &solver(*s).step_control);
+               })
+      .Choices({"dogleg", "damping"})
+      .Group("solver");
 }
 
 }  // namespace gproj

@@ -162,6 +162,7 @@ bool LinearizedSystem::Assemble(const Eigen::VectorXd& x, double fairness_weight
       }
     }
   }
+  for (int k : held_entries_) a_.values[k] = 0.0;
   return true;
 }
 
@@ -204,6 +205,30 @@ void LinearizedSystem::MultiplyNormal(const Eigen::VectorXd& d, double beta, Eig
     for (int k = a_.col_begin[col]; k < a_.col_begin[col + 1]; ++k)
       (*out)[a_.row_index[k]] += a_.values[k] * v;
   }
+}
+
+void LinearizedSystem::MultiplyAt(const Eigen::VectorXd& d, Eigen::VectorXd* out) const {
+  out->resize(a_.num_cols);
+  for (int col = 0; col < a_.num_cols; ++col) {
+    double sum = 0.0;
+    for (int k = a_.col_begin[col]; k < a_.col_begin[col + 1]; ++k)
+      sum += a_.values[k] * d[a_.row_index[k]];
+    (*out)[col] = sum;
+  }
+}
+
+void LinearizedSystem::NormalDiagonal(Eigen::VectorXd* out) const {
+  out->setZero(a_.num_rows);
+  for (int k = 0; k < a_.col_begin[a_.num_cols]; ++k)
+    (*out)[a_.row_index[k]] += a_.values[k] * a_.values[k];
+}
+
+void LinearizedSystem::SetHeld(const std::vector<int>& variables) {
+  std::vector<bool> held(a_.num_rows, false);
+  for (int i : variables) held[i] = true;
+  held_entries_.clear();
+  for (int k = 0; k < a_.nnz(); ++k)
+    if (held[a_.row_index[k]]) held_entries_.push_back(k);
 }
 
 }  // namespace gproj

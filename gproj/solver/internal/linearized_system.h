@@ -34,10 +34,19 @@ class LinearizedSystem {
   // Moves every kConstraint row's target against its residual at the last Assemble (v ← v − φ;
   // the row is then φ − v, see SolverOptions::shifted_constraints) and rewrites r to match.
   void ShiftConstraintTargets();
+  // Variables held by the solve: every later Assemble writes their entries of A as 0, so a
+  // step neither moves them nor counts on moving them (rhs and normal matrix of the others).
+  void SetHeld(const std::vector<int>& variables);
+  // Forgets every shift (the rows' own targets again).
+  void ClearShifts() { shift_.resize(0); }
   // out = A r (n).
   void MultiplyAr(Eigen::VectorXd* out) const;
   // out = (A Aᵀ + β I) d (n), without forming A Aᵀ.
   void MultiplyNormal(const Eigen::VectorXd& d, double beta, Eigen::VectorXd* out);
+  // out = Aᵀ d (m): the change of the weighted rows along d.
+  void MultiplyAt(const Eigen::VectorXd& d, Eigen::VectorXd* out) const;
+  // out = diag(A Aᵀ) (n).
+  void NormalDiagonal(Eigen::VectorXd* out) const;
 
  private:
   Problem* problem_;
@@ -52,7 +61,8 @@ class LinearizedSystem {
   std::vector<std::vector<int>> local_index_;
   std::vector<std::vector<int>> scatter_;  // per family: Σ_e rows × L_e
   std::vector<double> x_local_, phi_local_, jac_local_;
-  Eigen::VectorXd at_d_;  // m, scratch of MultiplyNormal
+  Eigen::VectorXd at_d_;           // m, scratch of MultiplyNormal
+  std::vector<int> held_entries_;  // positions in a_.values of held variables
 };
 
 }  // namespace gproj
