@@ -141,6 +141,7 @@ struct GuidedProjectionSolver::SetUp {
   std::unique_ptr<LinearizedSystem> system;
   std::unique_ptr<StepSolver> steps;
   std::vector<int> shape;  // variables, then per family its elements and rows
+  std::vector<int> held;   // items constant when the pattern was built (left out of it)
   LinearSolverType linear_solver = LinearSolverType::kCholmod;
   int num_threads = 0;
   FillOrdering ordering = FillOrdering::kAuto;
@@ -156,10 +157,23 @@ struct GuidedProjectionSolver::SetUp {
     }
     return shape;
   }
+  static std::vector<int> HeldOf(const Problem& problem) {
+    std::vector<int> items;
+    for (int item = 0; item < problem.layout().num_items(); ++item)
+      if (problem.IsConstant(item)) items.push_back(item);
+    return items;
+  }
+  // Whether the set-up serves a solve with these options: the same linear algebra, the same
+  // rows, and every item left out of the pattern still held (a released one needs its
+  // entries, so the pattern is rebuilt; newly held items are zeroed by SetHeld).
   bool Fits(const SolverOptions& o, const Problem& problem) const {
-    return system && steps && o.linear_solver == linear_solver && o.num_threads == num_threads &&
-           o.ordering == ordering && o.eliminate_auxiliaries == eliminate &&
-           o.block_ordering == block_ordering && ShapeOf(problem) == shape;
+    if (!(system && steps && o.linear_solver == linear_solver && o.num_threads == num_threads &&
+          o.ordering == ordering && o.eliminate_auxiliaries == eliminate &&
+          o.block_ordering == block_ordering && ShapeOf(problem) == shape))
+      return false;
+    for (int item : held)
+      if (!problem.IsConstant(item)) return false;
+    return true;
   }
 };
 
@@ -197,7 +211,7 @@ class Minimizer {
     char residual[96];
     std::snprintf(residual, sizeof(residual),
                   " with the max constraint residual %.3e above the residual tolerance %.1e",
-                  record_.max_constraint, options_.residual_tolerance);
+                  iterate_constraint_, options_.residual_tolerance);
     return Finish(TerminationType::kStalled, why + residual);
   }
 
@@ -240,6 +254,7 @@ class Minimizer {
         set_up_->steps = std::move(owned_steps_);  // the system it refers to goes with it
         set_up_->system = std::move(owned_system_);
         set_up_->shape = GuidedProjectionSolver::SetUp::ShapeOf(*problem_);
+        set_up_->held = GuidedProjectionSolver::SetUp::HeldOf(*problem_);
         set_up_->linear_solver = options_.linear_solver;
         set_up_->num_threads = options_.num_threads;
         set_up_->ordering = options_.ordering;
@@ -277,6 +292,7 @@ class Minimizer {
       return !Finish(TerminationType::kFailure, why_);
     record_.energy = system_->Energy();
     FillResiduals(*problem_, *system_, &record_);
+    iterate_constraint_ = record_.max_constraint;
     // The step's Schur complement counts as assembly of the iterate it led to.
     record_.assembly_seconds = SecondsSince(t) + schur_seconds_;
     schur_seconds_ = 0.0;
@@ -459,7 +475,7 @@ class Minimizer {
         const double predicted = path_.Predicted(a, b);
         const double gain = predicted > 0.0 ? (energy - trial_energy) / predicted : -1.0;
         if (gain > 0.75) radius_ = std::max(radius_, 3.0 * taken);
-        if (gain < 0.25) radius_ = 0.5 * std::min(radius_, taken);
+        if (gain < 0.25 && taken > 0.0) radius_ = 0.5 * std::min(radius_, taken);
         UpdateDamping(epsilon, gain);
         break;
       }
@@ -493,7 +509,8 @@ class Minimizer {
     summary_.factor_nonzeros = steps_->FactorNonZeros();
     summary_.factor_flops = steps_->FactorFlops();
     record_.epsilon = epsilon;
-    record_.radius = options_.step_control == StepControl::kDogleg ? radius_ : 0.0;
+    record_.radius =
+        options_.monotone && options_.step_control == StepControl::kDogleg ? radius_ : 0.0;
     record_.step_norm = (trial_ - x_).lpNorm<Eigen::Infinity>();
     x_.swap(trial_);
     double decay = options_.soft_weight_decay;
@@ -557,7 +574,8 @@ class Minimizer {
   bool has_constraint_rows_ = false;  // the residual-tied schedule needs some
   double growth_ = 2.0;               // growth of ε² on the next rejection
   double schur_seconds_ = 0.0;
-  double step_energy_ = 0.0;  // energy at x^k that a monotone step must lower
+  double step_energy_ = 0.0;         // energy at x^k that a monotone step must lower
+  double iterate_constraint_ = 0.0;  // max |φ| of the constraint rows at x^k
   // Dogleg step control: the trust radius (∞ until a trial is rejected), this iteration's
   // Gauss–Newton step, gradient, D², Cauchy point, Aᵀ of both, and the path's products.
   double radius_ = HUGE_VAL;

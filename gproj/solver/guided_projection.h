@@ -70,8 +70,8 @@ struct SolverOptions {
   //    D = diag(A Aᵀ + ε² I)^½) inside a trust radius ‖D s‖ ≤ Δ. A rejection halves Δ below
   //    the trial's ‖D s‖; a kept step with gain ratio > 3/4 lets it grow to 3 ‖D s‖, one below
   //    1/4 halves it (Powell's dogleg, as Ceres' DOGLEG); Δ carries over to later iterations.
-  //    A rejected trial then costs one evaluation, not a factorisation; a run without
-  //    rejections takes the same steps as with kDamping.
+  //    A rejected trial then costs one evaluation, not a factorisation. Until the first
+  //    rejection or kept step of gain ratio below 1/4 the steps are those of kDamping.
   StepControl step_control = StepControl::kDogleg;
   // Exact constraints by shifted targets (Bregman iteration; the method of multipliers for
   // non-linear rows): after each step every kConstraint row's target moves against its
@@ -178,7 +178,8 @@ SolverSummary Solve(const SolverOptions& options, Problem* problem,
 // re-solve after an edit costs its iterations only. Between solves x, the held items and the
 // rows' data may change; when the families, their elements or the linear-algebra options
 // (linear_solver, num_threads, ordering, eliminate_auxiliaries, block_ordering) change, the
-// set-up is rebuilt. The problem must outlive the solver.
+// set-up is rebuilt, and so it is when an item held at the set-up is released (the pattern
+// leaves held items out). The problem must outlive the solver.
 class GuidedProjectionSolver {
  public:
   explicit GuidedProjectionSolver(Problem* problem);

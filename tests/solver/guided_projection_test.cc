@@ -409,6 +409,8 @@ TEST(GuidedProjectionDoglegTest, StopsAtTheStartWhenTheRadiusRunsOut) {
   const SolverSummary s = Solve(options, &problem);
   EXPECT_EQ(s.termination, TerminationType::kStalled) << s.FullReport();
   EXPECT_NE(s.message.find("trust radius reduced to"), std::string::npos) << s.message;
+  // The residual named is the start's (Rosenbrock's first row, 10 (1 − 1.44) = −4.4).
+  EXPECT_NE(s.message.find("max constraint residual 4.400e+00"), std::string::npos) << s.message;
   EXPECT_EQ(s.num_steps(), 0);
   EXPECT_EQ(problem.x(), Eigen::Vector2d(-1.2, 1.0));
 }
@@ -434,6 +436,59 @@ TEST(GuidedProjectionSolverTest, ReSolvesReuseTheAnalysisUntilTheOptionsChangeIt
   options.linear_solver = LinearSolverType::kEigen;
   problem.x() = start;
   EXPECT_FALSE(solver.Solve(options).analysis_reused);
+}
+
+// Re-solves with monotone dogleg steps and shifted constraints take the iterates of a fresh
+// solve from the same state: no shift, radius or damping carried over.
+TEST(GuidedProjectionSolverTest, AReSolveTakesTheIteratesOfAFreshSolve) {
+  SolverOptions options;
+  options.monotone = true;
+  options.shifted_constraints = true;
+  options.max_iterations = 30;
+  Problem problem = MakeRosenbrockProblem();
+  GuidedProjectionSolver solver(&problem);
+  solver.Solve(options);
+  const Eigen::Vector2d restart(-0.5, 1.5);
+  problem.x() = restart;
+  const SolverSummary again = solver.Solve(options);
+  ASSERT_TRUE(again.analysis_reused);
+  Problem fresh = MakeRosenbrockProblem();
+  fresh.x() = restart;
+  const SolverSummary reference = Solve(options, &fresh);
+  ASSERT_EQ(again.num_steps(), reference.num_steps());
+  for (int k = 0; k <= again.num_steps(); ++k) {
+    EXPECT_EQ(again.iterations[k].energy, reference.iterations[k].energy) << k;
+    EXPECT_EQ(again.iterations[k].trials, reference.iterations[k].trials) << k;
+  }
+  EXPECT_EQ(problem.x(), fresh.x());
+}
+
+// An item held when the set-up was built is left out of its pattern: releasing it rebuilds
+// the set-up, so the item moves again; holding one later keeps the set-up and the item still.
+TEST(GuidedProjectionSolverTest, ReleasingAHeldItemRebuildsTheSetUp) {
+  Problem problem = MakeCircleProblem(6, 0.1);
+  const Eigen::VectorXd start = problem.x();
+  problem.SetConstant(0);
+  SolverOptions options;
+  GuidedProjectionSolver solver(&problem);
+  solver.Solve(options);
+  EXPECT_EQ(problem.x().head(2), start.head(2));
+  problem.SetConstant(0, false);
+  problem.x() = start;
+  const SolverSummary released = solver.Solve(options);
+  EXPECT_FALSE(released.analysis_reused);
+  Problem fresh = MakeCircleProblem(6, 0.1);
+  Solve(options, &fresh);
+  EXPECT_LT((problem.x() - fresh.x()).lpNorm<Eigen::Infinity>(), 1e-12);
+  EXPECT_GT((problem.x().head(2) - start.head(2)).norm(), 1e-4);
+  problem.SetConstant(1);
+  const Eigen::VectorXd before = problem.x();
+  problem.x().segment(2, 2) += Eigen::Vector2d(0.05, -0.02);
+  const Eigen::Vector2d pinned = problem.x().segment(2, 2);
+  const SolverSummary held = solver.Solve(options);
+  EXPECT_TRUE(held.analysis_reused);
+  EXPECT_EQ(Eigen::Vector2d(problem.x().segment(2, 2)), pinned);
+  EXPECT_NE(problem.x(), before);
 }
 
 TEST(GuidedProjectionFailureTest, InvalidOptionsAreRejected) {
