@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -27,7 +28,9 @@ class CommandTest : public ::testing::Test {
         std::filesystem::path(::testing::TempDir()) /
         ("gproj_cli_" +
          std::string(::testing::UnitTest::GetInstance()->current_test_info()->test_suite_name()) +
-         "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+         "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
+         std::to_string(getpid()));  // two suites running at once (e.g. two checkouts) never
+                                     // share a directory
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
   }
