@@ -14,5 +14,7 @@ namespace gproj {
 void RegisterProblemCommand(CLI::App* app, const ProblemSpec& spec, int* exit_code);
 // Registers `gproj schema` (the registry as JSON).
 void RegisterSchemaCommand(CLI::App* app, int* exit_code);
+// Registers `gproj serve` (the HTTP service, gproj/service/server.h).
+void RegisterServeCommand(CLI::App* app, int* exit_code);
 
 }  // namespace gproj

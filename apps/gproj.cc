@@ -1,5 +1,5 @@
 // The gproj command line: one subcommand per problem of the registry, generated from its spec,
-// and `gproj schema`.
+// `gproj schema` and `gproj serve`.
 #include <glog/logging.h>
 
 #include <cstring>
@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   for (const gproj::ProblemSpec& spec : gproj::Registry::Builtin().problems())
     gproj::RegisterProblemCommand(&app, spec, &exit_code);
   gproj::RegisterSchemaCommand(&app, &exit_code);
+  gproj::RegisterServeCommand(&app, &exit_code);
   gproj::RefuseEmptyValues(&app);
   // An unknown subcommand is refused before any --help after it could print the main help.
   std::string commands;

@@ -161,3 +161,6 @@ echo "  m_revolution.obj, .svg        the surface of revolution inverted (000 §
 echo "  m_revolution_curve.obj, .svg  M-revolution surface from a planar curve and two points (circular,"
 echo "                                planar vertical arches)"
 echo "  m_revolution_smooth.obj, .svg its smooth cyclidic surface (000 §2.2, 320 Dupin cyclide patches)"
+echo
+echo "gproj serve: the same problems over HTTP, live iteration streams and Grasshopper Hops components:"
+echo "  ./build/gproj serve    then http://127.0.0.1:8765/api (docs/service.md); Ctrl-C stops it"

@@ -81,7 +81,7 @@ TEST_F(ProblemCommandTest, VersionAndUnknownCommands) {
   const CommandRun version = Gproj("--version");
   EXPECT_EQ(version.exit_code, 0);
   EXPECT_EQ(version.out, std::string("gproj ") + GprojVersion() + "\n");
-  for (const char* args : {"serve --help", "planarise x.obj -o y.obj", "serve"}) {
+  for (const char* args : {"server --help", "planarise x.obj -o y.obj", "web"}) {
     const CommandRun r = Gproj(args);
     EXPECT_EQ(r.exit_code, 1) << args;
     EXPECT_NE(r.err.find("unknown command"), std::string::npos) << r.err;

@@ -325,6 +325,17 @@ PolygonSoup ReadPolygonSoup(const std::string& path) {
   Fail(path, 0, "unknown mesh format");
 }
 
+PolygonSoup ParsePolygonSoup(const std::string& name, const std::string& format,
+                             std::string_view contents) {
+  std::string lower = format;
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string_view text = WithoutByteOrderMark(contents);
+  if (lower == "obj") return ReadObj(name, text);
+  if (lower == "off") return ReadOff(name, text);
+  if (lower == "ply") return ReadPly(name, text);
+  Fail(name, 0, "unknown mesh format " + Quote(format) + "; expected obj, off or ply");
+}
+
 namespace {
 
 // Vertices near each other: a hash grid of cells of the tolerance's size, searched in the 27

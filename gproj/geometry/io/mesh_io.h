@@ -6,6 +6,7 @@
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "gproj/common/input_error.h"
@@ -52,6 +53,10 @@ PolygonSoup WeldVertices(const PolygonSoup& soup, double tolerance, std::vector<
 // of range, a face of fewer than 3 vertices (OFF, PLY), counts that the file size or the
 // machine's memory cannot hold (checked before allocating).
 PolygonSoup ReadPolygonSoup(const std::string& path);
+// The same readers on a file's contents held in memory (the HTTP service's uploads): `format`
+// is "obj", "off" or "ply" (any case); `name` stands for the path in messages.
+PolygonSoup ParsePolygonSoup(const std::string& name, const std::string& format,
+                             std::string_view contents);
 
 // Validates and builds the mesh. Throws InputError for: no faces, a face with fewer than 3
 // vertices or a repeated vertex, a degenerate face (zero area), a non-manifold edge (shared

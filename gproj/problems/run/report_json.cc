@@ -34,8 +34,6 @@ nlohmann::json MeasuresJson(const NamedValues& values) {
   return j;
 }
 
-namespace {
-
 nlohmann::json RecordJson(const RunRecord& r) {
   nlohmann::json j = {
       {"iteration", r.iteration},   {"energy", JsonNumber(r.energy)},
@@ -55,8 +53,6 @@ nlohmann::json RecordJson(const RunRecord& r) {
   j["solve_seconds"] = r.solve_seconds;
   return j;
 }
-
-}  // namespace
 
 nlohmann::json ReportJson(const std::string& command, const RunReport& report,
                           const nlohmann::json& extra) {

@@ -20,6 +20,11 @@ nlohmann::json MeasuresJson(const NamedValues& values);
 // A number for JSON: non-finite values become null (JSON has no NaN).
 nlohmann::json JsonNumber(double value);
 
+// One record as the report's history has it (and the HTTP service streams it): iteration,
+// energy, step, epsilon, soft_scale, max_constraint, seconds, the measures, per-term residuals,
+// factorizations, trials, radius and the time split.
+nlohmann::json RecordJson(const RunRecord& record);
+
 // The report: command, solver, converged, failed, termination, iterations, seconds,
 // variables, initial and final measures, and the history (per record: iteration, energy, step,
 // epsilon, soft_scale, max_constraint, seconds, the measures, per-term residuals and the time
