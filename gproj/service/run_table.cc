@@ -109,7 +109,7 @@ std::string RunTable::Submit(RunRequest request, const std::string& parent) {
   }
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (Unfinished() >= limits_.max_running + limits_.max_queued)
+    if (UnfinishedLocked() >= limits_.max_running + limits_.max_queued)
       throw RunTableFull("the service is busy: " + std::to_string(limits_.max_running) +
                          " runs are running and " + std::to_string(limits_.max_queued) +
                          " queued; try again when one has finished");
@@ -121,7 +121,21 @@ std::string RunTable::Submit(RunRequest request, const std::string& parent) {
 }
 
 int RunTable::Unfinished() const {
-  // Called with mutex_ held by Submit, without it by others (a snapshot).
+  std::lock_guard<std::mutex> lock(mutex_);
+  return UnfinishedLocked();
+}
+
+void RunTable::CancelAll() {
+  std::vector<std::string> ids;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& [id, run] : runs_)
+      if (!IsFinished(run->state)) ids.push_back(id);
+  }
+  for (const std::string& id : ids) Cancel(id);
+}
+
+int RunTable::UnfinishedLocked() const {
   int count = 0;
   for (const auto& [id, run] : runs_) count += IsFinished(run->state) ? 0 : 1;
   return count;

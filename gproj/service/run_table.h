@@ -75,6 +75,8 @@ class RunTable {
   // A stream follows the run (+1) or stopped following it (-1); when the last follower leaves
   // before the run ends, the run is cancelled (its client went away).
   void Follow(const std::string& id, int change);
+  // Cancels every unfinished run (the service is stopping: requests waiting on runs return).
+  void CancelAll();
   int Unfinished() const;
   const RunLimits& limits() const { return limits_; }
 
@@ -85,6 +87,7 @@ class RunTable {
   void Push(Run* run, const char* event, nlohmann::json data);
   void Finish(Run* run, RunState state);
   void EvictFinished();
+  int UnfinishedLocked() const;  // with mutex_ held
 
   RunLimits limits_;
   mutable std::mutex mutex_;

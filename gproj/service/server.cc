@@ -224,7 +224,10 @@ int Service::Bind() {
 void Service::Serve() { impl_->server.listen_after_bind(); }
 
 void Service::Stop() {
-  if (impl_) impl_->server.stop();
+  if (!impl_) return;
+  // Runs first: a Hops solve or a stream waiting on a run returns, so the server's threads end.
+  impl_->table.CancelAll();
+  impl_->server.stop();
 }
 
 void Service::Impl::PostJson(

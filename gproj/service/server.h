@@ -51,6 +51,7 @@ class Service {
   int Bind();
   // Serves until Stop (from another thread or a signal's watcher).
   void Serve();
+  // Cancels every run and stops serving; Serve returns once the requests in flight have ended.
   void Stop();
 
  private:

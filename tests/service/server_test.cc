@@ -389,6 +389,29 @@ TEST(ServerTest, HopsSolveReturnsThePlanarPoints) {
   EXPECT_EQ(server.Stop(), 0);
 }
 
+TEST(ServerTest, StoppingCancelsTheRunsARequestWaitsOn) {
+  ServerProcess server({});
+  ASSERT_GT(server.port(), 0) << server.first_line();
+  nlohmann::json body = nlohmann::json::parse(ReadFile(
+      std::string(GPROJ_SOURCE_DIR) + "/tests/service/fixtures/hops_planarize_noisy_grid.json"));
+  body["values"][5]["InnerTree"]["{0}"][0]["data"] = "1E-300";  // a tolerance it cannot meet
+  body["values"].push_back(
+      {{"ParamName", "max_iterations"},
+       {"InnerTree", {{"{0}", {{{"type", "System.Int32"}, {"data", "100000"}}}}}}});
+  body["values"].push_back(
+      {{"ParamName", "monotone"},
+       {"InnerTree", {{"{0}", {{{"type", "System.Boolean"}, {"data", "false"}}}}}}});
+  std::thread solve([&] {
+    httplib::Client client = server.Client();
+    client.Post("/solve", body.dump(), "application/json");  // answered or cut off: either
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(700));
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_EQ(server.Stop(), 0);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+  solve.join();
+}
+
 TEST(ServerTest, FiftyConcurrentRunsCompleteOrAreRefusedAndMemoryStaysBounded) {
   ServerProcess server({"--max-runs", "2", "--max-queued", "24"});
   ASSERT_GT(server.port(), 0) << server.first_line();
