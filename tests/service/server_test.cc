@@ -56,6 +56,25 @@ std::string Submit(httplib::Client& client, const nlohmann::json& body) {
   return status == 201 ? nlohmann::json::parse(answer).at("id").get<std::string>() : "";
 }
 
+// Opens GET /api/runs/ID/events on a raw socket and waits for the stream's first bytes; the
+// socket (the caller closes it), or -1.
+int OpenStream(int port, const std::string& id) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address = {};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<uint16_t>(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) return -1;
+  const std::string get = "GET /api/runs/" + id + "/events HTTP/1.1\r\nHost: x\r\n\r\n";
+  char buffer[4096];
+  if (send(fd, get.data(), get.size(), 0) != static_cast<ssize_t>(get.size()) ||
+      recv(fd, buffer, sizeof buffer, 0) <= 0) {
+    close(fd);
+    return -1;
+  }
+  return fd;
+}
+
 TEST(ServerTest, RunsAreServedStreamedCancelledAndResolved) {
   ServerProcess server({});
   ASSERT_GT(server.port(), 0) << server.first_line();
@@ -139,7 +158,7 @@ TEST(ServerTest, RunsAreServedStreamedCancelledAndResolved) {
       Post(client, "/api/runs/" + id + "/resolve",
            {{"moved", {{{"vertex", 221}, {"to", to_221}}}}, {"options", slow_options}}, &status);
   ASSERT_EQ(status, 201) << newer_answer;
-  EXPECT_EQ(AwaitRun(client, nlohmann::json::parse(stale_answer).at("id"), 10).at("status"),
+  EXPECT_EQ(AwaitRun(client, nlohmann::json::parse(stale_answer).at("id")).at("status"),
             "cancelled");
   const std::string newer = nlohmann::json::parse(newer_answer).at("id");
   const auto described = client.Get(("/api/runs/" + newer).c_str());
@@ -147,33 +166,23 @@ TEST(ServerTest, RunsAreServedStreamedCancelledAndResolved) {
   EXPECT_EQ(nlohmann::json::parse(described->body).at("from"), id);
   client.Delete(("/api/runs/" + newer).c_str());
 
-  // A long run, cancelled: it ends cancelled within seconds.
+  // A long run, cancelled while it runs.
   const std::string slow = Submit(client, SlowRequest(61));
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ASSERT_EQ(AwaitStatus(client, slow, {"queued"}).at("status"), "running");
   const auto cancelled = client.Delete(("/api/runs/" + slow).c_str());
   ASSERT_TRUE(cancelled);
   EXPECT_EQ(cancelled->status, 200) << cancelled->body;
-  EXPECT_EQ(AwaitRun(client, slow, 10).at("status"), "cancelled");
+  EXPECT_EQ(AwaitRun(client, slow).at("status"), "cancelled");
   const auto again = client.Delete(("/api/runs/" + slow).c_str());
   ASSERT_TRUE(again);
   EXPECT_EQ(again->status, 409);
 
   // A client that follows a run's stream and goes away cancels it.
   const std::string followed = Submit(client, SlowRequest(61));
-  {
-    const int fd = socket(AF_INET, SOCK_STREAM, 0);
-    sockaddr_in address = {};
-    address.sin_family = AF_INET;
-    address.sin_port = htons(static_cast<uint16_t>(server.port()));
-    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    ASSERT_EQ(connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
-    const std::string get = "GET /api/runs/" + followed + "/events HTTP/1.1\r\nHost: x\r\n\r\n";
-    ASSERT_EQ(send(fd, get.data(), get.size(), 0), static_cast<ssize_t>(get.size()));
-    char buffer[4096];
-    ASSERT_GT(recv(fd, buffer, sizeof buffer, 0), 0);  // the stream started
-    close(fd);
-  }
-  EXPECT_EQ(AwaitRun(client, followed, 20).at("status"), "cancelled");
+  const int stream = OpenStream(server.port(), followed);
+  ASSERT_GE(stream, 0);  // the stream started
+  close(stream);
+  EXPECT_EQ(AwaitRun(client, followed).at("status"), "cancelled");
 
   EXPECT_TRUE(server.Alive());
   EXPECT_EQ(server.Stop(), 0);
@@ -282,28 +291,9 @@ TEST(ServerTest, RunsBeyondTheQueueAreRefusedWith429) {
   EXPECT_EQ(nlohmann::json::parse(cancel->body).at("status"), "cancelled");
   cancel = client.Delete(("/api/runs/" + running).c_str());
   ASSERT_TRUE(cancel);
-  EXPECT_EQ(AwaitRun(client, running, 10).at("status"), "cancelled");
+  EXPECT_EQ(AwaitRun(client, running).at("status"), "cancelled");
   EXPECT_EQ(Submit(client, PlanarizeRequest(GridMesh())).size(), 16u);  // room again
   EXPECT_EQ(server.Stop(), 0);
-}
-
-// Opens GET /api/runs/ID/events on a raw socket and waits for the stream's first bytes; the
-// socket (the caller closes it), or -1.
-int OpenStream(int port, const std::string& id) {
-  const int fd = socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in address = {};
-  address.sin_family = AF_INET;
-  address.sin_port = htons(static_cast<uint16_t>(port));
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) return -1;
-  const std::string get = "GET /api/runs/" + id + "/events HTTP/1.1\r\nHost: x\r\n\r\n";
-  char buffer[4096];
-  if (send(fd, get.data(), get.size(), 0) != static_cast<ssize_t>(get.size()) ||
-      recv(fd, buffer, sizeof buffer, 0) <= 0) {
-    close(fd);
-    return -1;
-  }
-  return fd;
 }
 
 TEST(ServerTest, StreamsNeverTakeEveryConnection) {
@@ -405,10 +395,10 @@ TEST(ServerTest, StoppingCancelsTheRunsARequestWaitsOn) {
     httplib::Client client = server.Client();
     client.Post("/solve", body.dump(), "application/json");  // answered or cut off: either
   });
+  // With the solve in flight, stop: the run is cancelled, the solve answered, the server exits 0
+  // (were the run left going, Stop would wait for it and ctest's timeout would fail this).
   std::this_thread::sleep_for(std::chrono::milliseconds(700));
-  const auto start = std::chrono::steady_clock::now();
   EXPECT_EQ(server.Stop(), 0);
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
   solve.join();
 }
 

@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 #include <Eigen/Geometry>
-#include <chrono>
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -141,20 +141,22 @@ inline double MaxDiagonalGap(const nlohmann::json& mesh) {
   return worst;
 }
 
-// Polls GET /api/runs/ID until the run has finished (or `seconds` pass); its JSON.
-inline nlohmann::json AwaitRun(httplib::Client& client, const std::string& id,
-                               double seconds = 120) {
-  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-  nlohmann::json run;
-  while (std::chrono::steady_clock::now() < end) {
+// Polls GET /api/runs/ID until its status is not one of `waiting`; its JSON (null when the run
+// is not found). No deadline: a run that never ends fails the test by ctest's timeout.
+inline nlohmann::json AwaitStatus(httplib::Client& client, const std::string& id,
+                                  const std::vector<std::string>& waiting) {
+  for (;;) {
     const auto res = client.Get(("/api/runs/" + id).c_str());
     if (!res || res->status != 200) return nlohmann::json();
-    run = nlohmann::json::parse(res->body);
-    const std::string status = run.at("status");
-    if (status != "queued" && status != "running") return run;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    nlohmann::json run = nlohmann::json::parse(res->body);
+    if (std::find(waiting.begin(), waiting.end(), run.at("status")) == waiting.end()) return run;
+    std::this_thread::yield();
   }
-  return run;
+}
+
+// The run's JSON once it has finished.
+inline nlohmann::json AwaitRun(httplib::Client& client, const std::string& id) {
+  return AwaitStatus(client, id, {"queued", "running"});
 }
 
 }  // namespace gproj::service
