@@ -184,6 +184,13 @@ nlohmann::json ParseRequestJson(const std::string& text) {
     const std::size_t at = where.find("parse error");
     if (at != std::string::npos) where = where.substr(at);
     throw RequestError("request: the body is not JSON (" + where + ")");
+  } catch (const nlohmann::json::exception& e) {
+    // out_of_range 406: a number beyond double's range (1e400), which JSON allows but no field
+    // of a request can take.
+    std::string what = e.what();
+    const std::size_t at = what.find("] ");
+    if (at != std::string::npos) what = what.substr(at + 2);
+    throw RequestError("request: the body is not usable JSON (" + what + ")");
   }
 }
 

@@ -107,6 +107,13 @@ TEST(RunRequestTest, DeepJsonAndInvalidUtf8AreRefusedNotFatal) {
   } catch (const RequestError& e) {
     EXPECT_NE(std::string(e.what()).find("ill-formed UTF-8"), std::string::npos) << e.what();
   }
+  // A number beyond double's range is JSON, but not a number any field can take.
+  try {
+    ParseRequestJson("{\"problem\": \"planarize\", \"options\": {\"tolerance\": 1e400}}");
+    ADD_FAILURE() << "accepted";
+  } catch (const RequestError& e) {
+    EXPECT_NE(std::string(e.what()).find("number overflow"), std::string::npos) << e.what();
+  }
   EXPECT_NE(DumpJson({{"error", "GET /nope\xff: no such endpoint"}}).find("\xef\xbf\xbd"),
             std::string::npos);
   // A generator is a run too: its mesh comes back.
