@@ -45,10 +45,15 @@ int RunServe(service::ServiceOptions options) {
   const std::string host =
       options.host.find(':') != std::string::npos ? "[" + options.host + "]" : options.host;
   std::printf(
-      "gproj serve: listening on http://%s:%d/ (the API at /api, Hops components at "
-      "/hops%s); Ctrl-C stops\n",
+      "gproj serve: listening on http://%s:%d/ (the web app at /, the API at /api, Hops "
+      "components at /hops%s); Ctrl-C stops\n",
       host.c_str(), port, options.token.empty() ? "" : ", token required");
   std::fflush(stdout);
+  if (!server->WebAppMissing().empty())
+    std::fprintf(stderr,
+                 "gproj serve: the web app is not installed (%s is missing; npm ci --prefix web "
+                 "installs it); the API and the Hops components are served\n",
+                 server->WebAppMissing().c_str());
   std::atomic<bool> served{false};
   std::thread watcher([&server, &served] {
     while (!stop_signal && !served) std::this_thread::sleep_for(std::chrono::milliseconds(50));
@@ -100,6 +105,12 @@ void RegisterServeCommand(CLI::App* app, int* exit_code) {
                   "Most vertices (and faces) of an input mesh")
       ->default_val(options->request.max_vertices)
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--web", options->web_dir,
+                  "The web app's folder (app/ and node_modules/; default: the source tree's web/)")
+      ->check(CLI::ExistingDirectory);
+  cmd->add_option("--examples", options->examples_dir,
+                  "The shipped examples' folder (default: the source tree's examples/data)")
+      ->check(CLI::ExistingDirectory);
   cmd->callback([options, exit_code]() {
     options->request.max_faces = options->request.max_vertices;
     *exit_code = RunServe(*options);

@@ -4,6 +4,7 @@
 set -eu
 cd "$(dirname "$0")/.."
 sh .ci/install-deps
+sh .ci/install-web
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j "$(nproc)" --target gproj
 mkdir -p out/demo
@@ -162,5 +163,9 @@ echo "  m_revolution_curve.obj, .svg  M-revolution surface from a planar curve a
 echo "                                planar vertical arches)"
 echo "  m_revolution_smooth.obj, .svg its smooth cyclidic surface (000 §2.2, 320 Dupin cyclide patches)"
 echo
-echo "gproj serve: the same problems over HTTP, live iteration streams and Grasshopper Hops components:"
-echo "  ./build/gproj serve    then http://127.0.0.1:8765/api (docs/service.md); Ctrl-C stops it"
+echo "The web app and the service (started by nothing here): run"
+echo "  ./build/gproj serve"
+echo "and open http://127.0.0.1:8765/ in a browser: drop a mesh (or pick a shipped example), press Run"
+echo "and watch it solve in 3D; http://127.0.0.1:8765/?example=noisy_grid_21x21&run=1 runs the demo's grid."
+echo "The same server answers the API (/api) and Grasshopper's Hops components (/hops/planarize, ...;"
+echo "docs/service.md). Ctrl-C stops it."

@@ -1,12 +1,14 @@
 // libFuzzer target: the HTTP service's request bodies (a run request, or a Hops solve when it
 // names a "pointer") through the service's JSON parser (depth-limited), HopsRunRequest and
-// ParseRunRequest, as the server reads them before any run starts.
+// ParseRunRequest, as the server reads them before any run starts; and the same body as the web
+// app's dropped mesh (POST /api/meshes).
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
 #include "gproj/service/hops.h"
 #include "gproj/service/run_request.h"
+#include "gproj/service/web_app.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
@@ -20,6 +22,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                                       limits);
     else
       gproj::service::ParseRunRequest(body, registry, limits);
+  } catch (const gproj::InputError&) {
+  }
+  try {
+    gproj::service::ReadDroppedMesh(gproj::service::ParseRequestJson(text), limits);
   } catch (const gproj::InputError&) {
   }
   return 0;

@@ -326,6 +326,15 @@ nlohmann::json MeshJson(const PolyMesh& mesh) {
   return {{"vertices", std::move(vertices)}, {"faces", std::move(faces)}};
 }
 
+nlohmann::json ReadMeshJson(const nlohmann::json& value, const std::string& field,
+                            const RequestLimits& limits) {
+  const PolygonSoup soup = SoupFromJson(value, field, limits);
+  nlohmann::json vertices = nlohmann::json::array(), faces = nlohmann::json::array();
+  for (const Eigen::Vector3d& p : soup.vertices) vertices.push_back({p.x(), p.y(), p.z()});
+  for (const std::vector<int>& face : soup.faces) faces.push_back(face);
+  return {{"vertices", std::move(vertices)}, {"faces", std::move(faces)}};
+}
+
 nlohmann::json ResultJson(const ProblemSpec& spec, const RunResult& result) {
   nlohmann::json out = nlohmann::json::object();
   if (result.report.failed) return out;

@@ -62,6 +62,13 @@ RunRequest ParseRunRequest(const nlohmann::json& body, const Registry& registry,
 // {"vertices": [[x,y,z],...], "faces": [[i,j,k],...]}.
 nlohmann::json MeshJson(const PolyMesh& mesh);
 
+// A mesh value of a request ({"vertices", "faces"} or {"obj" | "off" | "ply": contents}) read and
+// checked as a run request's mesh input is (the readers' checks and the limits), returned as
+// {"vertices", "faces"}: how the web app shows a file before it runs anything on it. Throws
+// RequestError naming `field`.
+nlohmann::json ReadMeshJson(const nlohmann::json& value, const std::string& field,
+                            const RequestLimits& limits);
+
 // The outputs of a finished run: meshes as MeshJson, JSON texts as objects, other texts (SVG,
 // CSV, segment OBJ) as strings, arrays as lists of rows; non-finite numbers as null.
 nlohmann::json ResultJson(const ProblemSpec& spec, const RunResult& result);

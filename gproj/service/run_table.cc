@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <random>
+#include <set>
 
 #include "gproj/problems/run/report_json.h"
 
@@ -299,6 +301,11 @@ void RunTable::Execute(Run* run) {
                                              : RunState::kNotConverged;
     nlohmann::json report =
         RunResultJson(spec, result, run->request.options, run->request.inputs, nullptr);
+    // The measure the tolerance bounds, so that a client shows that one against it.
+    if (!result.tolerance_measure.empty()) {
+      report["tolerance_measure"] = result.tolerance_measure;
+      report["tolerance"] = result.tolerance;
+    }
     if (!result.shortfalls.empty()) {
       nlohmann::json shortfalls = nlohmann::json::array();
       for (const std::string& s : result.shortfalls) shortfalls.push_back(SpellOptions(s, false));
@@ -335,6 +342,10 @@ void RunTable::Finish(Run* run, RunState state) {
       end["termination"] = run->report.value("termination", "");
       end["iterations"] = run->report.value("iterations", 0);
       end["final"] = run->report.value("final", nlohmann::json::object());
+      if (run->report.contains("tolerance_measure")) {
+        end["tolerance_measure"] = run->report.at("tolerance_measure");
+        end["tolerance"] = run->report.at("tolerance");
+      }
     }
     run->events.push_back({{"event", "end"}, {"data", std::move(end)}});
     finished_order_.push_back(run->id);
@@ -351,6 +362,86 @@ void RunTable::EvictFinished() {
     if (it != runs_.end()) runs_.erase(it);
     finished_order_.pop_front();
   }
+}
+
+// A finished run's edits for a re-solve: {"moved": [{"vertex": v, "to": [x,y,z]}, ...],
+// "fixed": [ids], "options": {...}} applied to its request, starting from its result.
+RunRequest ResolveRequest(const FinishedRun& run, const nlohmann::json& body) {
+  const ProblemSpec& spec = *run.request.spec;
+  const InputSpec* mesh_input = spec.FindInput("mesh");
+  const InputSpec* fixed_input = spec.FindInput("fixed");
+  const OutputSpec* output = nullptr;
+  for (const OutputSpec& o : spec.outputs)
+    if (o.kind == OutputKind::kMesh && o.same_connectivity) output = &o;
+  if (!mesh_input || !fixed_input || fixed_input->kind != InputKind::kVertexIds || !output)
+    throw RequestError("run: " + spec.name +
+                       " has no warm re-solve (it needs a mesh input, fixed vertices and a result "
+                       "mesh of the input's connectivity)");
+  if (run.result.report.failed || !run.result.meshes.count(output->name))
+    throw RequestError("run: the run has no result to start from (it " +
+                       std::string(RunStateName(run.state)) + ")");
+  if (!body.is_object()) throw RequestError("request: expected a JSON object");
+  for (auto it = body.begin(); it != body.end(); ++it)
+    if (it.key() != "moved" && it.key() != "fixed" && it.key() != "options")
+      throw RequestError(it.key() + ": unknown key (a re-solve has moved, fixed and options)");
+  RunRequest request = run.request;
+  PolyMesh mesh = run.result.meshes.at(output->name);
+  const int n = static_cast<int>(mesh.n_vertices());
+  std::set<int> fixed;
+  for (int v : request.inputs.VertexIds("fixed")) fixed.insert(v);
+  auto vertex = [n](const nlohmann::json& value, const std::string& where) {
+    if (!value.is_number_integer()) throw RequestError(where + ": expected a vertex id");
+    const long long v = value.get<long long>();
+    if (v < 0 || v >= n)
+      throw RequestError(where + ": vertex " + std::to_string(v) +
+                         " is out of range (the mesh has " + std::to_string(n) + " vertices)");
+    return static_cast<int>(v);
+  };
+  const nlohmann::json moved = body.value("moved", nlohmann::json::array());
+  if (!moved.is_array()) throw RequestError("moved: expected a list of {\"vertex\", \"to\"}");
+  std::set<int> moved_ids;
+  for (std::size_t i = 0; i < moved.size(); ++i) {
+    const std::string where = "moved[" + std::to_string(i) + "]";
+    const nlohmann::json& edit = moved[i];
+    if (!edit.is_object() || !edit.contains("vertex") || !edit.contains("to") || edit.size() != 2)
+      throw RequestError(where + ": expected {\"vertex\": id, \"to\": [x, y, z]}");
+    const int v = vertex(edit.at("vertex"), where + ".vertex");
+    if (!moved_ids.insert(v).second)
+      throw RequestError(where + ".vertex: vertex " + std::to_string(v) + " is moved twice");
+    const nlohmann::json& to = edit.at("to");
+    if (!to.is_array() || to.size() != 3)
+      throw RequestError(where + ".to: expected a point [x, y, z]");
+    OpenMesh::Vec3d p;
+    for (int c = 0; c < 3; ++c) {
+      if (!to[c].is_number() || !std::isfinite(to[c].get<double>()))
+        throw RequestError(where + ".to[" + std::to_string(c) + "]: expected a finite number");
+      p[c] = to[c].get<double>();
+    }
+    mesh.set_point(mesh.vertex_handle(v), p);
+    fixed.insert(v);
+  }
+  const nlohmann::json more = body.value("fixed", nlohmann::json::array());
+  if (!more.is_array()) throw RequestError("fixed: expected a list of vertex ids");
+  for (std::size_t i = 0; i < more.size(); ++i)
+    fixed.insert(vertex(more[i], "fixed[" + std::to_string(i) + "]"));
+  if (body.contains("options")) {
+    const nlohmann::json& options = body.at("options");
+    if (!options.is_object()) throw RequestError("options: expected an object");
+    for (auto it = options.begin(); it != options.end(); ++it) {
+      if (it.value().is_null())
+        request.options.erase(it.key());
+      else
+        request.options[it.key()] = it.value();
+    }
+    request.options = CompleteOptions(spec.options, request.options);
+  }
+  request.inputs.meshes[mesh_input->name] = std::move(mesh);
+  request.inputs.vertex_ids[fixed_input->name].assign(fixed.begin(), fixed.end());
+  request.inputs.sources[fixed_input->name] = "fixed";
+  request.inputs.weld_maps.clear();  // the result is numbered as the welded mesh already
+  request.inputs.files.clear();
+  request.weld = false;
+  return request;
 }
 
 }  // namespace gproj::service

@@ -45,6 +45,13 @@ struct FinishedRun {
   RunState state = RunState::kFailed;
 };
 
+// A finished run's edits for a re-solve: {"moved": [{"vertex": v, "to": [x, y, z]}, ...],
+// "fixed": [ids], "options": {...}} applied to its request, starting from its result: the moved
+// vertices are put where asked and held, `fixed` ones added to the held, options overridden
+// (null restores a default). Throws RequestError naming the field, or when the problem has no
+// warm re-solve (a mesh input, fixed vertices and a result mesh of the input's connectivity).
+RunRequest ResolveRequest(const FinishedRun& run, const nlohmann::json& body);
+
 class RunTable {
  public:
   explicit RunTable(RunLimits limits);

@@ -7,11 +7,13 @@
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "gproj/service/hops.h"
+#include "gproj/service/web_app.h"
 
 namespace gproj::service {
 namespace {
@@ -54,86 +56,6 @@ std::string BearerToken(const httplib::Request& req) {
   return "";
 }
 
-// A finished run's edits for a re-solve: {"moved": [{"vertex": v, "to": [x,y,z]}, ...],
-// "fixed": [ids], "options": {...}} applied to its request, starting from its result.
-RunRequest ResolveRequest(const FinishedRun& run, const nlohmann::json& body) {
-  const ProblemSpec& spec = *run.request.spec;
-  const InputSpec* mesh_input = spec.FindInput("mesh");
-  const InputSpec* fixed_input = spec.FindInput("fixed");
-  const OutputSpec* output = nullptr;
-  for (const OutputSpec& o : spec.outputs)
-    if (o.kind == OutputKind::kMesh && o.same_connectivity) output = &o;
-  if (!mesh_input || !fixed_input || fixed_input->kind != InputKind::kVertexIds || !output)
-    throw RequestError("run: " + spec.name +
-                       " has no warm re-solve (it needs a mesh input, fixed vertices and a result "
-                       "mesh of the input's connectivity)");
-  if (run.result.report.failed || !run.result.meshes.count(output->name))
-    throw RequestError("run: the run has no result to start from (it " +
-                       std::string(RunStateName(run.state)) + ")");
-  if (!body.is_object()) throw RequestError("request: expected a JSON object");
-  for (auto it = body.begin(); it != body.end(); ++it)
-    if (it.key() != "moved" && it.key() != "fixed" && it.key() != "options")
-      throw RequestError(it.key() + ": unknown key (a re-solve has moved, fixed and options)");
-  RunRequest request = run.request;
-  PolyMesh mesh = run.result.meshes.at(output->name);
-  const int n = static_cast<int>(mesh.n_vertices());
-  std::set<int> fixed;
-  for (int v : request.inputs.VertexIds("fixed")) fixed.insert(v);
-  auto vertex = [n](const nlohmann::json& value, const std::string& where) {
-    if (!value.is_number_integer()) throw RequestError(where + ": expected a vertex id");
-    const long long v = value.get<long long>();
-    if (v < 0 || v >= n)
-      throw RequestError(where + ": vertex " + std::to_string(v) +
-                         " is out of range (the mesh has " + std::to_string(n) + " vertices)");
-    return static_cast<int>(v);
-  };
-  const nlohmann::json moved = body.value("moved", nlohmann::json::array());
-  if (!moved.is_array()) throw RequestError("moved: expected a list of {\"vertex\", \"to\"}");
-  std::set<int> moved_ids;
-  for (std::size_t i = 0; i < moved.size(); ++i) {
-    const std::string where = "moved[" + std::to_string(i) + "]";
-    const nlohmann::json& edit = moved[i];
-    if (!edit.is_object() || !edit.contains("vertex") || !edit.contains("to") || edit.size() != 2)
-      throw RequestError(where + ": expected {\"vertex\": id, \"to\": [x, y, z]}");
-    const int v = vertex(edit.at("vertex"), where + ".vertex");
-    if (!moved_ids.insert(v).second)
-      throw RequestError(where + ".vertex: vertex " + std::to_string(v) + " is moved twice");
-    const nlohmann::json& to = edit.at("to");
-    if (!to.is_array() || to.size() != 3)
-      throw RequestError(where + ".to: expected a point [x, y, z]");
-    OpenMesh::Vec3d p;
-    for (int c = 0; c < 3; ++c) {
-      if (!to[c].is_number() || !std::isfinite(to[c].get<double>()))
-        throw RequestError(where + ".to[" + std::to_string(c) + "]: expected a finite number");
-      p[c] = to[c].get<double>();
-    }
-    mesh.set_point(mesh.vertex_handle(v), p);
-    fixed.insert(v);
-  }
-  const nlohmann::json more = body.value("fixed", nlohmann::json::array());
-  if (!more.is_array()) throw RequestError("fixed: expected a list of vertex ids");
-  for (std::size_t i = 0; i < more.size(); ++i)
-    fixed.insert(vertex(more[i], "fixed[" + std::to_string(i) + "]"));
-  if (body.contains("options")) {
-    const nlohmann::json& options = body.at("options");
-    if (!options.is_object()) throw RequestError("options: expected an object");
-    for (auto it = options.begin(); it != options.end(); ++it) {
-      if (it.value().is_null())
-        request.options.erase(it.key());
-      else
-        request.options[it.key()] = it.value();
-    }
-    request.options = CompleteOptions(spec.options, request.options);
-  }
-  request.inputs.meshes[mesh_input->name] = std::move(mesh);
-  request.inputs.vertex_ids[fixed_input->name].assign(fixed.begin(), fixed.end());
-  request.inputs.sources[fixed_input->name] = "fixed";
-  request.inputs.weld_maps.clear();  // the result is numbered as the welded mesh already
-  request.inputs.files.clear();
-  request.weld = false;
-  return request;
-}
-
 // Answers a submission: 201 {"id", "status", "url", ...extra}, or 400 naming the field (an option
 // as options.NAME), or 429 when the table is full.
 void SubmitRun(httplib::Response& res, const nlohmann::json& extra,
@@ -159,7 +81,12 @@ bool IsLoopback(const std::string& host) {
 }
 
 struct Service::Impl {
-  explicit Impl(ServiceOptions o) : options(std::move(o)), table(options.runs) {}
+  explicit Impl(ServiceOptions o) : options(std::move(o)), table(options.runs) {
+    if (options.web_dir.empty()) options.web_dir = GPROJ_WEB_DIR;
+    if (options.examples_dir.empty()) options.examples_dir = GPROJ_EXAMPLES_DIR;
+    web_files = LoadWebFiles(options.web_dir, &web_missing);
+    examples = LoadExamples(options.examples_dir, options.request);
+  }
 
   void Routes();
   // A POST route whose body is read here (whatever its Content-Type: no form decoding), limited
@@ -172,6 +99,9 @@ struct Service::Impl {
 
   ServiceOptions options;
   RunTable table;
+  std::map<std::string, WebFile> web_files;
+  std::string web_missing;  // a file of the web app that could not be read
+  std::vector<Example> examples;
   // Event streams open: each holds one of the connection threads for as long as it runs, so at
   // most half of them may stream and the other half always serves requests.
   std::atomic<int> streams{0};
@@ -220,6 +150,8 @@ int Service::Bind() {
   if (listening >= 0) ::listen(listening, SOMAXCONN);
   return impl.port;
 }
+
+const std::string& Service::WebAppMissing() const { return impl_->web_missing; }
 
 void Service::Serve() { impl_->server.listen_after_bind(); }
 
@@ -298,14 +230,19 @@ void Service::Impl::Routes() {
         SendError(res, 500, "internal error: " + what);
       });
   const std::string token = options.token;
-  server.set_pre_routing_handler([token](const httplib::Request& req, httplib::Response& res) {
-    if (token.empty() || ConstantTimeEquals(BearerToken(req), token))
-      return httplib::Server::HandlerResponse::Unhandled;
-    SendError(res, 401,
-              "request: this service needs its token (Authorization: Bearer TOKEN, "
-              "RhinoComputeKey: TOKEN or ?token=TOKEN)");
-    return httplib::Server::HandlerResponse::Handled;
-  });
+  // The web app's own files (the page, its script and packages) hold nothing of the service's,
+  // and a browser loads a page's modules without the token, so they are served without it; the
+  // page then sends the token (from its ?token=) with every API request.
+  server.set_pre_routing_handler(
+      [this, token](const httplib::Request& req, httplib::Response& res) {
+        if (token.empty() || ConstantTimeEquals(BearerToken(req), token) ||
+            (req.method == "GET" && web_files.count(req.path)))
+          return httplib::Server::HandlerResponse::Unhandled;
+        SendError(res, 401,
+                  "request: this service needs its token (Authorization: Bearer TOKEN, "
+                  "RhinoComputeKey: TOKEN or ?token=TOKEN)");
+        return httplib::Server::HandlerResponse::Handled;
+      });
 
   const Registry& registry = Registry::Builtin();
   server.Get("/api", [](const httplib::Request&, httplib::Response& res) {
@@ -314,7 +251,8 @@ void Service::Impl::Routes() {
               {"endpoints",
                {"GET /api/schema", "POST /api/runs", "GET /api/runs", "GET /api/runs/{id}",
                 "GET /api/runs/{id}/events", "DELETE /api/runs/{id}", "POST /api/runs/{id}/resolve",
-                "GET /hops", "GET /hops/{problem}", "POST /solve"}}});
+                "GET /hops", "GET /hops/{problem}", "POST /solve", "GET /", "GET /api/examples",
+                "GET /api/examples/{name}", "POST /api/meshes"}}});
   });
   server.Get("/api/schema", [&registry](const httplib::Request&, httplib::Response& res) {
     SendJson(res, 200, registry.SchemaJson());
@@ -423,6 +361,35 @@ void Service::Impl::Routes() {
                                     run->at("status").get<std::string>() + ")");
              SubmitRun(res, {{"from", id}},
                        [&] { return table.Submit(ResolveRequest(*finished, body), id); });
+           });
+
+  for (const auto& [path, file] : web_files) {
+    const WebFile* served = &file;
+    server.Get(path, [served](const httplib::Request&, httplib::Response& res) {
+      res.set_header("Cache-Control", "no-cache");
+      res.set_content(served->content, served->type);
+    });
+  }
+  server.Get("/api/examples", [this](const httplib::Request&, httplib::Response& res) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const Example& example : examples) list.push_back(ExampleJson(example, false));
+    SendJson(res, 200, {{"examples", list}});
+  });
+  server.Get(R"(/api/examples/([a-z0-9_]+))", [this](const httplib::Request& req,
+                                                     httplib::Response& res) {
+    for (const Example& example : examples)
+      if (example.name == req.matches[1]) return SendJson(res, 200, ExampleJson(example, true));
+    std::string names;
+    for (const Example& example : examples) names += (names.empty() ? "" : ", ") + example.name;
+    SendError(res, 404, "example: no example " + std::string(req.matches[1]) + " (" + names + ")");
+  });
+  PostJson("/api/meshes",
+           [this](const httplib::Request&, httplib::Response& res, const nlohmann::json& body) {
+             try {
+               SendJson(res, 200, ReadDroppedMesh(body, options.request));
+             } catch (const InputError& e) {
+               SendError(res, 400, e.what());
+             }
            });
 
   server.Get("/hops", [&registry](const httplib::Request&, httplib::Response& res) {

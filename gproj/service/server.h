@@ -9,6 +9,9 @@
 //   POST   /api/runs/{id}/resolve     a warm re-solve of a finished run after edits
 //   GET    /hops, GET /hops/{name}    Hops component descriptions
 //   POST   /solve, POST /hops/{name}  a Hops solve
+//   GET    /                          the web app (web/app, three.js and lil-gui from npm)
+//   GET    /api/examples[/{name}]     the shipped examples the app opens
+//   POST   /api/meshes                a mesh's file contents read -> {"vertices", "faces"}
 // It binds to 127.0.0.1 by default and refuses any other address without a token, which every
 // request must then carry. Bodies are limited in size, runs in number, time and mesh size; every
 // bad request gets a JSON {"error": "..."} naming the field and the rule broken.
@@ -32,6 +35,8 @@ struct ServiceOptions {
   int connections = 32;  // requests served at once (streams included)
   RunLimits runs;
   RequestLimits request;
+  std::string web_dir;       // web/ (app/ and node_modules/); empty: the source tree's
+  std::string examples_dir;  // examples/data; empty: the source tree's
 };
 
 // Whether `host` is a loopback address (127.0.0.0/8, ::1, localhost).
@@ -51,6 +56,8 @@ class Service {
   int Bind();
   // Serves until Stop (from another thread or a signal's watcher).
   void Serve();
+  // The web app's file that could not be read at start (empty: the app is served).
+  const std::string& WebAppMissing() const;
   // Cancels every run and stops serving; Serve returns once the requests in flight have ended.
   void Stop();
 

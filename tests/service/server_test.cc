@@ -96,6 +96,10 @@ TEST(ServerTest, RunsAreServedStreamedCancelledAndResolved) {
   EXPECT_LT(MaxDiagonalGap(out), 1e-7);
   EXPECT_EQ(out.at("vertices")[0], mesh.at("vertices")[0]);
   EXPECT_EQ(run.at("report").at("status"), "CONVERGENCE");
+  // The measure the tolerance bounds, and the bound, met.
+  EXPECT_EQ(run.at("report").at("tolerance_measure"), "max_planarity");
+  EXPECT_LE(run.at("report").at("final").at("max_planarity").get<double>(),
+            run.at("report").at("tolerance").get<double>());
   const int iterations = run.at("report").at("iterations");
 
   // Its events, streamed after the fact: the columns, one record per iterate, the end.
@@ -111,6 +115,7 @@ TEST(ServerTest, RunsAreServedStreamedCancelledAndResolved) {
   EXPECT_EQ(records, iterations + 1);  // the initial iterate too
   EXPECT_EQ(ends, 1);
   EXPECT_NE(events->body.find("\"status\":\"converged\""), std::string::npos);
+  EXPECT_NE(events->body.find("\"tolerance_measure\":\"max_planarity\""), std::string::npos);
 
   // A warm re-solve after moving one vertex by 5% of an edge: it stays where it was put.
   const nlohmann::json& before = out.at("vertices")[220];
@@ -271,6 +276,17 @@ TEST(ServerTest, AnotherHostNeedsATokenAndEveryRequestCarriesIt) {
   auto query = client.Get("/api/schema?token=s3cret-token");
   ASSERT_TRUE(query);
   EXPECT_EQ(query->status, 200);
+  // The web app's own files load without it (a page's module imports carry no token); what the
+  // service holds does not.
+  auto page = client.Get("/");
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 200);
+  auto examples = client.Get("/api/examples");
+  ASSERT_TRUE(examples);
+  EXPECT_EQ(examples->status, 401);
+  auto meshes = client.Post("/api/meshes", "{\"obj\": \"v 0 0 0\"}", "application/json");
+  ASSERT_TRUE(meshes);
+  EXPECT_EQ(meshes->status, 401);
   EXPECT_EQ(server.Stop(), 0);
 }
 
@@ -442,6 +458,76 @@ TEST(ServerTest, FiftyConcurrentRunsCompleteOrAreRefusedAndMemoryStaysBounded) {
   auto list = client.Get("/api/runs");
   ASSERT_TRUE(list);
   EXPECT_LE(nlohmann::json::parse(list->body).at("runs").size(), 64u);
+  EXPECT_EQ(server.Stop(), 0);
+}
+
+TEST(ServerTest, ServesTheWebAppTheExamplesAndReadsDroppedMeshes) {
+  ServerProcess server({});
+  ASSERT_GT(server.port(), 0) << server.first_line();
+  httplib::Client client = server.Client();
+  // The page and its packages come from web/ (app/ and node_modules/), read at start.
+  auto page = client.Get("/");
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 200);
+  EXPECT_NE(page->body.find("data-status=\"idle\""), std::string::npos) << page->body;
+  auto three = client.Get("/vendor/three.module.js");
+  ASSERT_TRUE(three);
+  EXPECT_EQ(three->status, 200);
+  EXPECT_NE(three->get_header_value("Content-Type").find("javascript"), std::string::npos);
+  EXPECT_GT(three->body.size(), 100000u);
+  // Examples are named by their main file; each carries what a run takes and a preview mesh.
+  auto list = client.Get("/api/examples");
+  ASSERT_TRUE(list);
+  const nlohmann::json examples = nlohmann::json::parse(list->body).at("examples");
+  std::vector<std::string> names;
+  for (const nlohmann::json& e : examples) names.push_back(e.at("name"));
+  for (const char* name :
+       {"noisy_grid_21x21", "enneper_41x41_jitter3", "marionette_plan_21x21", "freeform_10x10"})
+    EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+  auto grid = client.Get("/api/examples/noisy_grid_21x21");
+  ASSERT_TRUE(grid);
+  const nlohmann::json example = nlohmann::json::parse(grid->body);
+  EXPECT_EQ(example.at("problem"), "planarize");
+  EXPECT_EQ(example.at("preview").at("vertices").size(), 441u);
+  EXPECT_EQ(example.at("preview"), example.at("inputs").at("mesh"));
+  // A B-spline example's preview is the surface sampled 4 times per control point each way
+  // (10 × 10 control points: 40 × 40 quads).
+  auto freeform = client.Get("/api/examples/freeform_10x10");
+  ASSERT_TRUE(freeform);
+  const nlohmann::json surface = nlohmann::json::parse(freeform->body);
+  EXPECT_EQ(surface.at("main"), "surface");
+  EXPECT_TRUE(surface.at("inputs").at("surface").contains("control_points"));
+  EXPECT_EQ(surface.at("preview").at("vertices").size(), 41u * 41u);
+  auto missing = client.Get("/api/examples/nothing_here");
+  ASSERT_TRUE(missing);
+  EXPECT_EQ(missing->status, 404);
+  EXPECT_NE(missing->body.find("no example nothing_here (noisy_grid_21x21"), std::string::npos)
+      << missing->body;
+  // A dropped file is read as the readers read files: its errors name the file and line.
+  auto read =
+      client.Post("/api/meshes",
+                  nlohmann::json({{"name", "quad.obj"},
+                                  {"obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n"}})
+                      .dump(),
+                  "application/json");
+  ASSERT_TRUE(read);
+  EXPECT_EQ(read->status, 200) << read->body;
+  EXPECT_EQ(nlohmann::json::parse(read->body),
+            nlohmann::json({{"vertices", {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}},
+                            {"faces", {{0, 1, 2, 3}}}}));
+  auto bad = client.Post(
+      "/api/meshes",
+      nlohmann::json({{"name", "bad.obj"}, {"obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 5\n"}}).dump(),
+      "application/json");
+  ASSERT_TRUE(bad);
+  EXPECT_EQ(bad->status, 400);
+  EXPECT_NE(bad->body.find("bad.obj:4"), std::string::npos) << bad->body;
+  auto nameless =
+      client.Post("/api/meshes", nlohmann::json({{"name", 3}}).dump(), "application/json");
+  ASSERT_TRUE(nameless);
+  EXPECT_EQ(nameless->status, 400);
+  EXPECT_NE(nameless->body.find("name: expected the file's name"), std::string::npos);
+  EXPECT_TRUE(server.Alive());
   EXPECT_EQ(server.Stop(), 0);
 }
 
