@@ -22,6 +22,7 @@ from selenium.webdriver.chrome.options import Options
 from selenium.webdriver.chrome.service import Service
 from selenium.webdriver.common.actions.action_builder import ActionBuilder
 from selenium.webdriver.common.by import By
+from selenium.webdriver.support.ui import Select
 
 BINARY = os.environ["GPROJ_BINARY"]
 OUT = os.environ.get("GPROJ_TEST_BUILD_DIR", tempfile.gettempdir())
@@ -127,8 +128,10 @@ def test_example_runs_and_the_page_shows_the_run(browser, server):
     assert browser.execute_script("return window.gproj.state.records.length") == \
         run["report"]["iterations"] + 1
     # Faces are coloured from the run's face_values.
-    values = browser.execute_script("return window.gproj.state.faceValues")
+    values = browser.execute_script("return window.gproj.state.faceTable.planarity")
     assert len(values) == 400 and max(values) == pytest.approx(final, rel=1e-6)
+    assert browser.execute_script("return window.gproj.state.colourBy") == "planarity"
+    assert "planarity / mean edge" in browser.find_element(By.ID, "legend-name").text
 
 
 def test_a_clicked_vertex_is_fixed_in_the_next_run(browser, server):
@@ -236,6 +239,19 @@ def test_screenshot_shows_the_coloured_mesh(browser, server):
     from PIL import Image
     browser.get_log("browser")  # the earlier tests' entries (e.g. the refused file's 400)
     assert open_page(browser, server, "?example=noisy_grid_21x21&circular=true&run=1") == "converged"
+    # The faces can be coloured by any per-face value of the result: concyclicity here.
+    choices = Select(browser.find_element(By.XPATH, "//div[text()='Colour by']/..//select"))
+    names = [o.text for o in choices.options]
+    assert {"planarity", "concyclicity", "kink_deg", "min_angle_deg"} <= set(names), names
+    choices.select_by_visible_text("concyclicity")
+    assert browser.execute_script("return window.gproj.state.colourBy") == "concyclicity"
+    run = base_run(browser, server)
+    assert max(browser.execute_script("return window.gproj.state.faceTable.concyclicity")) == \
+        pytest.approx(run["report"]["final"]["max_concyclicity"], rel=1e-6)
+    assert "concyclicity / mean edge" in browser.find_element(By.ID, "legend-name").text
+    choices.select_by_visible_text("min_angle_deg")
+    assert "min angle (degrees)" in browser.find_element(By.ID, "legend-name").text
+    choices.select_by_visible_text("concyclicity")
     path = os.path.join(OUT, "web_app_screenshot.png")
     assert browser.save_screenshot(path)
     image = Image.open(path).convert("RGB")
@@ -320,3 +336,33 @@ def test_with_a_token_the_page_sends_it_with_every_request(browser):
     finally:
         process.terminate()
         assert process.wait() == 0
+
+
+def test_anet_on_the_hnet_example_makes_the_stars_planar(browser, server):
+    import numpy
+    assert open_page(browser, server,
+                     "?example=enneper_41x41_jitter3&problem=anet&run=1") == "converged"
+    run = base_run(browser, server)
+    assert run["problem"] == "anet"
+    assert browser.execute_script("return window.gproj.state.colourBy") == "star_planarity"
+    final = run["report"]["final"]["max_star_planarity"]
+    assert final <= run["report"]["tolerance"]
+    # Independently: every inner vertex of valence 4 and its four neighbours lie in a plane (the
+    # smallest singular value of the five centred points, over the mean edge).
+    mesh = run["result"]["output"]
+    v = numpy.array(mesh["vertices"])
+    neighbours = {}
+    for face in mesh["faces"]:
+        for k, a in enumerate(face):
+            neighbours.setdefault(a, set()).update({face[k - 1], face[(k + 1) % len(face)]})
+    edges = [numpy.linalg.norm(v[f[k]] - v[f[k - 1]]) for f in mesh["faces"] for k in range(4)]
+    worst, stars = 0.0, 0
+    valence = {a: sum(a in f for f in mesh["faces"]) for a in neighbours}
+    for a, ring in neighbours.items():
+        if len(ring) != 4 or valence[a] != 4:
+            continue
+        points = v[[a, *ring]]
+        worst = max(worst, numpy.linalg.svd(points - points.mean(axis=0))[1][2])
+        stars += 1
+    assert stars > 1000
+    assert worst / numpy.mean(edges) < 1e-5

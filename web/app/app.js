@@ -74,7 +74,8 @@ const state = {
   result: null,        // the last result's mesh of the same connectivity, or null
   surface: null,       // a result's surface mesh (hnet), or null
   figure: null,        // a result's picture beside the view (weingarten's curvature diagram)
-  faceValues: null,    // per-face measure of the result (face_values), or null
+  faceTable: null,     // the result's per-face values (face_values): {name: [value per face]}
+  colourBy: '',        // the column of faceTable the faces are coloured by
   report: null,
   fixed: new Set(),
   showing: 'after',    // or 'before'
@@ -150,11 +151,22 @@ function ramp(t) {
   return stops[i].map((c, k) => c + f * (stops[i + 1][k] - c));
 }
 
-// Faces at the tolerance are green-yellow; three decades below blue, three above red.
-function colourOf(value, tolerance) {
+// How values map to colours. Distances (planarity, star planarity, concyclicity, relative to
+// the mean edge) on a log scale: at the tolerance green-yellow, three decades below blue, three
+// above red. Angles (kink_deg, min_angle_deg) linearly over their range, the worse end red.
+function scaleOf(name, values) {
+  if (!name.endsWith('_deg')) return { log: true, tolerance: toleranceOf() };
+  let lo = Infinity, hi = -Infinity;
+  for (const v of values) if (v !== null && Number.isFinite(v)) { lo = Math.min(lo, v); hi = Math.max(hi, v); }
+  if (!(hi > lo)) hi = lo + 1;
+  return { log: false, lo, hi, reversed: name.startsWith('min_') };
+}
+
+function colourOf(value, scale) {
   if (value === null || !Number.isFinite(value)) return [0.6, 0.6, 0.6];
-  const t = (Math.log10(Math.max(value, 1e-300)) - Math.log10(tolerance) + 3) / 6;
-  return ramp(t);
+  if (scale.log) return ramp((Math.log10(Math.max(value, 1e-300)) - Math.log10(scale.tolerance) + 3) / 6);
+  const t = (value - scale.lo) / (scale.hi - scale.lo);
+  return ramp(scale.reversed ? 1 - t : t);
 }
 
 function disposeModel() {
@@ -169,11 +181,11 @@ function draw() {
   disposeModel();
   const mesh = shownMesh();
   if (!mesh) return;
-  const values = shownValues();
-  const tolerance = toleranceOf();
+  const [name, values] = shownValues();
+  const scale = values ? scaleOf(name, values) : null;
   const positions = [], colours = [], edges = [];
   mesh.faces.forEach((face, f) => {
-    const c = values ? colourOf(values[f], tolerance) : [0.75, 0.75, 0.78];
+    const c = values ? colourOf(values[f], scale) : [0.75, 0.75, 0.78];
     for (let k = 1; k + 1 < face.length; ++k)
       for (const v of [face[0], face[k], face[k + 1]]) {
         positions.push(...mesh.vertices[v]);
@@ -214,7 +226,7 @@ function draw() {
     g.setAttribute('position', new THREE.Float32BufferAttribute(p, 3));
     model.add(new THREE.Points(g, new THREE.PointsMaterial({ color: 0xff3030, size: 9, sizeAttenuation: false, depthTest: false })));
   }
-  drawLegend(values, tolerance);
+  drawLegend(name, values, scale);
 }
 
 // Whether edge (a, b) also belongs to another face (then it is drawn once, from its a < b side).
@@ -234,11 +246,13 @@ function shownMesh() {
   return state.showing === 'after' && state.result ? state.result : state.start;
 }
 
+// [name, value per face] of what the faces are coloured by, or [name, null].
 function shownValues() {
   const mesh = shownMesh();
-  if (!mesh) return null;
-  if (state.showing === 'after' && state.result && state.faceValues) return state.faceValues;
-  return planarityShown() ? quadPlanarity(mesh) : null;
+  if (!mesh) return ['', null];
+  if (state.showing === 'after' && state.result && state.faceTable && state.faceTable[state.colourBy])
+    return [state.colourBy, state.faceTable[state.colourBy]];
+  return ['planarity', planarityShown() ? quadPlanarity(mesh) : null];
 }
 
 // Whether faces are coloured by quad planarity when the service sent no values of its own (the
@@ -278,7 +292,7 @@ function toleranceOf() {
   return Number.isFinite(t) && t > 0 ? t : 1e-3;
 }
 
-function drawLegend(values, tolerance) {
+function drawLegend(name, values, scale) {
   const bar = document.getElementById('legend-bar');
   const g = bar.getContext('2d');
   for (let x = 0; x < bar.width; ++x) {
@@ -286,16 +300,27 @@ function drawLegend(values, tolerance) {
     g.fillStyle = `rgb(${r * 255},${gr * 255},${b * 255})`;
     g.fillRect(x, 0, 1, bar.height);
   }
-  const measure = state.problem && ['anet', 'hnet'].includes(state.problem.name) ? 'star planarity' : 'planarity';
-  document.getElementById('legend-min').textContent = values ? `≤ ${(tolerance / 1e3).toExponential(0)}` : '';
-  let max = 0;
-  if (values) for (const v of values) if (v !== null && v > max) max = v;
-  const edge = meanEdge(shownMesh());
-  document.getElementById('legend-max').textContent = values ? `≥ ${(tolerance * 1e3).toExponential(0)}` : '';
-  document.getElementById('legend-name').textContent = values
-    ? `${measure} / mean edge (tolerance ${tolerance.toExponential(0)} in the middle); largest ${max.toExponential(2)} = ${(max * edge).toExponential(2)} model units`
-    : '';
+  const measure = name.replace(/_/g, ' ');
+  const min = document.getElementById('legend-min'), max = document.getElementById('legend-max');
+  const label = document.getElementById('legend-name');
   bar.style.visibility = values ? 'visible' : 'hidden';
+  if (!values) {
+    min.textContent = max.textContent = label.textContent = '';
+    return;
+  }
+  if (scale.log) {
+    let largest = 0;
+    for (const v of values) if (v !== null && v > largest) largest = v;
+    const edge = meanEdge(shownMesh());
+    min.textContent = `≤ ${(scale.tolerance / 1e3).toExponential(0)}`;
+    max.textContent = `≥ ${(scale.tolerance * 1e3).toExponential(0)}`;
+    label.textContent = `${measure} / mean edge (tolerance ${scale.tolerance.toExponential(0)} in the middle); ` +
+      `largest ${largest.toExponential(2)} = ${(largest * edge).toExponential(2)} model units`;
+  } else {
+    min.textContent = `${(scale.reversed ? scale.hi : scale.lo).toFixed(2)}°`;
+    max.textContent = `${(scale.reversed ? scale.lo : scale.hi).toFixed(2)}°`;
+    label.textContent = `${measure.replace(/ deg$/, '')} (degrees)`;
+  }
 }
 
 function meanEdge(mesh) {
@@ -370,11 +395,12 @@ const actions = {
   run: () => run(),
   cancel: () => cancel(),
   before: false,
+  colourBy: '',
   clearFixed: () => { state.fixed.clear(); draw(); },
   downloadMesh: () => downloadMesh(),
   downloadReport: () => downloadReport(),
 };
-let exampleControl, problemControl, optionsFolder, runControl;
+let exampleControl, problemControl, optionsFolder, runControl, colourControl;
 
 const MAIN_KINDS = ['mesh', 'quad_mesh', 'bspline'];
 
@@ -402,6 +428,8 @@ function buildPanel() {
   optionsFolder = gui.addFolder('Options');
   runControl = gui.add(actions, 'run').name('Run');
   gui.add(actions, 'cancel').name('Cancel');
+  // In a folder of its own: a menu whose choices change is replaced, at the end of its folder.
+  colourControl = gui.addFolder('Faces').add(actions, 'colourBy', ['(after a run)']).name('Colour by');
   gui.add(actions, 'before').name('Show the input').onChange((b) => { state.showing = b ? 'before' : 'after'; draw(); });
   gui.add(actions, 'clearFixed').name('Free all vertices');
   gui.add(actions, 'downloadMesh').name('Download mesh (OBJ)');
@@ -466,7 +494,8 @@ function setStart(mesh) {
   state.surface = null;
   state.figure = null;
   showFigure();
-  state.faceValues = null;
+  state.faceTable = null;
+  updateColourChoices();
   state.report = null;
   state.base = null;
   state.fixed.clear();
@@ -605,7 +634,8 @@ async function finish(id, resolve) {
   state.surface = surface && surface !== mesh ? surface : null;
   state.figure = typeof result.diagram === 'string' ? result.diagram : null;
   showFigure();
-  state.faceValues = result.face_values ? csvColumn(result.face_values, 1) : null;
+  state.faceTable = result.face_values ? csvTable(result.face_values) : null;
+  updateColourChoices();
   if (run.status === 'converged' || run.status === 'not-converged') state.base = id;
   state.runs += 1;
   if (resolve) state.resolves += 1;
@@ -631,12 +661,30 @@ function showFigure() {
   frame.appendChild(image);
 }
 
-function csvColumn(text, column) {
-  const lines = text.trim().split('\n').slice(1);
-  return lines.map((line) => {
-    const v = Number(line.split(',')[column]);
-    return Number.isFinite(v) ? v : null;
-  });
+// A CSV text with a header -> {column name: [number or null per row]}.
+function csvTable(text) {
+  const [header, ...lines] = text.trim().split('\n');
+  const names = header.split(',');
+  const table = Object.fromEntries(names.map((n) => [n, []]));
+  for (const line of lines)
+    line.split(',').forEach((cell, k) => {
+      const v = Number(cell);
+      if (k < names.length) table[names[k]].push(Number.isFinite(v) ? v : null);
+    });
+  return table;
+}
+
+// The "Colour by" menu: the result's per-face columns (relative ones and angles); the default
+// is the one the tolerance bounds (max_planarity -> planarity), else the first.
+function updateColourChoices() {
+  const names = state.faceTable
+    ? Object.keys(state.faceTable).filter((n) => n !== 'face' && !n.endsWith('_abs')) : [];
+  const target = measureName().replace(/^max_/, '');
+  if (!names.includes(state.colourBy)) state.colourBy = names.includes(target) ? target : names[0] || '';
+  actions.colourBy = state.colourBy;
+  colourControl = colourControl.options(names.length ? names : ['(after a run)']).name('Colour by')
+    .onChange((name) => { state.colourBy = name; draw(); });
+  if (names.length) colourControl.setValue(state.colourBy);
 }
 
 // ---------------------------------------------------------------------------------------------
