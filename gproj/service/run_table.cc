@@ -47,6 +47,8 @@ struct RunTable::Run {
   nlohmann::json report;  // of a finished run (null when it failed before one)
   nlohmann::json result;  // of a finished run
   std::shared_ptr<FinishedRun> finished;
+  std::size_t last_iterate = 0;  // index of the last iterate event + 1 (0: none yet)
+  std::chrono::steady_clock::time_point last_iterate_time;
 };
 
 namespace {
@@ -257,6 +259,16 @@ void RunTable::Push(Run* run, const char* event, nlohmann::json data) {
   changed_.notify_all();
 }
 
+void RunTable::PushIterate(Run* run, nlohmann::json data) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (run->last_iterate > 0) run->events[run->last_iterate - 1]["data"] = {{"superseded", true}};
+    run->events.push_back({{"event", "iterate"}, {"data", std::move(data)}});
+    run->last_iterate = run->events.size();
+  }
+  changed_.notify_all();
+}
+
 void RunTable::Execute(Run* run) {
   const ProblemSpec& spec = *run->request.spec;
   const auto deadline = std::chrono::steady_clock::now() +
@@ -274,6 +286,22 @@ void RunTable::Execute(Run* run) {
   };
   context.on_columns = [&](const std::vector<std::string>& columns) {
     Push(run, "columns", {{"columns", columns}});
+  };
+  context.on_iterate = [&](int iteration, const PolyMesh& mesh) {
+    const auto now = std::chrono::steady_clock::now();
+    if (iteration < 1 || static_cast<long long>(mesh.n_vertices()) > limits_.max_iterate_vertices ||
+        (run->last_iterate > 0 &&
+         std::chrono::duration<double>(now - run->last_iterate_time).count() <
+             limits_.iterate_interval))
+      return;
+    run->last_iterate_time = now;
+    nlohmann::json vertices = nlohmann::json::array();
+    for (const auto& v : mesh.vertices()) {
+      const auto& p = mesh.point(v);
+      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) return;
+      vertices.push_back({p[0], p[1], p[2]});
+    }
+    PushIterate(run, {{"iteration", iteration}, {"vertices", std::move(vertices)}});
   };
   context.stop_requested = [&] {
     if (run->cancel) return true;

@@ -30,6 +30,12 @@ struct RunLimits {
   int max_queued = 32;       // runs waiting beyond those; more are refused (RunTableFull)
   int max_kept = 64;         // finished runs kept for their status and result
   double max_seconds = 600;  // a run still going after this is stopped (not-converged)
+  // Iterate events (the mesh of an iterate, for a live view): at most one per this many
+  // seconds, the first iteration's always, and none for meshes of more vertices than
+  // max_iterate_vertices. Only the latest is kept: an earlier one's data becomes
+  // {"superseded": true}.
+  double iterate_interval = 0.1;
+  long long max_iterate_vertices = 250'000;
 };
 
 // Submit when max_running + max_queued runs are unfinished.
@@ -92,6 +98,8 @@ class RunTable {
   void Work();
   void Execute(Run* run);
   void Push(Run* run, const char* event, nlohmann::json data);
+  // An iterate event, replacing the data of the run's previous one.
+  void PushIterate(Run* run, nlohmann::json data);
   void Finish(Run* run, RunState state);
   void EvictFinished();
   int UnfinishedLocked() const;  // with mutex_ held

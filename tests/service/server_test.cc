@@ -114,6 +114,21 @@ TEST(ServerTest, RunsAreServedStreamedCancelledAndResolved) {
   }
   EXPECT_EQ(records, iterations + 1);  // the initial iterate too
   EXPECT_EQ(ends, 1);
+  // Iterate events show the run live: the first iteration's always, only the latest kept.
+  std::vector<nlohmann::json> iterates;
+  std::istringstream event_lines(events->body);
+  for (std::string line, event; std::getline(event_lines, line);) {
+    if (line.rfind("event: ", 0) == 0) event = line.substr(7);
+    if (line.rfind("data: ", 0) == 0 && event == "iterate")
+      iterates.push_back(nlohmann::json::parse(line.substr(6)));
+  }
+  ASSERT_GE(iterates.size(), 1u);
+  for (std::size_t i = 0; i + 1 < iterates.size(); ++i)
+    EXPECT_EQ(iterates[i], nlohmann::json({{"superseded", true}}));
+  EXPECT_GE(iterates.back().at("iteration").get<int>(), 1);
+  EXPECT_LE(iterates.back().at("iteration").get<int>(), iterations);
+  ASSERT_EQ(iterates.back().at("vertices").size(), mesh.at("vertices").size());
+  EXPECT_EQ(iterates.back().at("vertices")[0], mesh.at("vertices")[0]);  // held: the corner
   EXPECT_NE(events->body.find("\"status\":\"converged\""), std::string::npos);
   EXPECT_NE(events->body.find("\"tolerance_measure\":\"max_planarity\""), std::string::npos);
 

@@ -124,6 +124,8 @@ def test_example_runs_and_the_page_shows_the_run(browser, server):
     assert browser.execute_script("return window.gproj.state.result.vertices") == \
         result["vertices"]
     assert max_diagonal_gap(result) < 1e-8
+    # The run was shown live: its iterates replaced the view before its end.
+    assert browser.execute_script("return window.gproj.state.iterates") >= 1
     # One record per iteration reached the chart (iterations + the start).
     assert browser.execute_script("return window.gproj.state.records.length") == \
         run["report"]["iterations"] + 1
@@ -366,3 +368,35 @@ def test_anet_on_the_hnet_example_makes_the_stars_planar(browser, server):
         stars += 1
     assert stars > 1000
     assert worst / numpy.mean(edges) < 1e-5
+
+
+def test_dropping_the_shipped_grid_and_running_it(browser, server):
+    """What a new user does first: drop the noisy grid on the page and press Run."""
+    assert open_page(browser, server, "?example=revolution_13x17") == "idle"
+    source = os.path.join(os.path.dirname(__file__), "..", "..", "examples", "data",
+                          "noisy_grid_21x21.obj")
+    with open(source) as f:
+        text = f.read()
+    browser.execute_script("""
+        const transfer = new DataTransfer();
+        transfer.items.add(new File([arguments[0]], 'noisy_grid_21x21.obj', {type: 'text/plain'}));
+        window.dispatchEvent(new DragEvent('drop', {dataTransfer: transfer, bubbles: true,
+                                                    cancelable: true}));""", text)
+    while browser.execute_script("return window.gproj.state.start.vertices.length") != 441:
+        time.sleep(0.05)
+    assert await_idle(browser) == "idle"
+    assert "noisy_grid_21x21.obj: 441 vertices, 400 faces" in \
+        browser.find_element(By.ID, "message").text
+    click_button(browser, "Run")
+    while browser.execute_script("return window.gproj.state.runs") == 0:
+        time.sleep(0.05)
+    assert await_idle(browser) == "converged"
+    run = base_run(browser, server)
+    assert run["problem"] == "planarize"
+    assert max_diagonal_gap(run["result"]["output"]) < 1e-8
+    # The example's options (circular) were left with it: the file ran with the defaults.
+    assert run["report"]["options"]["circular"] is False
+    # The dropped file's vertices went in, in the file's order (the mean edge is 0.1).
+    example = api(server, "/api/examples/noisy_grid_21x21")["inputs"]["mesh"]
+    assert max(math.dist(a, b) for a, b in zip(run["result"]["output"]["vertices"],
+                                               example["vertices"])) < 0.1

@@ -33,15 +33,20 @@ async function api(path, body, method) {
   return answer;
 }
 
-// Follows a run's events until its end; onRecord(record, columns) for each iteration. Resolves
-// with GET /api/runs/{id} (status, report, result).
-function follow(id, onRecord) {
+// Follows a run's events until its end; onRecord(record, columns) for each iteration,
+// onIterate(vertices) for each iterate the service sends. Resolves with GET /api/runs/{id}
+// (status, report, result).
+function follow(id, onRecord, onIterate) {
   return new Promise((resolve, reject) => {
     const source = new EventSource(`/api/runs/${id}/events` + (token ? `?token=${encodeURIComponent(token)}` : ''));
     let columns = [];
     let ended = false;
     source.addEventListener('columns', (e) => { columns = JSON.parse(e.data).columns || []; });
     source.addEventListener('record', (e) => onRecord && onRecord(JSON.parse(e.data), columns));
+    source.addEventListener('iterate', (e) => {
+      const data = JSON.parse(e.data);
+      if (onIterate && Array.isArray(data.vertices)) onIterate(data.vertices);
+    });
     source.addEventListener('end', () => {
       ended = true;
       source.close();
@@ -82,6 +87,7 @@ const state = {
   base: null,          // the finished run a drag re-solves from
   runs: 0,             // runs finished (first runs and re-solves)
   resolves: 0,         // re-solves finished
+  iterates: 0,         // iterates of first runs shown while they ran
   status: 'idle',
   measure: null,       // {name, value, tolerance}
   target: null,        // {key, measure, tolerance}: what the tolerance bounds, from the last report
@@ -518,6 +524,7 @@ async function openExample(name) {
   exampleControl.updateDisplay();
   setStart(example.preview);
   selectProblem(example.problem, example.options);
+  state.examplePresets = true;
 }
 
 async function openFile(file) {
@@ -534,7 +541,11 @@ async function openFile(file) {
   actions.example = '';
   exampleControl.updateDisplay();
   setStart(mesh);
-  if (!state.problem) selectProblem('planarize');
+  // A file starts from the problem's defaults: an example's options were for the example (and a
+  // B-spline problem cannot take a mesh file).
+  if (!state.problem || state.examplePresets || mainInputOf(state.problem).kind === 'bspline')
+    selectProblem(state.problem && mainInputOf(state.problem).kind !== 'bspline' ? state.problem.name : 'planarize');
+  state.examplePresets = false;
   setMessage(`${file.name}: ${mesh.vertices.length} vertices, ${mesh.faces.length} faces`);
 }
 
@@ -614,6 +625,13 @@ async function finish(id, resolve) {
     state.records.push(record);
     drawChart();
     showMeasure(record[measureName()]);
+  }, (vertices) => {
+    // A first run's iterates replace the view as they come (a re-solve's would fight the drag).
+    if (following !== id || resolve || vertices.length !== state.start.vertices.length) return;
+    state.result = { vertices, faces: state.start.faces };
+    state.faceTable = null;
+    state.iterates += 1;
+    draw();
   });
   if (following !== id) return run;  // a newer run took over
   following = null;

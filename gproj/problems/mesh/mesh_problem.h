@@ -33,6 +33,9 @@ class MeshProblem : public GuidedProblem {
 
   // The current vertices in input units, held vertices exactly as given.
   PolyMesh Result() const;
+  // The iterate last measured (MeasureAt, which every mesh problem computes on MeshAt) as a mesh
+  // in input units: inside a RunCallback, the record's iterate.
+  const PolyMesh& MeasuredMesh() const { return current_; }
   const PolyMesh& input() const { return input_; }
   // The faces whose corners sit on their angle bound in the current iterate.
   std::vector<int> FacesAtAngleBound() const;

@@ -48,7 +48,11 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
                 mesh.n_vertices(), mesh.n_faces(), anet->problem().layout().num_variables());
   context.Headline(line);
 
-  const RunCallback record = [&context](const RunRecord& r) { return context.Record(r); };
+  const RunCallback record = [&context, &anet](const RunRecord& r) {
+    const bool go_on = context.Record(r);
+    context.Iterate(r.iteration, anet->MeasuredMesh());
+    return go_on;
+  };
   RunResult result;
   result.report = anet->RunWith(settings.solver, record);
   result.tolerance_measure = "max_star_planarity";

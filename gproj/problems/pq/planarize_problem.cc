@@ -101,7 +101,11 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
                 initial.max_planarity, initial.mean_planarity);
   context.Info(line);
 
-  const RunCallback record = [&context](const RunRecord& r) { return context.Record(r); };
+  const RunCallback record = [&context, &pq](const RunRecord& r) {
+    const bool go_on = context.Record(r);
+    context.Iterate(r.iteration, pq.MeasuredMesh());
+    return go_on;
+  };
   RunResult result;
   result.report = pq.RunWith(settings.solver, record);
   result.tolerance_measure = "max_planarity";

@@ -111,6 +111,10 @@ struct RunContext {
   // The live log's columns from here on (a stage of the run that measures other things); null:
   // the spec's log_measures throughout.
   std::function<void(const std::vector<std::string>&)> on_columns;
+  // The iterate of a record as a mesh (input units, the input's connectivity), after the record,
+  // from the problems whose result is a mesh of the input's (planarize, anet): a front end shows
+  // the run live (the service's iterate events). Null: none.
+  std::function<void(int iteration, const PolyMesh& mesh)> on_iterate;
   std::set<std::string> outputs;  // names of the outputs asked for
   // Polled by the stages that send no records (paneling, long constructions) between their
   // steps, and before every record: true stops the run as a false from on_record does (Ctrl-C
@@ -125,6 +129,9 @@ struct RunContext {
   void Headline(const std::string& text) const;
   void Columns(const std::vector<std::string>& columns) const {
     if (on_columns) on_columns(columns);
+  }
+  void Iterate(int iteration, const PolyMesh& mesh) const {
+    if (on_iterate) on_iterate(iteration, mesh);
   }
   void Info(const std::string& text) const;
 };
