@@ -64,8 +64,13 @@ def status(browser):
 
 
 def await_idle(browser):
-    """Waits until the page has no run, re-solve or edit in flight; returns data-status."""
+    """Waits until the page has no run, re-solve or edit in flight; returns data-status. A page
+    whose app never started (its packages missing, a script error) fails at once, saying why."""
     while browser.execute_script("return window.gproj === undefined || window.gproj.busy()"):
+        if status(browser) == "failed" and \
+                browser.execute_script("return window.gproj === undefined"):
+            raise AssertionError("the web app did not start: " +
+                                 browser.find_element(By.TAG_NAME, "body").text)
         time.sleep(0.05)
     return status(browser)
 
