@@ -426,9 +426,14 @@ TEST(ServerTest, StoppingCancelsTheRunsARequestWaitsOn) {
     httplib::Client client = server.Client();
     client.Post("/solve", body.dump(), "application/json");  // answered or cut off: either
   });
-  // With the solve in flight, stop: the run is cancelled, the solve answered, the server exits 0
-  // (were the run left going, Stop would wait for it and ctest's timeout would fail this).
-  std::this_thread::sleep_for(std::chrono::milliseconds(700));
+  // With the solve's run going, stop: the run is cancelled, the solve answered, the server exits
+  // 0 (were the run left going, Stop would wait for it and ctest's timeout would fail this).
+  httplib::Client client = server.Client();
+  for (bool running = false; !running;) {
+    auto list = client.Get("/api/runs");
+    running = list && list->body.find("\"status\":\"running\"") != std::string::npos;
+    if (!running) usleep(20000);
+  }
   EXPECT_EQ(server.Stop(), 0);
   solve.join();
 }
