@@ -329,11 +329,6 @@ void RunTable::Execute(Run* run) {
                                              : RunState::kNotConverged;
     nlohmann::json report =
         RunResultJson(spec, result, run->request.options, run->request.inputs, nullptr);
-    // The measure the tolerance bounds, so that a client shows that one against it.
-    if (!result.tolerance_measure.empty()) {
-      report["tolerance_measure"] = result.tolerance_measure;
-      report["tolerance"] = result.tolerance;
-    }
     if (!result.shortfalls.empty()) {
       nlohmann::json shortfalls = nlohmann::json::array();
       for (const std::string& s : result.shortfalls) shortfalls.push_back(SpellOptions(s, false));

@@ -71,6 +71,10 @@ def test_edge_length_maxima_are_enforced():
     assert lengths(r.vertices).max() <= top + 1e-6 * mean
     assert r.report.final["out_of_range_edges"] == 0
     assert r.report.initial["out_of_range_edges"] > 50
+    # The report names what its tolerance bounds, as the command line's and the service's do.
+    assert r.report.tolerance_measure == "max_planarity"
+    assert r.report.tolerance == 1e-6
+    assert r.report.final["max_planarity"] <= r.report.tolerance
 
 
 def test_required_options_can_come_from_an_options_object():

@@ -300,6 +300,9 @@ TEST_F(PlanarizeCommandTest, HNetWritesPatchesSurfaceAndReport) {
   EXPECT_TRUE(report["converged"].get<bool>());
   EXPECT_LT(report["final"]["max_tangent_angle_deg"].get<double>(), 1e-3);
   EXPECT_LE(report["final"]["weight_change"].get<double>(), 1e-6);
+  // The report names what its tolerance bounds (as the service's and Python's do).
+  EXPECT_EQ(report["tolerance_measure"], "weight_change");
+  EXPECT_LE(report["final"]["weight_change"].get<double>(), report["tolerance"].get<double>());
   EXPECT_GE(report["rounds"].size(), 2u);
   EXPECT_TRUE(report["simply_connected"].get<bool>());
   EXPECT_EQ(Slurp(dir_ / "p.svg").rfind("<svg", 0), 0u);

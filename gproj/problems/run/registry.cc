@@ -247,6 +247,12 @@ nlohmann::json RunResultJson(const ProblemSpec& spec, const RunResult& result,
     first = false;
   }
   extra["output"] = output;
+  // The final measure the problem's tolerance bounds, and the bound, so that every front end
+  // shows that one against it.
+  if (!result.tolerance_measure.empty()) {
+    extra["tolerance_measure"] = result.tolerance_measure;
+    extra["tolerance"] = result.tolerance;
+  }
   for (const auto& [name, map] : inputs.weld_maps) {
     const int welded = map.empty() ? 0 : *std::max_element(map.begin(), map.end()) + 1;
     extra["welded"][name] = {{"input_vertices", map.size()}, {"vertices", welded}};
