@@ -13,6 +13,7 @@
 
 #include "apps/commands.h"
 #include "gproj/service/server.h"
+#include "gproj/service/web_app.h"
 
 namespace gproj {
 namespace {
@@ -105,11 +106,11 @@ void RegisterServeCommand(CLI::App* app, int* exit_code) {
                   "Most vertices (and faces) of an input mesh")
       ->default_val(options->request.max_vertices)
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--web", options->web_dir,
-                  "The web app's folder (app/ and node_modules/; default: the source tree's web/)")
+  cmd->add_option("--web", options->web_dir, "The web app's folder (app/ and node_modules/)")
+      ->default_str(service::DefaultWebDir())
       ->check(CLI::ExistingDirectory);
-  cmd->add_option("--examples", options->examples_dir,
-                  "The shipped examples' folder (default: the source tree's examples/data)")
+  cmd->add_option("--examples", options->examples_dir, "The shipped examples' folder")
+      ->default_str(service::DefaultExamplesDir())
       ->check(CLI::ExistingDirectory);
   cmd->callback([options, exit_code]() {
     options->request.max_faces = options->request.max_vertices;

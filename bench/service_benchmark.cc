@@ -1,10 +1,12 @@
 // Benchmarks of the HTTP service's run path (RunTable: a request parsed as the server parses it,
 // queued, run on a worker, its events recorded), without the network.
-//   BM_ServiceDragResolve/n   a planarize run on a noisy n × n grid to 1e-6, then the re-solves a
+//   BM_ServiceDragResolve/n/s a planarize run on a noisy n × n grid to 1e-6, then the re-solves a
 //                             drag in the web app sends: one inner vertex moved by 5% of the mean
-//                             edge (alternately up and back), re-solved from the last result to
+//                             edge (alternately 5% and 2.5% up), re-solved from that result to
 //                             1e-3, submitted and awaited as POST /api/runs/{id}/resolve does:
-//                             milliseconds per re-solve (submit to end), iterations
+//                             milliseconds per re-solve (submit to end), iterations. s = 0: the
+//                             grid over the elliptic paraboloid z = 0.3x² + 0.2y²; s = 1: over
+//                             the saddle z = 0.5x² − 0.4y² + 0.3xy (grid lines not conjugate)
 //   BM_ServiceFirstRun/n      the cold run of the same request to 1e-6
 #include <benchmark/benchmark.h>
 
@@ -20,9 +22,14 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-nlohmann::json GridRequest(int n) {
+nlohmann::json GridRequest(int n, int shape = 0) {
   QuadGridOptions grid;
   grid.nu = grid.nv = n;
+  if (shape == 1) {
+    grid.a = 0.5;
+    grid.b = -0.4;
+    grid.c = 0.3;
+  }
   grid.noise = 0.05;
   grid.seed = 1;
   return {{"problem", "planarize"},
@@ -60,7 +67,7 @@ BENCHMARK(BM_ServiceFirstRun)->Arg(41)->Unit(benchmark::kMillisecond);
 void BM_ServiceDragResolve(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   RunTable table({});
-  const nlohmann::json body = GridRequest(n);
+  const nlohmann::json body = GridRequest(n, static_cast<int>(state.range(1)));
   const std::string first =
       table.Submit(ParseRunRequest(body, Registry::Builtin(), RequestLimits{}));
   table.Wait(first, std::chrono::hours(1));
@@ -75,7 +82,7 @@ void BM_ServiceDragResolve(benchmark::State& state) {
   const double offset = 0.05 * MeanEdgeLength(start);
   double seconds = 0.0, iterations = 0.0, converged = 0.0, runs = 0.0;
   for (auto _ : state) {
-    const double z = p[2] + (static_cast<int>(runs) % 2 == 0 ? offset : 0.0);
+    const double z = p[2] + (static_cast<int>(runs) % 2 == 0 ? offset : 0.5 * offset);
     const nlohmann::json edit = {{"moved", {{{"vertex", v}, {"to", {p[0], p[1], z}}}}},
                                  {"options", {{"tolerance", 1e-3}}}};
     const auto t = Clock::now();
@@ -90,7 +97,11 @@ void BM_ServiceDragResolve(benchmark::State& state) {
   state.counters["converged_fraction"] = converged / runs;
   state.counters["quads"] = static_cast<double>((n - 1) * (n - 1));
 }
-BENCHMARK(BM_ServiceDragResolve)->Arg(41)->Arg(81)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ServiceDragResolve)
+    ->Args({41, 0})
+    ->Args({41, 1})
+    ->Args({81, 0})
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace gproj::service

@@ -32,6 +32,7 @@ struct RunRequest {
   nlohmann::json options = nlohmann::json::object();
   std::set<std::string> outputs;  // the required outputs and those asked for
   bool weld = false;
+  bool soft_free_start = false;  // a re-solve's (RunContext::soft_free_start)
 };
 
 // JSON nested deeper than this is refused before it is built (copying and printing a document

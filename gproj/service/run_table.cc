@@ -276,6 +276,7 @@ void RunTable::Execute(Run* run) {
                             std::chrono::duration<double>(limits_.max_seconds));
   RunContext context;
   context.outputs = run->request.outputs;
+  context.soft_free_start = run->request.soft_free_start;
   context.on_record = [&](const RunRecord& record) {
     Push(run, "record", RecordJson(record));
     return true;
@@ -388,7 +389,8 @@ void RunTable::EvictFinished() {
 }
 
 // A finished run's edits for a re-solve: {"moved": [{"vertex": v, "to": [x,y,z]}, ...],
-// "fixed": [ids], "options": {...}} applied to its request, starting from its result.
+// "fixed": [ids], "options": {...}, "soft_terms": false} applied to its request, starting from
+// its result; soft-free (RunContext::soft_free_start) unless soft_terms is true.
 RunRequest ResolveRequest(const FinishedRun& run, const nlohmann::json& body) {
   const ProblemSpec& spec = *run.request.spec;
   const InputSpec* mesh_input = spec.FindInput("mesh");
@@ -405,8 +407,12 @@ RunRequest ResolveRequest(const FinishedRun& run, const nlohmann::json& body) {
                        std::string(RunStateName(run.state)) + ")");
   if (!body.is_object()) throw RequestError("request: expected a JSON object");
   for (auto it = body.begin(); it != body.end(); ++it)
-    if (it.key() != "moved" && it.key() != "fixed" && it.key() != "options")
-      throw RequestError(it.key() + ": unknown key (a re-solve has moved, fixed and options)");
+    if (it.key() != "moved" && it.key() != "fixed" && it.key() != "options" &&
+        it.key() != "soft_terms")
+      throw RequestError(it.key() +
+                         ": unknown key (a re-solve has moved, fixed, options and soft_terms)");
+  if (body.contains("soft_terms") && !body.at("soft_terms").is_boolean())
+    throw RequestError("soft_terms: expected true or false");
   RunRequest request = run.request;
   PolyMesh mesh = run.result.meshes.at(output->name);
   const int n = static_cast<int>(mesh.n_vertices());
@@ -464,6 +470,7 @@ RunRequest ResolveRequest(const FinishedRun& run, const nlohmann::json& body) {
   request.inputs.weld_maps.clear();  // the result is numbered as the welded mesh already
   request.inputs.files.clear();
   request.weld = false;
+  request.soft_free_start = !body.value("soft_terms", false);
   return request;
 }
 

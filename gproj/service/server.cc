@@ -82,8 +82,8 @@ bool IsLoopback(const std::string& host) {
 
 struct Service::Impl {
   explicit Impl(ServiceOptions o) : options(std::move(o)), table(options.runs) {
-    if (options.web_dir.empty()) options.web_dir = GPROJ_WEB_DIR;
-    if (options.examples_dir.empty()) options.examples_dir = GPROJ_EXAMPLES_DIR;
+    if (options.web_dir.empty()) options.web_dir = DefaultWebDir();
+    if (options.examples_dir.empty()) options.examples_dir = DefaultExamplesDir();
     web_files = LoadWebFiles(options.web_dir, &web_missing);
     examples = LoadExamples(options.examples_dir, options.request);
   }

@@ -35,8 +35,8 @@ struct ServiceOptions {
   int connections = 32;  // requests served at once (streams included)
   RunLimits runs;
   RequestLimits request;
-  std::string web_dir;       // web/ (app/ and node_modules/); empty: the source tree's
-  std::string examples_dir;  // examples/data; empty: the source tree's
+  std::string web_dir;       // web/ (app/ and node_modules/); empty: DefaultWebDir()
+  std::string examples_dir;  // examples/data; empty: DefaultExamplesDir()
 };
 
 // Whether `host` is a loopback address (127.0.0.0/8, ::1, localhost).

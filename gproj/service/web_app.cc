@@ -1,5 +1,9 @@
 #include "gproj/service/web_app.h"
 
+#include <limits.h>
+#include <stdlib.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -31,7 +35,32 @@ std::string TypeOf(const std::string& path) {
   return "application/octet-stream";
 }
 
+// `relative` under the installed data folder (bin/../share/gproj) of the running program, if
+// `marker` (a file under it) exists there; else empty.
+std::string Installed(const std::string& relative, const std::string& marker) {
+  char exe[4096];
+  const ssize_t n = readlink("/proc/self/exe", exe, sizeof(exe) - 1);
+  if (n <= 0) return "";
+  std::string dir(exe, static_cast<size_t>(n));
+  dir = dir.substr(0, dir.find_last_of('/'));  // .../bin
+  const std::string candidate = dir + "/../" GPROJ_INSTALL_DATADIR "/gproj/" + relative;
+  std::ifstream probe(candidate + "/" + marker);
+  if (!probe) return "";
+  char real[PATH_MAX];
+  return realpath(candidate.c_str(), real) ? std::string(real) : candidate;
+}
+
 }  // namespace
+
+std::string DefaultWebDir() {
+  const std::string installed = Installed("web", "app/index.html");
+  return installed.empty() ? GPROJ_WEB_DIR : installed;
+}
+
+std::string DefaultExamplesDir() {
+  const std::string installed = Installed("examples", "noisy_grid_21x21.obj");
+  return installed.empty() ? GPROJ_EXAMPLES_DIR : installed;
+}
 
 nlohmann::json ReadDroppedMesh(const nlohmann::json& body, const RequestLimits& limits) {
   nlohmann::json mesh = body;

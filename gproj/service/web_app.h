@@ -28,6 +28,13 @@ struct WebFile {
 // to install it and *missing names it.
 std::map<std::string, WebFile> LoadWebFiles(const std::string& web_dir, std::string* missing);
 
+// Where gproj serve reads the web app (web/: app/ and node_modules/) and the examples
+// (examples/data) when not told: an installed gproj's share/gproj/web and share/gproj/examples
+// (found from the running program's path, so an installed tree may be moved), else the source
+// tree it was built from.
+std::string DefaultWebDir();
+std::string DefaultExamplesDir();
+
 // A shipped example: the files of examples/data a problem runs on, named by its main file's
 // stem (noisy_grid_21x21), as `/?example=NAME` takes it.
 struct Example {

@@ -3,7 +3,7 @@
 # find_package(gproj) and the compiler CXX_COMPILER (the one gproj was built with), runs the
 # example, and compiles every installed header in one consumer translation unit; both with
 # headers named like gproj's on the include path. Fails with the step's output when any step
-# fails.
+# fails. Also checks that gproj serve's web app and examples are installed and found.
 function(run_step name)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
@@ -24,6 +24,26 @@ list(FILTER internal INCLUDE REGEX "/internal/")
 if(internal)
   message(FATAL_ERROR "internal headers were installed: ${internal}")
 endif()
+# gproj serve's web app and examples are installed beside the program, and the installed program
+# reads them from there (its --help names the folders it defaults to).
+foreach(file share/gproj/web/app/index.html share/gproj/web/app/app.js
+    share/gproj/examples/noisy_grid_21x21.obj bin/gproj)
+  if(NOT EXISTS ${prefix}/${file})
+    message(FATAL_ERROR "the install lacks ${file}")
+  endif()
+endforeach()
+if(EXISTS ${GPROJ_SOURCE_DIR}/web/node_modules/three/build/three.module.js AND
+    NOT EXISTS ${prefix}/share/gproj/web/node_modules/three/build/three.module.js)
+  message(FATAL_ERROR "the install lacks the web app's three.js")
+endif()
+run_step(serve_help ${prefix}/bin/gproj serve --help)
+foreach(folder web examples)
+  if(NOT step_output MATCHES "${prefix}/share/gproj/${folder}")
+    message(FATAL_ERROR "the installed gproj serve does not default to its installed ${folder}:\n"
+      "${step_output}")
+  endif()
+endforeach()
+
 # A project with headers of the same names as gproj's on its include path: gproj's own headers
 # must still find each other (they are included as "gproj/...").
 foreach(header solver/problem.h solver/term.h common/input_error.h geometry/mesh/quad_shape.h

@@ -22,9 +22,8 @@ nlohmann::json PlanarizeRequest(const nlohmann::json& mesh, nlohmann::json optio
           {"options", options.is_null() ? nlohmann::json::object() : options}};
 }
 
-// A noisy n x n grid planarised by plain steps to a tolerance it cannot meet: it runs until
-// it is stopped.
-nlohmann::json SlowRequest(int n) {
+// A noisy n x n grid of spacing 1 over the saddle z = 0.02 (i² − j²), noise 10% of the spacing.
+nlohmann::json SaddleMesh(int n) {
   nlohmann::json mesh = {{"vertices", nlohmann::json::array()}, {"faces", nlohmann::json::array()}};
   unsigned state = 12345;
   auto noise = [&state] {
@@ -38,7 +37,13 @@ nlohmann::json SlowRequest(int n) {
   for (int i = 0; i + 1 < n; ++i)
     for (int j = 0; j + 1 < n; ++j)
       mesh["faces"].push_back({i * n + j, (i + 1) * n + j, (i + 1) * n + j + 1, i * n + j + 1});
-  return PlanarizeRequest(mesh,
+  return mesh;
+}
+
+// A noisy n x n grid planarised by plain steps to a tolerance it cannot meet: it runs until
+// it is stopped.
+nlohmann::json SlowRequest(int n) {
+  return PlanarizeRequest(SaddleMesh(n),
                           {{"tolerance", 1e-300}, {"max_iterations", 100000}, {"monotone", false}});
 }
 
@@ -206,6 +211,70 @@ TEST(ServerTest, RunsAreServedStreamedCancelledAndResolved) {
 
   EXPECT_TRUE(server.Alive());
   EXPECT_EQ(server.Stop(), 0);
+}
+
+// A drag in the web app: one vertex of a planar result moved by 5% of the spacing and re-solved
+// to 1e-3 from that result. The re-solve starts soft-free (closeness and fairness off), so it
+// restores planarity in one or two iterations around the moved vertex instead of re-running
+// the soft terms' fade over the whole mesh.
+TEST(ServerTest, DragReSolvesStartSoftFreeAndStayLocal) {
+  ServerProcess server({});
+  ASSERT_GT(server.port(), 0) << server.first_line();
+  httplib::Client client = server.Client();
+  const int n = 41;
+  const nlohmann::json mesh = SaddleMesh(n);
+  const std::string id = Submit(client, PlanarizeRequest(mesh, {{"tolerance", 1e-6}}));
+  const nlohmann::json run = AwaitRun(client, id);
+  ASSERT_EQ(run.at("status"), "converged") << run.dump().substr(0, 2000);
+  EXPECT_FALSE(run.at("report").contains("soft_free_start"));
+  const nlohmann::json& start = run.at("result").at("output").at("vertices");
+
+  const int v = (n / 2) * n + n / 3;
+  const nlohmann::json to = {start[v][0], start[v][1], start[v][2].get<double>() + 0.05};
+  int status = 0;
+  const std::string answer =
+      Post(client, "/api/runs/" + id + "/resolve",
+           {{"moved", {{{"vertex", v}, {"to", to}}}}, {"options", {{"tolerance", 1e-3}}}}, &status);
+  ASSERT_EQ(status, 201) << answer;
+  const nlohmann::json resolved = AwaitRun(client, nlohmann::json::parse(answer).at("id"));
+  ASSERT_EQ(resolved.at("status"), "converged") << resolved.dump().substr(0, 2000);
+  const nlohmann::json& report = resolved.at("report");
+  EXPECT_EQ(report.at("soft_free_start"), true);
+  EXPECT_LE(report.at("iterations").get<int>(), 2);
+  const nlohmann::json& out = resolved.at("result").at("output");
+  EXPECT_EQ(out.at("vertices")[v], to);
+  EXPECT_LT(MaxDiagonalGap(out), 1e-3);
+  // Its neighbours follow it, none further than it was moved, and most of the mesh stays put
+  // (a PQ mesh passes an edit on along its strips, so the rows and columns through the vertex
+  // move too).
+  auto moved = [&](int w) {
+    double d = 0.0;
+    for (int c = 0; c < 3; ++c)
+      d = std::max(d, std::abs(out["vertices"][w][c].get<double>() - start[w][c].get<double>()));
+    return d;
+  };
+  EXPECT_GT(moved(v + 1), 1e-3);
+  int followed = 0;
+  for (int w = 0; w < n * n; ++w) {
+    if (w != v) EXPECT_LE(moved(w), 0.05) << "vertex " << w;
+    followed += moved(w) > 5e-3;
+  }
+  EXPECT_LT(followed, n * n / 10);
+
+  // Asked for, the soft terms come back: closeness and fairness on from the start, as a run.
+  const std::string soft =
+      Post(client, "/api/runs/" + id + "/resolve",
+           {{"moved", {{{"vertex", v}, {"to", to}}}}, {"soft_terms", true}}, &status);
+  ASSERT_EQ(status, 201) << soft;
+  const nlohmann::json with_soft = AwaitRun(client, nlohmann::json::parse(soft).at("id"));
+  ASSERT_EQ(with_soft.at("status"), "converged") << with_soft.dump().substr(0, 2000);
+  EXPECT_FALSE(with_soft.at("report").contains("soft_free_start"));
+  EXPECT_EQ(with_soft["result"]["output"]["vertices"][v], to);
+  const std::string bad =
+      Post(client, "/api/runs/" + id + "/resolve",
+           {{"moved", nlohmann::json::array()}, {"soft_terms", "yes"}}, &status);
+  EXPECT_EQ(status, 400);
+  EXPECT_NE(bad.find("soft_terms: expected true or false"), std::string::npos) << bad;
 }
 
 TEST(ServerTest, BadRequestsGetClearErrorsAndTheServiceStaysUp) {

@@ -54,12 +54,13 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
     return go_on;
   };
   RunResult result;
-  result.report = anet->RunWith(settings.solver, record);
+  result.report = anet->RunWith(settings.solver, record, context.soft_free_start);
   result.tolerance_measure = "max_star_planarity";
   result.tolerance = options.tolerance;
   const PolyMesh net = anet->Result();
   result.facts = ANetFacts(mesh, net);
   result.facts["fixed_vertices"] = options.vertices.fixed.size();
+  if (context.soft_free_start) result.facts["soft_free_start"] = true;
   if (result.report.failed) return result;
 
   const StarPlanarityMeasures m = anet->Measures();

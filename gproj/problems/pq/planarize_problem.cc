@@ -107,13 +107,14 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
     return go_on;
   };
   RunResult result;
-  result.report = pq.RunWith(settings.solver, record);
+  result.report = pq.RunWith(settings.solver, record, context.soft_free_start);
   result.tolerance_measure = "max_planarity";
   result.tolerance = options.tolerance;
   const PolyMesh mesh = pq.Result();
   result.facts = PlanarizationFacts(input, mesh, options);
   result.facts.erase("options");
   result.facts["fixed_vertices"] = options.vertices.fixed.size();
+  if (context.soft_free_start) result.facts["soft_free_start"] = true;
   if (result.report.failed) return result;
 
   const PlanarityMeasures final_measures = pq.Measures();

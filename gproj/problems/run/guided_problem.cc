@@ -245,8 +245,12 @@ RunReport GuidedProblem::RunCeres(int max_iterations, const RunCallback& callbac
   return report;
 }
 
-RunReport GuidedProblem::RunWith(SolverKind solver, const RunCallback& callback) {
-  if (solver == SolverKind::kGuidedProjection) return Run(callback);
+RunReport GuidedProblem::RunWith(SolverKind solver, const RunCallback& callback, bool soft_free) {
+  if (solver == SolverKind::kGuidedProjection) {
+    SolverOptions options = solver_options();
+    if (soft_free) options.initial_soft_scale = 0.0;
+    return RunWithOptions(options, callback);
+  }
   if (solver == SolverKind::kCeres) return RunCeres(solver_options().max_iterations, callback);
   throw std::invalid_argument("RunWith: a direct solve needs the problem's own (RunDirect)");
 }

@@ -190,7 +190,10 @@ class GuidedProblem {
   RunReport RunCeres(int max_iterations, const RunCallback& callback = nullptr);
   // Run (kGuidedProjection) or RunCeres for at most solver_options().max_iterations (kCeres);
   // throws std::invalid_argument for kDirect, which needs the problem's own solve (RunDirect).
-  RunReport RunWith(SolverKind solver, const RunCallback& callback = nullptr);
+  // `soft_free`: guided projection starts with the soft terms off (initial_soft_scale 0, as a
+  // re-solve from an earlier result does; see RunContext::soft_free_start); Ceres ignores it.
+  RunReport RunWith(SolverKind solver, const RunCallback& callback = nullptr,
+                    bool soft_free = false);
   // A direct solve (closed form, linear system, propagation) as a run: `solve` sets
   // problem().x(); the report has solver "direct", `method` (ConstructionMethodName), no
   // iterations, the measures before and after, and is judged like the others (failed when x is

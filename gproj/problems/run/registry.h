@@ -120,6 +120,12 @@ struct RunContext {
   // steps, and before every record: true stops the run as a false from on_record does (Ctrl-C
   // on the command line, a signal in Python). Null: never.
   std::function<bool()> stop_requested;
+  // The inputs are an earlier result of the same request after a small edit (moved or newly
+  // fixed vertices: the service's re-solve). The problems whose result is a mesh of the input's
+  // (planarize, anet) then start soft-free, as MeshProblem::Resolve does: closeness and fairness
+  // off, so the re-solve pulls only what the edit broke back to the tolerance, in one or two
+  // iterations, instead of re-running the fade of the soft terms from the start.
+  bool soft_free_start = false;
 
   bool Wants(const std::string& output) const { return outputs.count(output) > 0; }
   bool StopRequested() const { return stop_requested && stop_requested(); }
