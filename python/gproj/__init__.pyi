@@ -181,6 +181,56 @@ Raises TypeError or ValueError naming the argument for bad arguments; warns (Gpr
 """
     ...
 
+class DualOptions:
+    """The options of dual()."""
+    start: Literal['centroids', 'tangent_planes']
+    """(choice) Where each dual vertex sits: centroids (of its triangle) or tangent_planes (where the tangent planes of its triangle's three vertices meet, where that is well conditioned; planar faces to first order, the start of Wang, Liu et al. 2008)."""
+    boundary: Literal['drop', 'keep']
+    """(choice) drop: faces for the interior vertices only; keep: boundary vertices get faces too, closed by the midpoints of their boundary edges and the vertex itself."""
+    def __init__(
+        self,
+        *,
+        start: Literal['centroids', 'tangent_planes'] = 'centroids',
+        boundary: Literal['drop', 'keep'] = 'drop',
+    ) -> None: ...
+
+class DualResult(Result):
+    """The result of dual(): the dual polygon mesh."""
+    output: Optional[Mesh]
+    picture: Optional[str]
+    """a shaded picture of the dual (None unless asked in outputs=)"""
+
+def dual(
+    V: ArrayLike,
+    F: ArrayLike,
+    *,
+    options: Optional[DualOptions] = None,
+    weld: bool = False,
+    start: Literal['centroids', 'tangent_planes'] = 'centroids',
+    boundary: Literal['drop', 'keep'] = 'drop',
+    outputs: Sequence[str] = (),
+    callback: Optional[Callable[[Dict[str, Any]], Optional[bool]]] = None,
+) -> DualResult:
+    """The dual polygon mesh of a triangle mesh: one vertex per triangle, one face per vertex (hexagons where the triangle mesh has valence 6), the start of a planar hexagonal or hex-dominant mesh. Dual vertices at the triangles' centroids or where their vertices' tangent planes meet.
+
+Arguments:
+    V: the mesh: (n, 3) float vertex positions. Triangle mesh.
+    F: (m, k) integer faces, 0-based (a list of faces for mixed sizes).
+    options: a DualOptions; keyword arguments override its fields.
+    weld: merge the input meshes' coincident vertices (within 1e-9 of the bounding-box diagonal) first, as unwelded exports need; without it such a mesh is refused. Vertex ids (fixed, ...) then number the welded mesh; result.weld_map maps each input vertex to it.
+    start: (choice) Where each dual vertex sits: centroids (of its triangle) or tangent_planes (where the tangent planes of its triangle's three vertices meet, where that is well conditioned; planar faces to first order, the start of Wang, Liu et al. 2008).
+    boundary: (choice) drop: faces for the interior vertices only; keep: boundary vertices get faces too, closed by the midpoints of their boundary edges and the vertex itself.
+    outputs: optional outputs to make as well (picture); each is an attribute of the result.
+    callback: called with each iteration record (the keys of report.history's entries); returning False stops the run (status USER_ABORT). Ctrl-C stops it too and raises KeyboardInterrupt.
+
+Returns a DualResult: `report` (a Report: status, converged, iterations, history, initial and final measures, options), `vertices` and `faces` (the mesh): the dual polygon mesh, and
+    picture: a shaded picture of the dual (None unless asked in outputs=)
+When the run fails numerically, the result's mesh and outputs are None and report.status is FAILURE.
+
+Raises TypeError or ValueError naming the argument for bad arguments; warns (GprojWarning) when the input is far from the asked net or the result needs attention.
+"""
+    ...
+
 class AnetOptions:
     """The options of anet()."""
     solver: Literal['gp', 'ceres']

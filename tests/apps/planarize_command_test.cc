@@ -2,9 +2,11 @@
 // the offending line / face / vertex, exit code 1, and no output file.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -289,12 +291,18 @@ TEST_F(PlanarizeCommandTest, HNetWritesPatchesSurfaceAndReport) {
   const std::string hnet = Slurp(dir_ / "h.json");
   for (const char* key : {"\"vertices\"", "\"faces\"", "\"weights\""})
     EXPECT_NE(hnet.find(key), std::string::npos) << key;
-  // 4 patches × 5 × 5 samples.
-  const std::string surface = Slurp(dir_ / "s.obj");
-  std::istringstream lines(surface);
-  int vertices = 0;
-  for (std::string line; std::getline(lines, line);) vertices += line.rfind("v ", 0) == 0 ? 1 : 0;
-  EXPECT_EQ(vertices, 100) << surface.substr(0, 200);
+  // 4 patches sampled 5 × 5, welded along their common edges: 9 × 9 distinct vertices, every
+  // inner vertex in 6 triangles (one piece, no seams).
+  const PolyMesh surface = ReadMesh((dir_ / "s.obj").string());
+  EXPECT_EQ(surface.n_vertices(), 81u);
+  EXPECT_EQ(surface.n_faces(), 4u * 2u * 16u);
+  std::set<std::array<double, 3>> distinct;
+  for (auto v : surface.vertices()) {
+    const auto& p = surface.point(v);
+    distinct.insert({p[0], p[1], p[2]});
+    if (!surface.is_boundary(v)) EXPECT_EQ(surface.valence(v), 6u) << "vertex " << v.idx();
+  }
+  EXPECT_EQ(distinct.size(), 81u);
   const nlohmann::json report = nlohmann::json::parse(Slurp(dir_ / "r.json"));
   EXPECT_EQ(report["command"], "hnet");
   EXPECT_TRUE(report["converged"].get<bool>());

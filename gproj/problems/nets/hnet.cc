@@ -322,24 +322,81 @@ std::string SimplyConnectedProblem(const PolyMesh& mesh) {
          std::to_string(genus2 / 2) + ")";
 }
 
+namespace {
+
+// The parameter t ∈ [0, 1] along a patch edge from a corner of weight w0 to one of weight w1 at
+// which the rational edge ((1 − t) w0 A + t w1 B) / ((1 − t) w0 + t w1) reaches the point at
+// fraction s of the straight segment A B (the edge of a rational bilinear patch is that
+// segment). Weights of different signs (a pole on the edge): t = s.
+double EdgeParameterAt(double s, double w0, double w1) {
+  if (!(w0 * w1 > 0.0)) return s;
+  const double a = s * w0, b = (1.0 - s) * w1;
+  return a / (a + b);
+}
+
+}  // namespace
+
 PolyMesh SampleHNetSurface(const PolyMesh& mesh, const std::vector<std::array<double, 4>>& weights,
                            int samples) {
+  // One output vertex per mesh vertex and per inner sample of each edge, shared by the patches
+  // on both sides (the patches of an H-net join along their common straight edges: their
+  // samples are placed at the same fractions of the edge, each patch reaching them at its own
+  // parameters), then each patch's inner samples.
+  const int n = samples;
   PolyMesh out;
-  std::vector<PolyMesh::VertexHandle> grid((samples + 1) * (samples + 1));
+  std::vector<PolyMesh::VertexHandle> corner(mesh.n_vertices());
+  for (auto v : mesh.vertices()) corner[v.idx()] = out.add_vertex(mesh.point(v));
+  std::vector<std::vector<PolyMesh::VertexHandle>> edge(mesh.n_edges());
+  for (auto e : mesh.edges()) {
+    const auto h = mesh.halfedge_handle(e, 0);
+    const Eigen::Vector3d a = P(mesh, mesh.from_vertex_handle(h).idx());
+    const Eigen::Vector3d b = P(mesh, mesh.to_vertex_handle(h).idx());
+    for (int k = 1; k < n; ++k) {
+      const Eigen::Vector3d q = a + (static_cast<double>(k) / n) * (b - a);
+      edge[e.idx()].push_back(out.add_vertex(PolyMesh::Point(q[0], q[1], q[2])));
+    }
+  }
+  std::vector<PolyMesh::VertexHandle> grid((n + 1) * (n + 1));
+  auto at = [&grid, n](int i, int j) -> PolyMesh::VertexHandle& { return grid[i * (n + 1) + j]; };
   for (auto f : mesh.faces()) {
-    for (int i = 0; i <= samples; ++i)
-      for (int j = 0; j <= samples; ++j) {
+    const std::array<int, 4> c = FaceVertices(mesh, f);
+    const std::array<double, 4>& w = weights[f.idx()];
+    // Corner k sits at (u, v) = (0, 0), (1, 0), (1, 1), (0, 1); edge k runs from corner k to
+    // k + 1. Sample m of edge k (m = 0..n from corner k) is the shared vertex.
+    auto edge_sample = [&](int k, int m) {
+      if (m == 0) return corner[c[k]];
+      if (m == n) return corner[c[(k + 1) % 4]];
+      const auto from = mesh.vertex_handle(c[k]), to = mesh.vertex_handle(c[(k + 1) % 4]);
+      const auto h = mesh.find_halfedge(from, to);
+      const auto e = mesh.edge_handle(h);
+      const bool forward = mesh.halfedge_handle(e, 0) == h;
+      return edge[e.idx()][forward ? m - 1 : n - m - 1];
+    };
+    for (int i = 0; i <= n; ++i) {
+      at(i, 0) = edge_sample(0, i);
+      at(n, i) = edge_sample(1, i);
+      at(n - i, n) = edge_sample(2, i);
+      at(0, n - i) = edge_sample(3, i);
+    }
+    // Inner samples: the edges' parameters blended across the patch, so that the rows and
+    // columns of samples end at the shared edge samples.
+    for (int i = 1; i < n; ++i)
+      for (int j = 1; j < n; ++j) {
+        const double si = static_cast<double>(i) / n, sj = static_cast<double>(j) / n;
+        const double u_bottom = EdgeParameterAt(si, w[0], w[1]);
+        const double u_top = 1.0 - EdgeParameterAt(1.0 - si, w[2], w[3]);
+        const double v_right = EdgeParameterAt(sj, w[1], w[2]);
+        const double v_left = 1.0 - EdgeParameterAt(1.0 - sj, w[3], w[0]);
+        const double u = (1.0 - sj) * u_bottom + sj * u_top;
+        const double v = (1.0 - si) * v_left + si * v_right;
         Eigen::Vector3d point, normal;
-        EvaluatePatch(mesh, f, weights[f.idx()], static_cast<double>(i) / samples,
-                      static_cast<double>(j) / samples, &point, &normal);
-        grid[i * (samples + 1) + j] = out.add_vertex(PolyMesh::Point(point[0], point[1], point[2]));
+        EvaluatePatch(mesh, f, w, u, v, &point, &normal);
+        at(i, j) = out.add_vertex(PolyMesh::Point(point[0], point[1], point[2]));
       }
-    for (int i = 0; i < samples; ++i)
-      for (int j = 0; j < samples; ++j) {
-        const auto a = grid[i * (samples + 1) + j], b = grid[(i + 1) * (samples + 1) + j],
-                   c = grid[(i + 1) * (samples + 1) + j + 1], d = grid[i * (samples + 1) + j + 1];
-        out.add_face(a, b, c);
-        out.add_face(a, c, d);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        out.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+        out.add_face(at(i, j), at(i + 1, j + 1), at(i, j + 1));
       }
   }
   return out;

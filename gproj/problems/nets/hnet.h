@@ -79,7 +79,10 @@ std::vector<std::pair<int, int>> EquitwistViolations(const PolyMesh& mesh,
 // Empty when the mesh is a topological disk or sphere; otherwise why it is not.
 std::string SimplyConnectedProblem(const PolyMesh& mesh);
 
-// A triangle mesh sampling every patch on a (k + 1) × (k + 1) grid.
+// A triangle mesh sampling every patch on a (k + 1) × (k + 1) grid, welded: a mesh vertex and
+// the k − 1 inner samples of a mesh edge (at equal fractions of the straight edge) are one
+// vertex each, shared by the patches around them, so a viewer shades the surface smoothly
+// across the patches. #V + #E (k − 1) + #F (k − 1)² vertices, 2 k² triangles per patch.
 PolyMesh SampleHNetSurface(const PolyMesh& mesh, const std::vector<std::array<double, 4>>& weights,
                            int samples);
 

@@ -6,6 +6,7 @@ const Registry& Registry::Builtin() {
   static const Registry registry = [] {
     Registry r;
     r.Add(pq::PlanarizeSpec());
+    r.Add(pq::DualSpec());
     r.Add(nets::ANetSpec());
     r.Add(nets::HNetSpec());
     r.Add(remesh::FieldSpec());

@@ -8,6 +8,7 @@ namespace gproj {
 
 namespace pq {
 ProblemSpec PlanarizeSpec();  // gproj/problems/pq/planarize_problem.cc
+ProblemSpec DualSpec();       // gproj/problems/pq/dual_problem.cc
 }  // namespace pq
 
 namespace nets {
