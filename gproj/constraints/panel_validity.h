@@ -12,6 +12,9 @@
 // Both are added through AddInequalities (one slack per row, eliminated with the auxiliaries).
 
 #include <array>
+#include <cmath>
+#include <tuple>
+#include <utility>
 
 #include "gproj/geometry/mesh/quad_shape.h"
 #include "gproj/solver/inequality.h"
@@ -54,6 +57,65 @@ struct EdgeLengthResidual {
 };
 
 using QuadCornerTerm = InequalityTerm<QuadCornerBounds, QuadCornerResidual, 4, 3, 3, 3, 3>;
+
+// Polygons of N ≥ 5 corners: corner i's sine is measured against the polygon's vector-area
+// normal N = Σ_k v_k × v_{k+1} (the quads' diagonal normal has no analogue), with the same
+// sign convention: g_i = sin∠_i − s_i ≥ 0.
+template <int N>
+struct PolygonCornerBounds {
+  std::array<double, N> min_sine{};
+};
+
+// The signed corner sines of an n-gon against its vector-area normal (any scalar type).
+template <typename T>
+void PolygonCornerSines(const T* const* v, int n, T* sines) {
+  T normal[3] = {T(0.0), T(0.0), T(0.0)};
+  for (int k = 0; k < n; ++k) {
+    const T* a = v[k];
+    const T* b = v[(k + 1) % n];
+    normal[0] += a[1] * b[2] - a[2] * b[1];
+    normal[1] += a[2] * b[0] - a[0] * b[2];
+    normal[2] += a[0] * b[1] - a[1] * b[0];
+  }
+  using std::sqrt;
+  const T tiny(1e-300);
+  const T n_norm =
+      sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2] + tiny);
+  for (int i = 0; i < n; ++i) {
+    const T* p = v[i];
+    const T* next = v[(i + 1) % n];
+    const T* prev = v[(i + n - 1) % n];
+    T a[3], b[3];
+    for (int c = 0; c < 3; ++c) a[c] = next[c] - p[c], b[c] = prev[c] - p[c];
+    const T cross_n = (a[1] * b[2] - a[2] * b[1]) * normal[0] +
+                      (a[2] * b[0] - a[0] * b[2]) * normal[1] +
+                      (a[0] * b[1] - a[1] * b[0]) * normal[2];
+    const T a_norm = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2] + tiny);
+    const T b_norm = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2] + tiny);
+    sines[i] = cross_n / (a_norm * b_norm * n_norm);
+  }
+}
+
+// g(bounds, v_0, …, v_{N−1}, r).
+template <int N>
+struct PolygonCornerResidual {
+  template <typename T, typename... Rest>
+  void operator()(const PolygonCornerBounds<N>& bounds, const T* v0, Rest... rest) const {
+    static_assert(sizeof...(Rest) == N, "N corners, then the residual");
+    const auto args = std::forward_as_tuple(v0, rest...);
+    const T* v[N];
+    Collect(args, v, std::make_index_sequence<N>());
+    T* r = std::get<N>(args);
+    PolygonCornerSines(v, N, r);
+    for (int i = 0; i < N; ++i) r[i] -= bounds.min_sine[i];
+  }
+
+ private:
+  template <typename Tuple, typename T, size_t... I>
+  static void Collect(const Tuple& args, const T** v, std::index_sequence<I...>) {
+    ((v[I] = std::get<I>(args)), ...);
+  }
+};
 using EdgeLengthTerm = InequalityTerm<EdgeLengthBound, EdgeLengthResidual, 1, 3, 3>;
 
 }  // namespace gproj

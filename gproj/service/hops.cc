@@ -238,7 +238,7 @@ nlohmann::json HopsDescription(const ProblemSpec& spec) {
         if (input.kind == InputKind::kMesh) {
           nlohmann::json corners =
               Param(input.name + "_corners", "Vertices per face of " + input.name, "Integer", 0, 1);
-          corners["Default"] = 3;
+          corners["Default"] = input.flat_face_corners;
           corners["Minimum"] = 3;
           inputs.push_back(corners);
         }
@@ -337,7 +337,8 @@ nlohmann::json HopsRunRequest(const nlohmann::json& body, const ProblemSpec& spe
       long long corners = 4;
       if (input.kind == InputKind::kMesh) {
         const nlohmann::json& given = ItemsOf(values, input.name + "_corners");
-        corners = given.empty() ? 3 : IntegerItem(given[0], input.name + "_corners");
+        corners = given.empty() ? input.flat_face_corners
+                                : IntegerItem(given[0], input.name + "_corners");
         if (corners < 3) Refuse(input.name + "_corners", "must be at least 3");
       }
       if (ids.size() % corners != 0)

@@ -26,7 +26,7 @@ class PlanarizeOptions:
     solver: Literal['gp', 'ceres']
     """(choice) gp: guided projection; ceres: Levenberg-Marquardt on the same rows (cross-check)."""
     tolerance: float
-    """(number, > 0) Stop when max planarity (diagonal distance / mean edge length) is <= this."""
+    """(number, > 0) Stop when max planarity (diagonal distance; for a polygon of 5 or more vertices, twice its largest distance from its least-squares plane; / mean edge length) is <= this."""
     closeness: float
     """(number, >= 0) Weight of closeness to the input vertices (mesh scaled to mean edge 1)."""
     circular: bool
@@ -137,17 +137,17 @@ def planarize(
     outputs: Sequence[str] = (),
     callback: Optional[Callable[[Dict[str, Any]], Optional[bool]]] = None,
 ) -> PlanarizeResult:
-    """PQ planarisation: make every quad of a mesh planar (or circular: planar and concyclic) while staying close to the input and fair.
+    """PQ planarisation: make every quad of a mesh planar (or circular: planar and concyclic) while staying close to the input and fair. Polygon meshes too (hexagonal, hex-dominant: every face of 4 or more vertices planar; triangles are left to closeness and fairness).
 
 Arguments:
-    V: the mesh: (n, 3) float vertex positions. Quad mesh to planarise.
+    V: the mesh: (n, 3) float vertex positions. Quad mesh (or any polygon mesh; circular needs quads) to planarise.
     F: (m, k) integer faces, 0-based (a list of faces for mixed sizes).
     options: a PlanarizeOptions; keyword arguments override its fields.
     reference: a mesh (V, F). Reference surface (triangle or polygon mesh): vertices keep close to it through the tangent plane of their closest point (sliding along it) instead of to their start.
     fixed: 0-based vertex ids, a boolean mask over the vertices, or the path of a file of ids. Vertices that do not move at all (0-based ids; returned bit for bit).
     weld: merge the input meshes' coincident vertices (within 1e-9 of the bounding-box diagonal) first, as unwelded exports need; without it such a mesh is refused. Vertex ids (fixed, ...) then number the welded mesh; result.weld_map maps each input vertex to it.
     solver: (choice) gp: guided projection; ceres: Levenberg-Marquardt on the same rows (cross-check).
-    tolerance: (number, > 0) Stop when max planarity (diagonal distance / mean edge length) is <= this.
+    tolerance: (number, > 0) Stop when max planarity (diagonal distance; for a polygon of 5 or more vertices, twice its largest distance from its least-squares plane; / mean edge length) is <= this.
     closeness: (number, >= 0) Weight of closeness to the input vertices (mesh scaled to mean edge 1).
     circular: (bool) Circular quads (planar and concyclic, 000 §2) instead of planar ones; the tolerance also bounds the concyclicity (distance to the fitted circle / mean edge).
     fairness_order: (int, >= 2, <= 3) 2: second differences, 3: third differences.

@@ -162,7 +162,7 @@ def test_failures_are_per_job_and_the_local_cluster_goes_away(tmp_path):
     assert [rows[n]["outcome"] for n in ["good", "missing", "triangles", "short"]] == [
         "converged", "failed", "failed", "not_converged"]
     assert "inputs.mesh" in rows["missing"]["error"] and "nope.obj" in rows["missing"]["error"]
-    assert "a quad mesh is required" in rows["triangles"]["error"]
+    assert "every face is a triangle" in rows["triangles"]["error"]
     assert rows["short"]["status"] == "NO_CONVERGENCE" and rows["short"]["iterations"] == "1"
     assert rows["anet"]["outcome"] in ("converged", "not_converged")
     assert (out / "anet" / "picture.svg").read_text().lstrip().startswith("<")

@@ -100,7 +100,6 @@ BAD_MESHES = {
     "nan": (lambda V, F: (np.where(np.arange(V.size).reshape(V.shape) == 4, np.nan, V), F)),
     "index out of range": (lambda V, F: (V, np.where(F == 5, 99, F))),
     "negative index": (lambda V, F: (V, np.where(F == 5, -7, F))),
-    "triangle": (lambda V, F: (V, [list(f) for f in F[:-1]] + [list(F[-1][:3])])),
     "repeated vertex": (lambda V, F: (V, np.where(F == 5, 4, F))),
     "no faces": (lambda V, F: (V, np.zeros((0, 4), dtype=np.int32))),
     "degenerate": (lambda V, F: (np.where(np.isin(np.arange(9), F[0])[:, None], 0.0, V), F)),

@@ -226,10 +226,15 @@ TEST_F(PlanarizeCommandTest, RefusesFaceIndexOutOfRange) {
   ExpectRefused(in, {"range.obj:5", "face 0", "vertex 8"});
 }
 
-TEST_F(PlanarizeCommandTest, RefusesNonQuadFaces) {
-  const std::string in =
-      Write("tri.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf 1 3 2\n");
-  ExpectRefused(in, {"tri.obj:6", "face 1", "3 vertices"});
+// Polygon meshes are taken (tests/apps/polygon_planarize_command_test.cc), but not a mesh of
+// triangles only, nor a circular run with a face that is not a quad.
+TEST_F(PlanarizeCommandTest, RefusesTriangleMeshesAndCircularNonQuads) {
+  const std::string mixed =
+      Write("mixed.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nf 1 2 3 4\nf 2 5 3\n");
+  ExpectRefused(mixed, {"mixed.obj: face 1 has 3 vertices; a circular mesh is made of quads"},
+                "--circular");
+  const std::string tri = Write("tri.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n");
+  ExpectRefused(tri, {"tri.obj: every face is a triangle", "gproj dual"});
 }
 
 TEST_F(PlanarizeCommandTest, RefusesDegenerateFaces) {

@@ -38,6 +38,11 @@ TEST(HopsTest, DescriptionHasMeshListsOptionsWithDefaultsAndMeasures) {
   ASSERT_TRUE(reference);
   EXPECT_EQ(reference->at("AtLeast"), 0);           // optional
   ASSERT_TRUE(Named(inputs, "reference_corners"));  // a polygon-mesh input
+  EXPECT_EQ(Named(inputs, "reference_corners")->at("Default"), 3);
+  // planarize takes polygon meshes, but a flat face list means quads unless it says otherwise
+  // (Grasshopper definitions that send quads keep working).
+  ASSERT_TRUE(Named(inputs, "mesh_corners"));
+  EXPECT_EQ(Named(inputs, "mesh_corners")->at("Default"), 4);
   const nlohmann::json* tolerance = Named(inputs, "tolerance");
   ASSERT_TRUE(tolerance);
   EXPECT_EQ(tolerance->at("ParamType"), "Number");

@@ -51,6 +51,7 @@ TEST(RunRequestTest, BadContentNamesTheField) {
   EXPECT_NE(ErrorOf(body).find("inputs.mesh.vertices[3][1]: expected a number"), std::string::npos)
       << ErrorOf(body);
   body = GridRequest();
+  body["problem"] = "anet";  // a quad-mesh input (planarize takes polygon meshes)
   body["inputs"]["mesh"]["faces"][0] = {0, 1, 22};
   EXPECT_NE(ErrorOf(body).find("inputs.mesh"), std::string::npos) << ErrorOf(body);
   EXPECT_NE(ErrorOf(body).find("quad"), std::string::npos) << ErrorOf(body);

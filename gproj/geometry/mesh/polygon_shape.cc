@@ -66,6 +66,21 @@ PolygonShape MeasurePolygonShape(const std::vector<Eigen::Vector3d>& p) {
   return s;
 }
 
+double PolygonKinkDeg(const std::vector<Eigen::Vector3d>& p) {
+  const int n = static_cast<int>(p.size());
+  if (n < 4) return 0.0;
+  auto corner_normal = [&](int i) {
+    return Eigen::Vector3d((p[(i + 1) % n] - p[i]).cross(p[(i + n - 1) % n] - p[i]));
+  };
+  double worst = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d a = corner_normal(i), b = corner_normal((i + 1) % n);
+    if (!(a.norm() > 0.0 && b.norm() > 0.0)) continue;
+    worst = std::max(worst, std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / M_PI);
+  }
+  return worst;
+}
+
 std::vector<Eigen::Vector3d> FacePoints(const PolyMesh& mesh, PolyMesh::FaceHandle f) {
   std::vector<Eigen::Vector3d> p;
   for (auto v : mesh.fv_range(f)) {

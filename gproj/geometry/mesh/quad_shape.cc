@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "gproj/geometry/mesh/circle.h"
+#include "gproj/geometry/mesh/polygon_shape.h"
 #include "gproj/geometry/mesh/scale_free.h"
 
 namespace gproj {
@@ -116,6 +117,10 @@ std::vector<double> RelativeFacePlanarity(const PolyMesh& mesh, bool circular) {
   std::vector<double> values(mesh.n_faces(), 0.0);
   Eigen::Vector3d p[4];
   for (auto f : mesh.faces()) {
+    if (mesh.valence(f) > 4) {
+      values[f.idx()] = PolygonPlanarity(FacePoints(mesh, f)) / mean_edge;
+      continue;
+    }
     if (!QuadPoints(mesh, f, p)) continue;
     double v = MeasureQuadShape(p[0], p[1], p[2], p[3]).diagonal_distance / mean_edge;
     if (circular) v = std::max(v, QuadConcyclicity({p[0], p[1], p[2], p[3]}) / mean_edge);
@@ -129,6 +134,17 @@ FaceValues MeasureFaceValues(const PolyMesh& mesh, bool circular) {
   FaceValues values;
   Eigen::Vector3d p[4];
   for (auto f : mesh.faces()) {
+    if (mesh.valence(f) > 4) {
+      const std::vector<Eigen::Vector3d> q = FacePoints(mesh, f);
+      const PolygonShape s = MeasurePolygonShape(q);
+      values.face.push_back(f.idx());
+      values.planarity.push_back(s.planarity / mean_edge);
+      values.planarity_abs.push_back(s.planarity);
+      values.kink_deg.push_back(PolygonKinkDeg(q));
+      values.min_angle_deg.push_back(s.min_angle_deg);
+      values.convex.push_back(s.convex);
+      continue;
+    }
     if (!QuadPoints(mesh, f, p)) continue;
     const QuadShape s = MeasureQuadShape(p[0], p[1], p[2], p[3]);
     values.face.push_back(f.idx());

@@ -67,10 +67,13 @@ std::vector<QuadShape> MeasureQuadShapes(const PolyMesh& mesh);
 
 // Per quad of `mesh`: its diagonal distance / the mesh's mean edge length (the planarity
 // measure), and with `circular` the larger of that and the concyclicity (distance of the
-// vertices to their fitted circle / mean edge). Non-quads get 0.
+// vertices to their fitted circle / mean edge). Polygons of 5 or more corners get their
+// planarity (polygon_shape.h) / mean edge; triangles 0.
 std::vector<double> RelativeFacePlanarity(const PolyMesh& mesh, bool circular);
 
-// The columns of `--face-values`, one entry per quad (faces of other valences are skipped):
+// The columns of `--face-values`, one entry per quad and per polygon of 5 or more corners (its
+// planarity as polygon_shape.h measures it, kink_deg the largest angle between the planes of
+// two consecutive corners; triangles are skipped):
 // face index, planarity (diagonal distance / mean edge), planarity_abs (in the mesh's units),
 // kink_deg, min_angle_deg, convex, and with `circular` concyclicity (distance of the corners to
 // their fitted circle / mean edge; empty otherwise).

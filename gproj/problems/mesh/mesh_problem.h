@@ -30,6 +30,8 @@ class MeshProblem : public GuidedProblem {
  public:
   Problem& problem() override { return problem_; }
   using GuidedProblem::problem;
+  // The panel bounds' rows and their bounds (after the set-up).
+  const PanelBounds& panel_bounds() const { return bounds_; }
 
   // The current vertices in input units, held vertices exactly as given.
   PolyMesh Result() const;

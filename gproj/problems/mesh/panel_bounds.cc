@@ -42,6 +42,41 @@ std::array<double, 4> CornerSinesAt(const Eigen::VectorXd& x, const VariableLayo
   return sines;
 }
 
+// Corner rows on the polygons of N corners (faces: face index, corner vertex ids).
+template <int N, size_t... I>
+void AddPolygonCorners(const std::vector<std::pair<int, std::vector<int>>>& faces, double min_sine,
+                       int vertex_block, Problem* problem, PanelBounds* out,
+                       std::index_sequence<I...>) {
+  const VariableLayout& layout = problem->layout();
+  const BlockItems vertex(layout, vertex_block);
+  std::vector<std::pair<std::array<int, N>, PolygonCornerBounds<N>>> elements;
+  for (const auto& [face, v] : faces) {
+    if (static_cast<int>(v.size()) != N) continue;
+    const double* p[N];
+    for (int j = 0; j < N; ++j) p[j] = problem->x().data() + layout.Index(vertex_block, v[j], 0);
+    double sines[N];
+    PolygonCornerSines(p, N, sines);
+    PolygonCornerBounds<N> bounds;
+    for (int i = 0; i < N; ++i) bounds.min_sine[i] = std::min(min_sine, sines[i]);
+    elements.push_back({{vertex[v[I]]...}, bounds});
+    out->polygon_corner_bounds.push_back(
+        {face, std::vector<double>(bounds.min_sine.begin(), bounds.min_sine.end())});
+  }
+  if (elements.empty()) return;
+  AddInequalities<PolygonCornerBounds<N>, N, (static_cast<int>(I) * 0 + 3)...>(
+      problem, "corner_angles_" + std::to_string(N), PolygonCornerResidual<N>{}, elements,
+      [](const auto& e) { return e; });
+}
+
+template <size_t... N>
+void AddAllPolygonCorners(const std::vector<std::pair<int, std::vector<int>>>& faces,
+                          double min_sine, int vertex_block, Problem* problem, PanelBounds* out,
+                          std::index_sequence<N...>) {
+  (AddPolygonCorners<static_cast<int>(N) + 5>(faces, min_sine, vertex_block, problem, out,
+                                              std::make_index_sequence<N + 5>()),
+   ...);
+}
+
 }  // namespace
 
 PanelBounds AddPanelBounds(const PolyMesh& mesh, const MeshNormalization& norm, int vertex_block,
@@ -63,6 +98,20 @@ PanelBounds AddPanelBounds(const PolyMesh& mesh, const MeshNormalization& norm, 
     }
     out.corners = AddInequalities<QuadCornerBounds, 4, 3, 3, 3, 3>(
         problem, "corner_angles", QuadCornerResidual{}, quads, [](const auto& q) { return q; });
+    std::vector<std::pair<int, std::vector<int>>> polygons;
+    for (auto f : mesh.faces()) {
+      const int n = static_cast<int>(mesh.valence(f));
+      if (n < 5) continue;
+      if (n > kMaxBoundedCorners) {
+        out.unbounded_polygons.push_back(f.idx());
+        continue;
+      }
+      std::vector<int> v;
+      for (auto fv : mesh.fv_range(f)) v.push_back(fv.idx());
+      polygons.push_back({f.idx(), v});
+    }
+    AddAllPolygonCorners(polygons, min_sine, vertex_block, problem, &out,
+                         std::make_index_sequence<kMaxBoundedCorners - 4>());
   }
   auto add_edges = [&](const std::string& name, bool lower, auto bound_of) {
     std::vector<double>& kept = lower ? out.min_edge : out.max_edge;
@@ -101,10 +150,9 @@ PanelBounds AddPanelBounds(const PolyMesh& mesh, const MeshNormalization& norm, 
 std::vector<int> FacesAtCornerBound(const PolyMesh& mesh, const PanelBounds& bounds,
                                     double margin) {
   std::vector<int> faces;
-  if (bounds.corners == nullptr) return faces;
   size_t q = 0;
   for (auto f : mesh.faces()) {
-    if (mesh.valence(f) != 4) continue;
+    if (bounds.corners == nullptr || mesh.valence(f) != 4) continue;
     const std::array<int, 4> v = QuadVertices(mesh, f);
     Eigen::Vector3d p[4];
     for (int j = 0; j < 4; ++j) p[j] = ToEigen(mesh.point(mesh.vertex_handle(v[j])));
@@ -117,6 +165,20 @@ std::vector<int> FacesAtCornerBound(const PolyMesh& mesh, const PanelBounds& bou
         break;
       }
   }
+  for (const auto& [face, min_sine] : bounds.polygon_corner_bounds) {
+    std::vector<Eigen::Vector3d> p;
+    for (auto fv : mesh.fv_range(mesh.face_handle(face))) p.push_back(ToEigen(mesh.point(fv)));
+    std::vector<const double*> v;
+    for (const Eigen::Vector3d& q : p) v.push_back(q.data());
+    std::vector<double> sines(p.size());
+    PolygonCornerSines(v.data(), static_cast<int>(p.size()), sines.data());
+    for (size_t i = 0; i < sines.size(); ++i)
+      if (sines[i] <= min_sine[i] + margin) {
+        faces.push_back(face);
+        break;
+      }
+  }
+  std::sort(faces.begin(), faces.end());
   return faces;
 }
 

@@ -1,8 +1,9 @@
 #pragma once
-// Valid panels for every quad-mesh problem (planarisation, circular meshes, A-nets, H-nets):
-// inequality rows (gproj/constraints/panel_validity.h) that keep each corner angle within
-// [θ, 180° − θ] and each edge within [ℓ_min, ℓ_max] while the other rows act. A bound the input
-// already breaks is relaxed to the input's value, so such a quad or edge is only kept from
+// Valid panels for every quad-mesh problem (planarisation, circular meshes, A-nets, H-nets) and
+// the polygons of polygon planarisation: inequality rows (gproj/constraints/panel_validity.h)
+// that keep each corner angle within [θ, 180° − θ] and each edge within [ℓ_min, ℓ_max] while the
+// other rows act. A bound the input already breaks is relaxed to the input's value, so such a
+// panel (a reflex corner of a hexagon in a negatively curved region) or edge is only kept from
 // getting worse.
 
 #include <array>
@@ -40,15 +41,23 @@ struct PanelBoundsOptions {
 };
 
 // The rows added to a problem; null where a bound is off.
+// Polygons of up to this many corners get corner rows (faces of more corners get none, and
+// AddPanelBounds lists them).
+constexpr int kMaxBoundedCorners = 8;
+
 struct PanelBounds {
   QuadCornerTerm* corners = nullptr;
   EdgeLengthTerm* min_edges = nullptr;
   EdgeLengthTerm* max_edges = nullptr;
   std::vector<QuadCornerBounds> corner_bounds;  // per face (quads only)
   std::vector<double> min_edge, max_edge;       // per mesh edge, input units (empty: off)
+  // Faces of 5 to kMaxBoundedCorners corners: the face and its corners' lower sine bounds.
+  std::vector<std::pair<int, std::vector<double>>> polygon_corner_bounds;
+  std::vector<int> unbounded_polygons;  // faces of more corners: no corner rows
 };
 
-// Adds the bounds over the quads and edges of `mesh`, whose vertices are the items of
+// Adds the bounds over the quads (and polygons of 5 to kMaxBoundedCorners corners) and edges of
+// `mesh`, whose vertices are the items of
 // `vertex_block` in the normalisation `norm`; problem->x() must hold the start.
 PanelBounds AddPanelBounds(const PolyMesh& mesh, const MeshNormalization& norm, int vertex_block,
                            const PanelBoundsOptions& options, Problem* problem);

@@ -1,6 +1,8 @@
-// `planarize` in the registry: PQ (or circular) planarisation of a quad mesh.
+// `planarize` in the registry: PQ (or circular) planarisation of a quad mesh, and of polygon
+// meshes (a plane per face of 4 or more vertices).
 #include <cstdio>
 
+#include "gproj/geometry/mesh/polygon_shape.h"
 #include "gproj/problems/mesh/mesh_options.h"
 #include "gproj/problems/mesh/mesh_outputs.h"
 #include "gproj/problems/pq/pq_planarization.h"
@@ -20,9 +22,12 @@ const OptionSchema<PlanarizeSettings>& Schema() {
     using S = PlanarizeSettings;
     OptionSchema<S> s;
     AddMethodOption<S>(&s, [](S& x) -> SolverKind& { return x.solver; });
-    s.Field<double>("tolerance", OptionType::kNumber,
-                    "Stop when max planarity (diagonal distance / mean edge length) is <= this",
-                    [](S& x) -> double& { return x.problem.tolerance; })
+    s.Field<double>(
+         "tolerance", OptionType::kNumber,
+         "Stop when max planarity (diagonal distance; for a polygon of 5 or more vertices, twice "
+         "its largest distance from its least-squares plane; / mean edge length) is <= "
+         "this",
+         [](S& x) -> double& { return x.problem.tolerance; })
         .Positive();
     s.Field<double>("closeness", OptionType::kNumber,
                     "Weight of closeness to the input vertices (mesh scaled to mean edge 1)",
@@ -50,18 +55,18 @@ const OptionSchema<PlanarizeSettings>& Schema() {
   return schema;
 }
 
-void AddShortfalls(const PQPlanarization& pq, RunResult* result) {
+void AddShortfalls(const PQPlanarization& pq, const std::string& panels, RunResult* result) {
   const PQPlanarizationOptions& options = pq.options();
   const std::vector<int> above = pq.FacesAboveTolerance();
   if (!above.empty())
-    result->shortfalls.push_back(std::to_string(above.size()) +
-                                 " quads above the tolerance, worst first: " + FaceList(above));
+    result->shortfalls.push_back(std::to_string(above.size()) + " " + panels +
+                                 " above the tolerance, worst first: " + FaceList(above));
   const std::vector<int> held = pq.FacesAtAngleBound();
   char bound[64];
   std::snprintf(bound, sizeof(bound), "%g", options.panels.min_angle_deg);
   if (!held.empty())
-    result->shortfalls.push_back(std::to_string(held.size()) +
-                                 " quads sit on their corner-angle bound (`min_angle` " + bound +
+    result->shortfalls.push_back(std::to_string(held.size()) + " " + panels +
+                                 " sit on their corner-angle bound (`min_angle` " + bound +
                                  "): " + FaceList(held));
   const double outside = ValueOf(pq.MeasureAt(pq.problem().x()), "out_of_range_edges");
   if (outside > 0.0)
@@ -84,22 +89,53 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   options.vertices.fixed = inputs.VertexIds("fixed");
   std::string why;
   if (!options.IsValid(&why)) throw InputError("invalid option: " + why);
+  const PolygonMeshSummary panels = SummarizePolygons(input);
+  for (auto f : input.faces())
+    if (options.circular && input.valence(f) != 4)
+      throw InputError(inputs.Source("mesh") + ": face " + std::to_string(f.idx()) + " has " +
+                       std::to_string(input.valence(f)) +
+                       " vertices; a circular mesh is made of quads");
+  if (panels.faces_by_corners.size() <= 4 && input.n_faces() > 0)
+    throw InputError(inputs.Source("mesh") +
+                     ": every face is a triangle; planarisation needs faces of 4 or more "
+                     "vertices (gproj dual makes a polygon mesh of a triangle mesh)");
   PQPlanarization pq(input, options, inputs.OptionalMesh("reference"));
+  const bool all_quads = panels.faces_by_corners.size() == 5 &&
+                         panels.faces_by_corners[4] == static_cast<int>(input.n_faces());
   const bool ceres = settings.solver == SolverKind::kCeres;
   if (!ceres && options.ceres_soft_scale != PQPlanarizationOptions().ceres_soft_scale)
     throw InputError("`ceres_soft_scale` applies to `solver` ceres only");
 
   char line[512];
   const PlanarityMeasures initial = pq.Measures();
-  std::snprintf(line, sizeof(line), "%s: %zu vertices, %zu quads, %d variables, solver %s",
+  std::snprintf(line, sizeof(line), "%s: %zu vertices, %zu %s, %d variables, solver %s",
                 inputs.Source("mesh").c_str(), input.n_vertices(), input.n_faces(),
-                pq.problem().layout().num_variables(),
+                all_quads ? "quads" : "faces", pq.problem().layout().num_variables(),
                 ceres ? "ceres" : LinearSolverTypeName(options.solver.linear_solver));
   context.Headline(line);
   std::snprintf(line, sizeof(line),
                 "start: max planarity %.3e, mean %.3e (diagonal distance / mean edge)",
                 initial.max_planarity, initial.mean_planarity);
   context.Info(line);
+  if (!all_quads) {
+    context.Info("faces: " + FaceCountsText(panels.faces_by_corners) +
+                 " (a plane per face of 4 or more vertices; triangles are left to closeness and "
+                 "fairness)");
+    std::vector<int> reflex;
+    for (auto f : input.faces())
+      if (input.valence(f) > 4 && !MeasurePolygonShape(FacePoints(input, f)).convex)
+        reflex.push_back(f.idx());
+    if (!reflex.empty() && options.panels.corners)
+      context.Info(std::to_string(reflex.size()) + " polygons are not convex in the input (" +
+                   FaceList(reflex) +
+                   "; a planar polygon mesh cannot be convex where the surface is negatively "
+                   "curved): their reflex corners are kept from getting worse, not made convex");
+    const std::vector<int>& unbounded = pq.panel_bounds().unbounded_polygons;
+    if (!unbounded.empty() && options.panels.corners)
+      context.Info(std::to_string(unbounded.size()) + " faces of more than " +
+                   std::to_string(kMaxBoundedCorners) + " vertices have no corner bounds (" +
+                   FaceList(unbounded) + ")");
+  }
 
   const RunCallback record = [&context, &pq](const RunRecord& r) {
     const bool go_on = context.Record(r);
@@ -114,13 +150,14 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   result.facts = PlanarizationFacts(input, mesh, options);
   result.facts.erase("options");
   result.facts["fixed_vertices"] = options.vertices.fixed.size();
+  if (!all_quads) result.facts["faces_by_corners"] = panels.faces_by_corners;
   if (context.soft_free_start) result.facts["soft_free_start"] = true;
   if (result.report.failed) return result;
 
   const PlanarityMeasures final_measures = pq.Measures();
   result.meshes["output"] = mesh;
-  std::snprintf(line, sizeof(line), "%zu quads, max planarity %.2e", input.n_faces(),
-                final_measures.max_planarity);
+  std::snprintf(line, sizeof(line), "%zu %s, max planarity %.2e", input.n_faces(),
+                all_quads ? "quads" : "faces", final_measures.max_planarity);
   AddFaceOutputTexts(mesh, RelativeFacePlanarity(mesh, options.circular),
                      PlanarityColourScale(mesh, options.circular),
                      QuadShapesCsv(mesh, options.circular), line, context, &result);
@@ -137,7 +174,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   }
   AddPanelMessages(options.circular ? "a circular mesh" : "a PQ (conjugate) mesh", input, mesh,
                    10.0, final_measures.max_displacement, &result);
-  if (!result.report.converged) AddShortfalls(pq, &result);
+  if (!result.report.converged) AddShortfalls(pq, all_quads ? "quads" : "faces", &result);
   return result;
 }
 
@@ -148,9 +185,13 @@ ProblemSpec PlanarizeSpec() {
   spec.name = "planarize";
   spec.summary =
       "PQ planarisation: make every quad of a mesh planar (or circular: planar and concyclic) "
-      "while staying close to the input and fair.";
+      "while staying close to the input and fair. Polygon meshes too (hexagonal, "
+      "hex-dominant: every face of 4 or more vertices planar; triangles are left to closeness "
+      "and fairness).";
   spec.inputs = {
-      {"mesh", InputKind::kQuadMesh, "Quad mesh to planarise", true},
+      {"mesh", InputKind::kMesh,
+       "Quad mesh (or any polygon mesh; circular needs quads) to planarise", true, false,
+       /*flat_face_corners=*/4},
       {"reference", InputKind::kMesh,
        "Reference surface (triangle or polygon mesh): vertices keep close to it through the "
        "tangent plane of their closest point (sliding along it) instead of to their start"},

@@ -8,8 +8,10 @@
 
 #include "gproj/constraints/circular_quad.h"
 #include "gproj/constraints/closeness.h"
+#include "gproj/constraints/normal_orthogonality.h"
 #include "gproj/constraints/quad_planarity.h"
 #include "gproj/geometry/mesh/circle.h"
+#include "gproj/geometry/mesh/polygon_shape.h"
 #include "gproj/problems/mesh/mesh_variables.h"
 
 namespace gproj::pq {
@@ -98,41 +100,66 @@ PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOpti
     : MeshProblem(mesh), options_(options) {
   std::string why;
   if (!options.IsValid(&why)) throw InputError("invalid planarisation options: " + why);
-  for (auto f : mesh.faces())
-    if (mesh.valence(f) != 4)
-      throw InputError("face " + std::to_string(f.idx()) + " has " +
-                       std::to_string(mesh.valence(f)) + " vertices; a quad mesh is required");
   if (mesh.n_faces() == 0) throw InputError("the mesh has no faces");
+  // A face normal per face of 4 or more corners; triangles are planar and left to closeness
+  // and fairness.
+  std::vector<int> normal_of(mesh.n_faces(), -1);
+  int normals = 0;
+  for (auto f : mesh.faces()) {
+    const int n = static_cast<int>(mesh.valence(f));
+    if (options.circular && n != 4)
+      throw InputError("face " + std::to_string(f.idx()) + " has " + std::to_string(n) +
+                       " vertices; a circular mesh is made of quads");
+    if (n >= 4) normal_of[f.idx()] = normals++;
+  }
+  if (normals == 0)
+    throw InputError("every face is a triangle; planarisation needs faces of 4 or more vertices");
 
   VariableLayout& layout = problem_.layout();
   normal_block_ = options.circular
-                      ? layout.AddBlock("face_circles", static_cast<int>(mesh.n_faces()),
-                                        CircularQuad::kAuxiliaryDim, /*eliminable=*/true)
-                      : layout.AddBlock("face_normals", static_cast<int>(mesh.n_faces()), 3,
-                                        /*eliminable=*/true);
+                      ? layout.AddBlock("face_circles", normals, CircularQuad::kAuxiliaryDim,
+                                        /*eliminable=*/true)
+                      : layout.AddBlock("face_normals", normals, 3, /*eliminable=*/true);
   LoadInputVertices();
   Eigen::VectorXd& x = problem_.x();
   const BlockItems vertex = vertices(), aux = BlockItems(layout, normal_block_);
 
   QuadPlanarity* planarity = nullptr;
   CircularQuad* circularity = nullptr;
+  EdgeNormalOrthogonality* polygon_edges = nullptr;
+  UnitNormal* polygon_normals = nullptr;
   if (options.circular)
     circularity = problem_.AddFamily<CircularQuad>(options.planarity_weight);
   else
     planarity = problem_.AddFamily<QuadPlanarity>(options.planarity_weight);
+  if (!options.circular &&
+      normals > static_cast<int>(std::count_if(mesh.faces_begin(), mesh.faces_end(),
+                                               [&mesh](auto f) { return mesh.valence(f) == 4; }))) {
+    polygon_edges =
+        problem_.AddFamily<EdgeNormalOrthogonality>("polygon_planarity", options.planarity_weight);
+    polygon_normals =
+        problem_.AddFamily<UnitNormal>("polygon_unit_normal", options.planarity_weight);
+  }
   for (auto f : mesh.faces()) {
-    int v[4], k = 0;
-    for (auto fv : mesh.fv_range(f)) v[k++] = fv.idx();
-    Eigen::Vector3d p[4];
-    for (int j = 0; j < 4; ++j) p[j] = x.segment<3>(layout.Index(vertex_block_, v[j], 0));
-    if (circularity) {
-      x.segment<CircularQuad::kAuxiliaryDim>(layout.Index(normal_block_, f.idx(), 0)) =
+    const int item = normal_of[f.idx()];
+    if (item < 0) continue;
+    std::vector<int> v;
+    for (auto fv : mesh.fv_range(f)) v.push_back(fv.idx());
+    std::vector<Eigen::Vector3d> p;
+    for (int j : v) p.push_back(x.segment<3>(layout.Index(vertex_block_, j, 0)));
+    if (v.size() > 4) {  // n · (v_{j+1} − v_j) = 0 on every edge, |n| = 1
+      x.segment<3>(layout.Index(normal_block_, item, 0)) = PolygonNormal(p);
+      for (size_t j = 0; j < v.size(); ++j)
+        polygon_edges->Add({aux[item], vertex[v[j]], vertex[v[(j + 1) % v.size()]]});
+      polygon_normals->Add({aux[item]});
+    } else if (circularity) {
+      x.segment<CircularQuad::kAuxiliaryDim>(layout.Index(normal_block_, item, 0)) =
           CircularQuad::InitialAuxiliary({p[0], p[1], p[2], p[3]});
-      circularity->AddQuad(aux[f], vertex[v[0]], vertex[v[1]], vertex[v[2]], vertex[v[3]]);
+      circularity->AddQuad(aux[item], vertex[v[0]], vertex[v[1]], vertex[v[2]], vertex[v[3]]);
     } else {
-      x.segment<3>(layout.Index(normal_block_, f.idx(), 0)) =
+      x.segment<3>(layout.Index(normal_block_, item, 0)) =
           QuadPlanarity::InitialNormal(p[0], p[1], p[2], p[3]);
-      planarity->AddQuad(aux[f], vertex[v[0]], vertex[v[1]], vertex[v[2]], vertex[v[3]]);
+      planarity->AddQuad(aux[item], vertex[v[0]], vertex[v[1]], vertex[v[2]], vertex[v[3]]);
     }
   }
   if (reference != nullptr) {
@@ -160,13 +187,10 @@ SolverOptions PQPlanarization::solver_options() const {
 
 std::vector<int> PQPlanarization::FacesAboveTolerance() const {
   StoreVertices(problem_, vertex_block_, norm_, &current_);
-  const double mean_edge = MeanEdgeLength(current_);
-  const std::vector<QuadShape> shapes = MeasureQuadShapes(current_);
+  const std::vector<double> planarity = RelativeFacePlanarity(current_, false);
   std::vector<std::pair<double, int>> above;
-  for (size_t f = 0; f < shapes.size(); ++f) {
-    const double planarity = shapes[f].diagonal_distance / mean_edge;
-    if (planarity > options_.tolerance) above.emplace_back(-planarity, static_cast<int>(f));
-  }
+  for (size_t f = 0; f < planarity.size(); ++f)
+    if (planarity[f] > options_.tolerance) above.emplace_back(-planarity[f], static_cast<int>(f));
   std::sort(above.begin(), above.end());
   std::vector<int> faces;
   for (const auto& entry : above) faces.push_back(entry.second);

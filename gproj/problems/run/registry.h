@@ -45,6 +45,10 @@ struct InputSpec {
   // An optional input taken like a required one (positional), e.g. a plan view that another
   // input can replace; at most one per problem, the last of the positional inputs.
   bool positional = false;
+  // kMesh: the corners per face a front end assumes when the faces come as one flat list of
+  // vertex ids and nothing says how many (Hops' Integer list): 4 where quad meshes are the
+  // usual input (planarize), 3 elsewhere.
+  int flat_face_corners = 3;
 
   bool IsPositional() const { return required || positional; }
 };
