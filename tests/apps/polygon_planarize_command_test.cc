@@ -111,6 +111,31 @@ TEST_F(PolygonPlanarizeTest, SaddleDualKeepsItsCornersAndSaysWhereItStops) {
     EXPECT_NE(r.err.find("faces above the tolerance"), std::string::npos) << r.err;
 }
 
+// A real hexagonal mesh from another project (tests/data/README.md), far from planar (corners
+// up to 0.1 of an edge off their plane): with the default bounds every face stays convex, and
+// where planar hexagons would have to turn reflex the run stops short and names the faces held
+// at their corner bound; allowed to fold, it reaches the tolerance with non-convex faces.
+TEST_F(PolygonPlanarizeTest, RealHexMeshStaysConvexOrFoldsOnlyWhenAllowed) {
+  const std::string in = std::string(GPROJ_SOURCE_DIR) + "/tests/data/compas_shapeop_hex_mesh.obj";
+  const CommandRun r = Gproj("planarize " + in + " -o " + Path("flat.obj") +
+                             " --tolerance 1e-6 --report " + Path("r.json"));
+  ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 3) << r.err << r.out;
+  const PolyMesh before = ReadMesh(in), after = ReadMesh(Path("flat.obj"));
+  EXPECT_GT(IndependentPlanarity(before), 0.05);
+  EXPECT_LT(IndependentPlanarity(after), 0.1 * IndependentPlanarity(before));
+  EXPECT_EQ(SummarizePolygons(after).non_convex, 0);
+  EXPECT_GE(SummarizePolygons(after).min_angle_deg, 5.0 - 1e-6);
+  if (r.exit_code == 3)
+    EXPECT_NE(r.err.find("faces sit on their corner-angle bound"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("PQ (conjugate)"), std::string::npos) << r.err;  // not a quad mesh
+  const CommandRun folds =
+      Gproj("planarize " + in + " -o " + Path("folded.obj") + " --tolerance 1e-6 --allow-folds");
+  ASSERT_EQ(folds.exit_code, 0) << folds.err << folds.out;
+  const PolyMesh folded = ReadMesh(Path("folded.obj"));
+  EXPECT_LT(IndependentPlanarity(folded), 1e-6);
+  EXPECT_GT(SummarizePolygons(folded).non_convex, 0);
+}
+
 TEST_F(PolygonPlanarizeTest, RefusesCircularPolygonsAndTriangleMeshes) {
   const std::string tri = Lattice("cap.obj", 6, [](double, double) { return 0.0; });
   ASSERT_EQ(Gproj("dual " + tri + " -o " + Path("hex.obj")).exit_code, 0);

@@ -106,6 +106,28 @@ PolyMesh DualMesh(const PolyMesh& mesh, const DualOptions& options, DualStats* s
     points[f.idx()] = centroid + offset;
   }
 
+  // Where the planes of two neighbouring triangles meet in (nearly) one point (four vertices on
+  // one circle of a sphere, symmetric configurations), the dual edge between them would be
+  // shorter than a hundredth of the edge it crosses, or of no length at all: both stay at their
+  // centroids (such an edge is no panel edge, and a reader refuses one of no length).
+  if (options.start == DualStart::kTangentPlanes) {
+    std::vector<bool> collapse(mesh.n_faces(), false);
+    for (auto e : mesh.edges()) {
+      if (mesh.is_boundary(e)) continue;
+      const int f = mesh.face_handle(mesh.halfedge_handle(e, 0)).idx();
+      const int g = mesh.face_handle(mesh.halfedge_handle(e, 1)).idx();
+      if ((points[f] - points[g]).norm() < 0.01 * mesh.calc_edge_length(e))
+        collapse[f] = collapse[g] = true;
+    }
+    for (auto f : mesh.faces()) {
+      if (!collapse[f.idx()]) continue;
+      Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+      for (auto fv : mesh.fv_range(f)) centroid += P(mesh, fv) / 3.0;
+      points[f.idx()] = centroid;
+      ++s.coincident;
+    }
+  }
+
   // One face per vertex: the triangles around it, counter-clockwise as the input's faces are.
   std::vector<int> index(mesh.n_faces(), -1);  // triangle -> dual vertex
   PolyMesh dual;

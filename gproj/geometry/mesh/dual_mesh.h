@@ -15,7 +15,10 @@
 // share a line: on a cylinder, along the asymptotic directions of a saddle, where the vertex
 // normals are one-sided at a boundary) the point is not well conditioned: the dual vertex is
 // the point at that distance from the centroid nearest the three planes (least squares), and
-// is counted.
+// is counted. Two neighbouring triangles whose planes meet in (nearly) the same point (four
+// vertices on one circle of a sphere: the two halves of a split square; symmetric
+// configurations) would give a dual edge shorter than a hundredth of the edge it crosses: both stay
+// at their centroids, and are counted.
 //
 // Boundary: kDrop gives faces to the interior vertices only (a boundary vertex has no closed ring
 // of triangles); kKeep also closes each boundary vertex's ring with the midpoints of its two
@@ -48,7 +51,11 @@ struct DualStats {
   int rank_deficient = 0;          // of those, where the planes share a line or coincide
   int held_within_reach = 0;       // not well conditioned: nearest the planes within reach
   int centroid_fallbacks = 0;      // normals undefined (a degenerate neighbourhood): centroid
-  int boundary_faces = 0;          // faces of boundary vertices (kKeep)
+  // Where the planes of two neighbouring triangles meet in (nearly) the same point (a dual edge
+  // shorter than a hundredth of the edge it crosses): both at their centroids. Counted in
+  // tangent_plane_vertices or held_within_reach too.
+  int coincident = 0;
+  int boundary_faces = 0;  // faces of boundary vertices (kKeep)
 };
 
 // Throws InputError naming the face that is not a triangle, or saying why the dual has no faces

@@ -41,6 +41,19 @@ double PolygonPlanarity(const std::vector<Eigen::Vector3d>& p) {
   return 2.0 * worst;
 }
 
+std::vector<double> PolygonCornerAngles(const std::vector<Eigen::Vector3d>& p) {
+  const int n = static_cast<int>(p.size());
+  const Eigen::Vector3d normal = PolygonNormal(p);
+  std::vector<double> angles(n);
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d a = p[(i + 1) % n] - p[i], b = p[(i + n - 1) % n] - p[i];
+    const Eigen::Vector3d cross = a.cross(b);
+    const double angle = std::atan2(cross.norm(), a.dot(b)) * 180.0 / M_PI;
+    angles[i] = cross.dot(normal) > 0.0 ? angle : 360.0 - angle;
+  }
+  return angles;
+}
+
 PolygonShape MeasurePolygonShape(const std::vector<Eigen::Vector3d>& p) {
   PolygonShape s;
   const int n = static_cast<int>(p.size());

@@ -36,6 +36,10 @@ double PolygonPlanarity(const std::vector<Eigen::Vector3d>& p);
 
 PolygonShape MeasurePolygonShape(const std::vector<Eigen::Vector3d>& p);
 
+// The corner angles in degrees, measured in the polygon's plane (a reflex corner as 360° minus
+// its unsigned angle).
+std::vector<double> PolygonCornerAngles(const std::vector<Eigen::Vector3d>& p);
+
 // The largest angle between the planes of two consecutive corners (v_{i−1}, v_i, v_{i+1}) and
 // (v_i, v_{i+1}, v_{i+2}), in degrees: 0 for a planar polygon (the kink of a quad's split).
 double PolygonKinkDeg(const std::vector<Eigen::Vector3d>& p);

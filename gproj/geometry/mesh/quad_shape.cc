@@ -184,6 +184,17 @@ ShapeChange CompareCornerAngles(const PolyMesh& before, const PolyMesh& after,
   int quads = 0;
   Eigen::Vector3d p[4], q[4];
   for (auto f : before.faces()) {
+    if (before.valence(f) > 4 && after.valence(f) == before.valence(f)) {
+      const std::vector<double> a = PolygonCornerAngles(FacePoints(before, f));
+      const std::vector<double> b = PolygonCornerAngles(FacePoints(after, f));
+      double worst = 0.0;
+      for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
+      change.max_corner_change_deg = std::max(change.max_corner_change_deg, worst);
+      change.quads_changed += worst > threshold_deg ? 1 : 0;
+      ++change.polygons;
+      ++quads;
+      continue;
+    }
     if (!QuadPoints(before, f, p) || !QuadPoints(after, f, q)) continue;
     ++quads;
     const std::array<double, 4> a = QuadCornerAngles(p[0], p[1], p[2], p[3]);

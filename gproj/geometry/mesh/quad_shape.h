@@ -98,10 +98,13 @@ QuadShapeSummary Summarize(const std::vector<QuadShape>& shapes);
 
 // How much the quads' corner angles changed between two meshes of one connectivity: a large
 // change means the input was far from the asked net type.
+// Polygons of 5 or more corners count as quads do (their corner angles as polygon_shape.h
+// measures them).
 struct ShapeChange {
   double threshold_deg = 0.0;
-  int quads_changed = 0;       // quads with a corner angle changed by > threshold
-  double share_changed = 0.0;  // quads_changed / #quads
+  int quads_changed = 0;       // quads (and polygons) with a corner angle changed by > threshold
+  double share_changed = 0.0;  // quads_changed / #quads (and polygons)
+  int polygons = 0;            // faces of 5 or more corners compared
   double max_corner_change_deg = 0.0;
 };
 ShapeChange CompareCornerAngles(const PolyMesh& before, const PolyMesh& after,

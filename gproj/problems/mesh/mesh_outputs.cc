@@ -55,9 +55,10 @@ std::optional<std::string> FarFromInputWarning(const std::string& target, const 
   if (!(change.share_changed > 0.05 || max_displacement > 0.02)) return std::nullopt;
   char text[512];
   std::snprintf(text, sizeof(text),
-                "the input is far from %s: %.1f%% of the quads changed a corner angle by more "
+                "the input is far from %s: %.1f%% of the %s changed a corner angle by more "
                 "than %g deg (at most %.1f deg), max displacement %.2f%% of the bbox diagonal",
-                target.c_str(), 100.0 * change.share_changed, change.threshold_deg,
+                target.c_str(), 100.0 * change.share_changed,
+                change.polygons > 0 ? "faces" : "quads", change.threshold_deg,
                 change.max_corner_change_deg, 100.0 * max_displacement);
   return std::string(text);
 }

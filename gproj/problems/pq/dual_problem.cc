@@ -79,7 +79,8 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
     result.facts["tangent_planes"] = {{"vertices", stats.tangent_plane_vertices},
                                       {"planes_dependent", stats.rank_deficient},
                                       {"not_well_conditioned", stats.held_within_reach},
-                                      {"left_at_centroid", stats.centroid_fallbacks}};
+                                      {"left_at_centroid", stats.centroid_fallbacks},
+                                      {"coincident_at_centroid", stats.coincident}};
   std::snprintf(line, sizeof(line), "dual: %zu vertices, %zu faces (%s)", dual.n_vertices(),
                 dual.n_faces(), FaceCountsText(summary.faces_by_corners).c_str());
   result.Info(line);
@@ -87,9 +88,10 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
     std::snprintf(line, sizeof(line),
                   "tangent planes: %d vertices where the three planes meet (%d where they share "
                   "a line or plane); %d not well conditioned (the planes meet beyond the "
-                  "triangle's longest edge: nearest them within it); %d at the centroid",
+                  "triangle's longest edge: nearest them within it); %d at the centroid (%d "
+                  "where two neighbours' planes meet in one point)",
                   stats.tangent_plane_vertices, stats.rank_deficient, stats.held_within_reach,
-                  stats.centroid_fallbacks);
+                  stats.centroid_fallbacks + stats.coincident, stats.coincident);
     result.Info(line);
   }
   std::snprintf(line, sizeof(line),

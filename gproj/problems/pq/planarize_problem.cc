@@ -172,8 +172,10 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
                   final_measures.max_concyclicity);
     result.Info(line);
   }
-  AddPanelMessages(options.circular ? "a circular mesh" : "a PQ (conjugate) mesh", input, mesh,
-                   10.0, final_measures.max_displacement, &result);
+  AddPanelMessages(options.circular ? "a circular mesh"
+                   : all_quads      ? "a PQ (conjugate) mesh"
+                                    : "a planar polygon mesh",
+                   input, mesh, 10.0, final_measures.max_displacement, &result);
   if (!result.report.converged) AddShortfalls(pq, all_quads ? "quads" : "faces", &result);
   return result;
 }

@@ -189,7 +189,7 @@ TEST(DualMeshTest, TangentPlanesThatShareALineOrCoincide) {
   const PolyMesh trough = Lattice(12, 0.1, kTrough);
   const PolygonMeshSummary s = SummarizePolygons(DualMesh(trough, tangent, &stats));
   const PolygonMeshSummary c = SummarizePolygons(DualMesh(trough, {}));
-  EXPECT_GT(stats.rank_deficient, 0);    // inside: the planes share the ruling
+  EXPECT_GT(stats.rank_deficient, 0);     // inside: the planes share the ruling
   EXPECT_GT(stats.held_within_reach, 0);  // along the boundary: they meet far away
   EXPECT_LT(s.max_planarity, c.max_planarity);
   const PolyMesh flat = Lattice(8, 0.1, kFlat);
@@ -198,6 +198,34 @@ TEST(DualMeshTest, TangentPlanesThatShareALineOrCoincide) {
   ASSERT_EQ(at_planes.n_vertices(), at_centroids.n_vertices());
   for (auto v : at_planes.vertices())
     EXPECT_LT((at_planes.point(v) - at_centroids.point(v)).norm(), 1e-12);
+}
+
+// On a sphere, the tangent planes of a triangle's vertices meet above its circumcentre, and the
+// two right triangles of a split square (nearly) share theirs: their dual vertices would
+// (nearly) coincide. Those stay at their centroids, so no dual edge has (nearly) no length.
+TEST(DualMeshTest, TangentPlanesMeetingInOnePointLeaveNoZeroLengthEdge) {
+  PolyMesh mesh;
+  const int n = 10;
+  std::vector<PolyMesh::VertexHandle> v;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) {
+      const double x = -0.5 + static_cast<double>(i) / n, y = -0.5 + static_cast<double>(j) / n;
+      v.push_back(mesh.add_vertex(PolyMesh::Point(x, y, kBowl(x, y))));
+    }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const int a = i * (n + 1) + j, b = a + n + 1;
+      mesh.add_face(v[a], v[b], v[b + 1]);
+      mesh.add_face(v[a], v[b + 1], v[a + 1]);
+    }
+  DualOptions tangent;
+  tangent.start = DualStart::kTangentPlanes;
+  DualStats stats;
+  const PolyMesh dual = DualMesh(mesh, tangent, &stats);
+  EXPECT_GT(stats.coincident, 0);
+  double shortest = INFINITY;
+  for (auto e : dual.edges()) shortest = std::min(shortest, dual.calc_edge_length(e));
+  EXPECT_GT(shortest, 0.005 / n);
 }
 
 // Inputs it cannot take: a face that is not a triangle (named), no interior vertex.
