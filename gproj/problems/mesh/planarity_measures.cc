@@ -32,8 +32,10 @@ PlanarityMeasures MeasurePlanarity(const PolyMesh& mesh, const PolyMesh& referen
     const int n = static_cast<int>(mesh.valence(f));
     if (n < 4) continue;
     QuadShape shape;
-    if (n == 4) {
-      const std::vector<Eigen::Vector3d> p = FacePoints(mesh, f);
+    if (n == 4) {  // no allocation: measured at every iterate
+      Eigen::Vector3d p[4];
+      int k = 0;
+      for (auto v : mesh.fv_range(f)) p[k++] = ToEigen(mesh.point(v));
       shape = MeasureQuadShape(p[0], p[1], p[2], p[3]);
     } else {
       const std::vector<Eigen::Vector3d> p = FacePoints(mesh, f);
