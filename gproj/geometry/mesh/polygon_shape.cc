@@ -10,6 +10,20 @@
 
 namespace gproj {
 
+namespace {
+
+// The direction of the polygon's vector area Σ p_i × p_{i+1}: the normal its corners' signs are
+// read against, as the corner bounds read them (panel_validity.h), so that a polygon the bounds
+// keep convex measures convex while it is not yet planar.
+Eigen::Vector3d VectorAreaNormal(const std::vector<Eigen::Vector3d>& p) {
+  const int n = static_cast<int>(p.size());
+  Eigen::Vector3d area = Eigen::Vector3d::Zero();
+  for (int i = 0; i < n; ++i) area += p[i].cross(p[(i + 1) % n]);
+  return area.norm() > 0.0 ? Eigen::Vector3d(area.normalized()) : Eigen::Vector3d::UnitZ();
+}
+
+}  // namespace
+
 Eigen::Vector3d PolygonNormal(const std::vector<Eigen::Vector3d>& p) {
   const int n = static_cast<int>(p.size());
   if (n < 3) return Eigen::Vector3d::UnitZ();
@@ -43,7 +57,7 @@ double PolygonPlanarity(const std::vector<Eigen::Vector3d>& p) {
 
 std::vector<double> PolygonCornerAngles(const std::vector<Eigen::Vector3d>& p) {
   const int n = static_cast<int>(p.size());
-  const Eigen::Vector3d normal = PolygonNormal(p);
+  const Eigen::Vector3d normal = VectorAreaNormal(p);
   std::vector<double> angles(n);
   for (int i = 0; i < n; ++i) {
     const Eigen::Vector3d a = p[(i + 1) % n] - p[i], b = p[(i + n - 1) % n] - p[i];
@@ -66,7 +80,7 @@ PolygonShape MeasurePolygonShape(const std::vector<Eigen::Vector3d>& p) {
     return s;
   }
   s.planarity = PolygonPlanarity(p);
-  const Eigen::Vector3d normal = PolygonNormal(p);
+  const Eigen::Vector3d normal = VectorAreaNormal(p);
   s.min_angle_deg = 360.0;
   for (int i = 0; i < n; ++i) {
     const Eigen::Vector3d a = p[(i + 1) % n] - p[i], b = p[(i + n - 1) % n] - p[i];

@@ -8,9 +8,11 @@
 //   4 corners: the distance between the diagonal lines (DiagonalDistance, quad_shape.h);
 //   5 or more: twice the largest distance of a corner from the least-squares plane (the same as
 //              the diagonal distance for a skew quad whose diagonals bisect each other).
-// Corner i is measured in that plane: its signed sine
-//   ((p_{i+1} − p_i) × (p_{i−1} − p_i)) · N / (|p_{i+1} − p_i| |p_{i−1} − p_i|)
-// is negative at a reflex corner, so a polygon is convex when every corner's is positive.
+// Corner i's signed sine
+//   ((p_{i+1} − p_i) × (p_{i−1} − p_i)) · A / (|p_{i+1} − p_i| |p_{i−1} − p_i| |A|),
+// A = Σ p_k × p_{k+1} the vector area (the least-squares normal's direction once the polygon is
+// planar; the corner bounds of panel_validity.h read the same sines), is negative at a reflex
+// corner, so a polygon is convex when every corner's is positive.
 
 #include <Eigen/Core>
 #include <string>
