@@ -125,7 +125,7 @@ RunInputs ReadInputs(const ProblemSpec& spec, const ProblemArgs& args) {
       read.surfaces[input.name] = ReadBSplineJson(path);
       continue;
     }
-    if (input.kind == InputKind::kText) {
+    if (input.kind == InputKind::kText || input.kind == InputKind::kJson) {
       read.texts[input.name] = ReadTextFile(path);
       continue;
     }
@@ -232,6 +232,7 @@ void AddPaths(CLI::App* cmd, const ProblemSpec& spec, ProblemArgs* args) {
   for (const InputSpec& input : spec.inputs) {
     const std::string format = input.kind == InputKind::kCurve     ? " (text: x y z per line)"
                                : input.kind == InputKind::kBSpline ? " (.json)"
+                               : input.kind == InputKind::kJson    ? " (.json)"
                                : input.kind == InputKind::kText    ? " (a text file)"
                                : input.kind == InputKind::kVertexIds
                                    ? ": a text file of ids separated by spaces or newlines, '#' "

@@ -257,6 +257,9 @@ nlohmann::json HopsDescription(const ProblemSpec& spec) {
       case InputKind::kText:
         inputs.push_back(Param(input.name, input.doc + " (the file's text)", "Text", at_least, 1));
         break;
+      case InputKind::kJson:
+        inputs.push_back(Param(input.name, input.doc + " (the JSON text)", "Text", at_least, 1));
+        break;
     }
   }
   for (const OptionSpec& option : spec.options) inputs.push_back(OptionParam(option));

@@ -276,6 +276,13 @@ RunRequest ParseRunRequest(const nlohmann::json& body, const Registry& registry,
             Refuse(field, std::string("expected the text as a string, not ") + TypeName(value));
           request.inputs.texts[input.name] = value.get<std::string>();
           break;
+        case InputKind::kJson:
+          if (!value.is_object() && !value.is_string())
+            Refuse(field,
+                   std::string("expected a JSON object (or its text), not ") + TypeName(value));
+          request.inputs.texts[input.name] =
+              value.is_string() ? value.get<std::string>() : DumpJson(value);
+          break;
       }
     }
   }

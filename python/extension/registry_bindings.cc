@@ -127,14 +127,32 @@ std::string TextFromPython(const std::string& name, const py::handle& value) {
   return value.cast<std::string>();
 }
 
+// A JSON input: a dict (or list) converted, or a str holding the JSON text.
+std::string JsonFromPython(const std::string& name, const py::handle& value) {
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (!py::isinstance<py::dict>(value))
+    TypeError(name + ": expected a dict, its JSON text or a path, not " + TypeNameOf(value));
+  return PythonToJson(value).dump();
+}
+
+// Whether a str is JSON text rather than a path: its first non-blank character opens an object
+// or an array.
+bool LooksLikeJson(const std::string& text) {
+  const std::size_t first = text.find_first_not_of(" \t\r\n");
+  return first != std::string::npos && (text[first] == '{' || text[first] == '[');
+}
+
 // The path a value names: an os.PathLike, or a str for the kinds no str can be otherwise (a
-// curve, a B-spline, vertex ids); empty for anything else.
+// curve, a B-spline, vertex ids) and for a JSON input a str that is not JSON text; empty for
+// anything else.
 std::string PathOf(const InputSpec& input, const py::handle& value) {
   const py::module_ os = py::module_::import("os");
   const bool path_like = py::isinstance(value, os.attr("PathLike"));
   if (!path_like && !py::isinstance<py::str>(value)) return "";
+  if (input.kind == InputKind::kJson && !path_like && LooksLikeJson(value.cast<std::string>()))
+    return "";
   if (input.kind != InputKind::kCurve && input.kind != InputKind::kBSpline &&
-      input.kind != InputKind::kVertexIds)
+      input.kind != InputKind::kVertexIds && input.kind != InputKind::kJson)
     return "";
   const py::object path = os.attr("fspath")(value);
   if (!py::isinstance<py::str>(path))
@@ -153,6 +171,8 @@ void ReadInput(const InputSpec& input, const py::handle& value, int num_vertices
       inputs->curves[input.name] = ReadPoints(path, 2);
     else if (input.kind == InputKind::kBSpline)
       inputs->surfaces[input.name] = ReadBSplineJson(path);
+    else if (input.kind == InputKind::kJson)
+      inputs->texts[input.name] = ReadTextFile(path);
     else
       inputs->vertex_ids[input.name] = ReadVertexIds(path, num_vertices);
     inputs->sources[input.name] = path;
@@ -167,6 +187,8 @@ void ReadInput(const InputSpec& input, const py::handle& value, int num_vertices
     inputs->surfaces[input.name] = BSplineFromPython(input.name, value);
   else if (input.kind == InputKind::kText)
     inputs->texts[input.name] = TextFromPython(input.name, value);
+  else if (input.kind == InputKind::kJson)
+    inputs->texts[input.name] = JsonFromPython(input.name, value);
   else
     MeshFromPython(input, value, weld, inputs);
   inputs->sources[input.name] = input.name;

@@ -568,6 +568,60 @@ Raises TypeError or ValueError naming the argument for bad arguments; warns (Gpr
 """
     ...
 
+class DarbouxOptions:
+    """The options of darboux()."""
+    centre: Optional[Sequence[float]]
+    """(numbers, 3 values) Centre of the inversion, off the H-net (default: half the H-net's bounding-box diagonal off its box's centre along the mean normal). Nearer the surface, the skin's curvature changes more (regions of K > 0 appear)."""
+    radius: Optional[float]
+    """(number, > 0) Radius of the inversion (default: the distance from the centre to the H-net's box centre, which then maps to itself)."""
+    samples: int
+    """(int, >= 2, <= 200) Samples per patch edge of the surface output and of the measures."""
+    def __init__(
+        self,
+        *,
+        centre: Optional[Sequence[float]] = None,
+        radius: Optional[float] = None,
+        samples: int = 8,
+    ) -> None: ...
+
+class DarbouxResult(Result):
+    """The result of darboux(): the skin: the inversion, the H-net, and per patch its rational biquadratic control points."""
+    output: Optional[Dict[str, Any]]
+    surface: Optional[Mesh]
+    """a welded triangle mesh sampling the skin (None unless asked in outputs=)"""
+    picture: Optional[str]
+    """a shaded picture coloured by the sign of the Gaussian curvature (None unless asked in outputs=)"""
+
+def darboux(
+    hnet: Union[Mapping[str, Any], str, os.PathLike[str]],
+    *,
+    options: Optional[DarbouxOptions] = None,
+    centre: Optional[Sequence[float]] = None,
+    radius: Optional[float] = None,
+    samples: int = 8,
+    outputs: Sequence[str] = (),
+    callback: Optional[Callable[[Dict[str, Any]], Optional[bool]]] = None,
+) -> DarbouxResult:
+    """A smooth skin of Darboux cyclide patches (004 §4): the image of an H-net under an inversion, each rational bilinear patch mapped exactly to a rational biquadratic one, its rulings to circles through the centre, the tangent-plane continuity kept; the Gaussian curvature may change sign (K > 0 regions from a K < 0 H-net).
+
+Arguments:
+    hnet: H-net (the JSON gproj hnet writes).
+    options: a DarbouxOptions; keyword arguments override its fields.
+    centre: (numbers, 3 values) Centre of the inversion, off the H-net (default: half the H-net's bounding-box diagonal off its box's centre along the mean normal). Nearer the surface, the skin's curvature changes more (regions of K > 0 appear).
+    radius: (number, > 0) Radius of the inversion (default: the distance from the centre to the H-net's box centre, which then maps to itself).
+    samples: (int, >= 2, <= 200) Samples per patch edge of the surface output and of the measures.
+    outputs: optional outputs to make as well (surface, picture); each is an attribute of the result.
+    callback: called with each iteration record (the keys of report.history's entries); returning False stops the run (status USER_ABORT). Ctrl-C stops it too and raises KeyboardInterrupt.
+
+Returns a DarbouxResult: `report` (a Report: status, converged, iterations, history, initial and final measures, options), `output` (a dict): the skin: the inversion, the H-net, and per patch its rational biquadratic control points, and
+    surface: a welded triangle mesh sampling the skin (None unless asked in outputs=)
+    picture: a shaded picture coloured by the sign of the Gaussian curvature (None unless asked in outputs=)
+When the run fails numerically, the result's mesh and outputs are None and report.status is FAILURE.
+
+Raises TypeError or ValueError naming the argument for bad arguments; warns (GprojWarning) when the input is far from the asked net or the result needs attention.
+"""
+    ...
+
 class FieldOptions:
     """The options of field()."""
     directions: Literal['asymptotic', 'principal']

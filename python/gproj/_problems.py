@@ -48,12 +48,14 @@ _KEYWORD_INPUT_TYPES = {
     "curve": "Union[ArrayLike, str, os.PathLike[str], None]",
     "bspline": "Union[Mapping[str, Any], str, os.PathLike[str], None]",
     "text": "Union[str, os.PathLike[str], None]",
+    "json": "Union[Mapping[str, Any], str, os.PathLike[str], None]",
 }
 
 _POSITIONAL_INPUT_TYPES = {
     "curve": "Union[ArrayLike, str, os.PathLike[str]]",
     "bspline": "Union[Mapping[str, Any], str, os.PathLike[str]]",
     "text": "Union[str, os.PathLike[str]]",
+    "json": "Union[Mapping[str, Any], str, os.PathLike[str]]",
 }
 
 _OUTPUT_TYPES = {"mesh": "Optional[Mesh]", "json": "Optional[Dict[str, Any]]"}
@@ -190,6 +192,7 @@ def _input_doc(i: Mapping[str, Any]) -> str:
         "curve": "an (n, 3) array of points, or the path of a text file of x y z lines",
         "bspline": "a dict, the B-spline's JSON, or the path of its .json file",
         "text": "a path (pathlib.Path or str naming a file) or the file's text",
+        "json": "a dict (e.g. another run's output), its JSON text, or the path of its .json file",
     }.get(i["kind"], "a mesh (V, F)")
     return f"{what}. {i['doc']}."
 

@@ -356,7 +356,8 @@ def _input_form(kind: str) -> str:
             "vertex_ids": "list of vertex ids or the path of a file of ids",
             "curve": "list of [x, y, z] points or the path of a curve file",
             "bspline": "B-spline object or the path of its JSON file",
-            "text": "text file path"}.get(kind, "path")
+            "text": "text file path",
+            "json": "JSON object or the path of its .json file"}.get(kind, "path")
 
 
 def _input(where: str, item: Mapping[str, Any], value: Any, base: str) -> Any:
@@ -378,7 +379,7 @@ def _input(where: str, item: Mapping[str, Any], value: Any, base: str) -> Any:
         if not value or not all(_is_point(p) for p in value):
             _fail(where, key, "expected a list of points [x, y, z]")
         return value
-    if kind == "bspline" and isinstance(value, dict):
+    if kind in ("bspline", "json") and isinstance(value, dict):
         return value
     _fail(where, key, f"expected a {_input_form(kind)}, not {_json_type(value)}")
 

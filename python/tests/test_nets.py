@@ -1,5 +1,6 @@
 """anet and hnet (gproj::nets) against the command line; hnet's callback stops both stages."""
 import json
+import pathlib
 
 import numpy as np
 import pytest
@@ -90,3 +91,42 @@ def test_hnet_callback_returning_false_stops_the_whole_run():
     assert report["termination"].startswith("USER_ABORT") and result.status == "USER_ABORT"
     assert not report["converged"] and not report["failed"] and not result.converged
     assert report["rounds"] == [] and result.output is None
+
+
+def test_darboux_takes_an_hnet_result_its_json_or_its_file_like_the_command_line(cli):
+    V, F = gproj.grid(nu=7, nv=7, surface="hyperboloid", noise=0.02)
+    hnet = gproj.hnet(V, F).output
+    path = cli.path("h.json")
+    with open(path, "w") as f:
+        json.dump(hnet, f)
+    cli.run("darboux", path, "--centre", "0,0,0", "--radius", 1.1, "-o", cli.path("s.json"),
+            "--report", cli.path("r.json"))
+    for given in (hnet, json.dumps(hnet), path, pathlib.Path(path)):
+        result = gproj.darboux(given, centre=[0, 0, 0], radius=1.1)
+        assert result.converged and isinstance(result.output, dict)
+        report = result.report.to_dict()
+        expected = cli.read_report("r.json")
+        assert_reports_equal(report["measures"], expected["measures"])
+        assert report["inversion"] == expected["inversion"]
+    with open(cli.path("s.json")) as f:
+        assert_reports_equal(result.output, json.load(f))
+    m = result.report["measures"]
+    assert m["k_positive_samples"] > 0 and m["k_negative_samples"] > 0
+    assert m["max_circle_deviation"] < 1e-10 and m["max_tangent_angle_change_deg"] < 1e-8
+    surface = gproj.darboux(hnet, outputs=["surface"], samples=3).surface
+    assert isinstance(surface, gproj.Mesh) and surface.vertices.shape == (
+        49 + 84 * 2 + 36 * 4, 3)
+
+
+def test_darboux_refuses_what_cannot_make_a_skin():
+    V, F = gproj.grid(nu=5, nv=5, surface="hyperboloid", noise=0.0)
+    hnet = gproj.hnet(V, F).output
+    with pytest.raises(ValueError, match="centre: .* unbounded"):
+        gproj.darboux(hnet, centre=hnet["vertices"][12])
+    with pytest.raises(ValueError, match=r"radius: -2 is not > 0"):
+        gproj.darboux(hnet, radius=-2)
+    broken = dict(hnet, weights=hnet["weights"][1:])
+    with pytest.raises(ValueError, match="hnet: \"weights\" has 15 rows for 16 faces"):
+        gproj.darboux(broken)
+    with pytest.raises(TypeError, match="hnet: expected a dict, its JSON text or a path, not int"):
+        gproj.darboux(3)

@@ -151,5 +151,55 @@ TEST(RunRequestTest, ResultJsonKeepsTheVertexOrder) {
   EXPECT_EQ(json["output"]["faces"], GridRequest()["inputs"]["mesh"]["faces"]);
 }
 
+// A JSON input (darboux's H-net) as an object or as its text: the same skin; anything else is
+// refused naming the field, and a broken H-net names the field and key.
+TEST(RunRequestTest, JsonInputAsObjectOrText) {
+  RunContext context;
+  context.outputs = {"output"};
+  const RunResult grid =
+      RunProblem(*Registry::Builtin().Find("grid"), {},
+                 {{"surface", "hyperboloid"}, {"nu", 7}, {"nv", 7}, {"noise", 0.02}}, context);
+  const nlohmann::json hnet_body = {{"problem", "hnet"},
+                                    {"inputs", {{"mesh", MeshToJson(grid.meshes.at("output"))}}}};
+  RunRequest hnet_request = ParseRunRequest(hnet_body, Registry::Builtin(), {});
+  context.outputs = hnet_request.outputs;
+  const RunResult hnet =
+      RunProblem(*hnet_request.spec, hnet_request.inputs, hnet_request.options, context);
+  ASSERT_TRUE(hnet.report.converged) << hnet.report.termination;
+  const nlohmann::json object = nlohmann::json::parse(hnet.texts.at("output"));
+  std::string skins[2];
+  for (int k = 0; k < 2; ++k) {
+    const nlohmann::json body = {
+        {"problem", "darboux"},
+        {"inputs", {{"hnet", k == 0 ? object : nlohmann::json(object.dump())}}},
+        {"options", {{"centre", {0.0, 0.0, 0.0}}, {"radius", 1.0}}}};
+    RunRequest request = ParseRunRequest(body, Registry::Builtin(), {});
+    context.outputs = request.outputs;
+    const RunResult result = RunProblem(*request.spec, request.inputs, request.options, context);
+    ASSERT_TRUE(result.report.converged) << result.report.termination;
+    EXPECT_GT(result.facts["measures"]["k_positive_samples"].get<int>(), 0);
+    skins[k] = result.texts.at("output");
+    const nlohmann::json json = ResultJson(*request.spec, result);
+    EXPECT_EQ(json.at("output").at("patches").size(), object["faces"].size());
+  }
+  EXPECT_EQ(skins[0], skins[1]);
+  nlohmann::json body = {{"problem", "darboux"}, {"inputs", {{"hnet", 3}}}};
+  EXPECT_NE(ErrorOf(body).find("inputs.hnet: expected a JSON object (or its text), not a number"),
+            std::string::npos)
+      << ErrorOf(body);
+  nlohmann::json broken = object;
+  broken["faces"][2] = {0, 1};
+  body["inputs"]["hnet"] = broken;
+  RunRequest request = ParseRunRequest(body, Registry::Builtin(), {});
+  try {
+    RunProblem(*request.spec, request.inputs, request.options, context);
+    ADD_FAILURE() << "a broken H-net ran";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("inputs.hnet: faces[2]: expected four vertex ids"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace gproj::service

@@ -9,6 +9,7 @@ const Registry& Registry::Builtin() {
     r.Add(pq::DualSpec());
     r.Add(nets::ANetSpec());
     r.Add(nets::HNetSpec());
+    r.Add(nets::DarbouxSpec());
     r.Add(remesh::FieldSpec());
     r.Add(remesh::RemeshSpec());
     r.Add(circular::InvertSpec());

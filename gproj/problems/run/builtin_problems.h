@@ -12,8 +12,9 @@ ProblemSpec DualSpec();       // gproj/problems/pq/dual_problem.cc
 }  // namespace pq
 
 namespace nets {
-ProblemSpec ANetSpec();  // gproj/problems/nets/anet_problem.cc
-ProblemSpec HNetSpec();  // gproj/problems/nets/hnet_problem.cc
+ProblemSpec ANetSpec();     // gproj/problems/nets/anet_problem.cc
+ProblemSpec HNetSpec();     // gproj/problems/nets/hnet_problem.cc
+ProblemSpec DarbouxSpec();  // gproj/problems/nets/darboux_problem.cc
 }  // namespace nets
 
 namespace remesh {

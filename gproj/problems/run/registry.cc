@@ -36,6 +36,8 @@ const char* InputKindName(InputKind kind) {
       return "bspline";
     case InputKind::kText:
       return "text";
+    case InputKind::kJson:
+      return "json";
   }
   return "?";
 }
@@ -317,6 +319,7 @@ std::string ReferenceMarkdown(const ProblemSpec& spec) {
                    std::string(input.kind == InputKind::kCurve     ? "(n, 3) array or path"
                                : input.kind == InputKind::kBSpline ? "dict or path"
                                : input.kind == InputKind::kText    ? "str (text) or path"
+                               : input.kind == InputKind::kJson    ? "dict, JSON text or path"
                                                                    : "ids, mask or path");
     md += "| `" + input.name + "` | " + InputKindName(input.kind) + " | " +
           (input.IsPositional() ? "positional path" : "`" + FlagOf(input.name) + " FILE`") + " | " +

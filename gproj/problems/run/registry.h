@@ -33,8 +33,11 @@ enum class InputKind {
   kBSpline,    // a tensor-product B-spline surface (the JSON of docs/formats.md; a dict in Python)
   kText,       // a text document the run parses (a file on the command line; a str in Python),
                // its messages naming the file and line
+  kJson,       // a JSON document the run parses, e.g. an H-net (a .json file on the command line;
+               // a dict, its JSON text or a path in Python; an object or its text in the
+               // service), held as text in RunInputs::texts
 };
-// "quad_mesh", "mesh", "vertex_ids", "curve", "bspline", "text"
+// "quad_mesh", "mesh", "vertex_ids", "curve", "bspline", "text", "json"
 const char* InputKindName(InputKind kind);
 
 struct InputSpec {
@@ -81,7 +84,7 @@ struct RunInputs {
   std::map<std::string, std::vector<int>> vertex_ids;
   std::map<std::string, std::vector<Eigen::Vector3d>> curves;
   std::map<std::string, BSplineSurface> surfaces;
-  std::map<std::string, std::string> texts;  // inputs of kind kText
+  std::map<std::string, std::string> texts;  // inputs of kind kText and kJson
   // Meshes welded as read (MeshRequirements::weld): input vertex -> vertex of the mesh.
   std::map<std::string, std::vector<int>> weld_maps;
   // Where each input came from ("in.obj", "V"), for messages.
