@@ -22,6 +22,11 @@ echo "== H-net: smooth skin of rational bilinear patches from a jittered asympto
   -o out/demo/enneper_hnet.json --surface-mesh out/demo/enneper_hnet_surface.obj --samples 6 \
   --picture out/demo/enneper_hnet.svg --report out/demo/enneper_hnet_report.json
 echo
+echo "== Darboux cyclide skin: that H-net under an inversion (004 §4), now with regions of K > 0 =="
+./build/gproj darboux out/demo/enneper_hnet.json -o out/demo/enneper_skin.json \
+  --surface out/demo/enneper_skin.obj --samples 4 --picture out/demo/enneper_skin.svg \
+  --report out/demo/enneper_skin_report.json
+echo
 echo "== Curvature field of a shipped triangle mesh (004 §3.1): asymptotic directions, singularities =="
 ./build/gproj field examples/data/monkey_saddle_tri.obj -o out/demo/monkey_saddle_field.obj \
   --picture out/demo/monkey_saddle_field.svg --report out/demo/monkey_saddle_field_report.json
@@ -132,6 +137,8 @@ echo "  enneper_hnet.json             H-net: vertices, quads, four corner weight
 echo "  enneper_hnet_surface.obj      the smooth patchwork sampled as a triangle mesh"
 echo "  enneper_hnet.svg              a shaded picture of it (open in a web browser)"
 echo "  enneper_hnet_report.json      A-net and H-net history, tangent-plane angles, weights"
+echo "  enneper_skin.json, .obj, .svg its image under an inversion: rational biquadratic Darboux"
+echo "                                cyclide patches, sampled, and pictured by the sign of K"
 echo "  monkey_saddle_field.obj, .svg asymptotic directions of a triangle mesh (OBJ segments); its report"
 echo "                                lists the singularities (one, index -1/2, at the flat point)"
 echo "  monkey_saddle_quads.obj, .svg  the triangle mesh remeshed into quads along its asymptotic"

@@ -575,7 +575,7 @@ class DarbouxOptions:
     radius: Optional[float]
     """(number, > 0) Radius of the inversion (default: the distance from the centre to the H-net's box centre, which then maps to itself)."""
     samples: int
-    """(int, >= 2, <= 200) Samples per patch edge of the surface output and of the measures."""
+    """(int, >= 2, <= 200) Samples per patch edge of the surface output, the measures and the picture (at most 6 there)."""
     def __init__(
         self,
         *,
@@ -609,7 +609,7 @@ Arguments:
     options: a DarbouxOptions; keyword arguments override its fields.
     centre: (numbers, 3 values) Centre of the inversion, off the H-net (default: half the H-net's bounding-box diagonal off its box's centre along the mean normal). Nearer the surface, the skin's curvature changes more (regions of K > 0 appear).
     radius: (number, > 0) Radius of the inversion (default: the distance from the centre to the H-net's box centre, which then maps to itself).
-    samples: (int, >= 2, <= 200) Samples per patch edge of the surface output and of the measures.
+    samples: (int, >= 2, <= 200) Samples per patch edge of the surface output, the measures and the picture (at most 6 there).
     outputs: optional outputs to make as well (surface, picture); each is an attribute of the result.
     callback: called with each iteration record (the keys of report.history's entries); returning False stops the run (status USER_ABORT). Ctrl-C stops it too and raises KeyboardInterrupt.
 

@@ -33,7 +33,8 @@ const OptionSchema<DarbouxSettings>& Schema() {
                        [](S& x) -> double& { return x.radius; })
         .Positive();
     s.Field<int>("samples", OptionType::kInt,
-                 "Samples per patch edge of the surface output and of the measures",
+                 "Samples per patch edge of the surface output, the measures and the picture (at "
+                 "most 6 there)",
                  [](S& x) -> int& { return x.samples; })
         .Range(2, 200);
     return s;
@@ -147,7 +148,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
     std::snprintf(line, sizeof(line),
                   "Darboux cyclide skin: %zu patches, K > 0 at %d of %d samples",
                   skin.patches.size(), m.skin_k_positive, m.curvature_samples);
-    result.texts["picture"] = DarbouxSkinSvg(skin, line);
+    result.texts["picture"] = DarbouxSkinSvg(skin, line, settings.samples);
   }
   return result;
 }
