@@ -277,6 +277,8 @@ class AnetOptions:
     """(bool) Every boundary vertex stays where it is."""
     glide_boundary: bool
     """(bool) Boundary vertices slide along the input's boundary (they stay on it to rounding)."""
+    net: Literal['edges', 'diagonal']
+    """(choice) Whose stars must be planar: edges (each vertex with its neighbours: the mesh is the A-net) or diagonal (each vertex with the corners opposite it in its quads: the mesh's two diagonal meshes are A-nets, for meshes whose diagonals follow the asymptotic directions; the quads, their bounds and fairness stay the mesh's own)."""
     def __init__(
         self,
         *,
@@ -302,6 +304,7 @@ class AnetOptions:
         allow_folds: bool = False,
         fix_boundary: bool = False,
         glide_boundary: bool = False,
+        net: Literal['edges', 'diagonal'] = 'edges',
     ) -> None: ...
 
 class AnetResult(Result):
@@ -344,6 +347,7 @@ def anet(
     allow_folds: bool = False,
     fix_boundary: bool = False,
     glide_boundary: bool = False,
+    net: Literal['edges', 'diagonal'] = 'edges',
     outputs: Sequence[str] = (),
     callback: Optional[Callable[[Dict[str, Any]], Optional[bool]]] = None,
 ) -> AnetResult:
@@ -378,6 +382,7 @@ Arguments:
     allow_folds: (bool) No corner-angle or default edge bounds: quads may turn non-convex or fold.
     fix_boundary: (bool) Every boundary vertex stays where it is.
     glide_boundary: (bool) Boundary vertices slide along the input's boundary (they stay on it to rounding).
+    net: (choice) Whose stars must be planar: edges (each vertex with its neighbours: the mesh is the A-net) or diagonal (each vertex with the corners opposite it in its quads: the mesh's two diagonal meshes are A-nets, for meshes whose diagonals follow the asymptotic directions; the quads, their bounds and fairness stay the mesh's own).
     outputs: optional outputs to make as well (picture, face_values, heatmap); each is an attribute of the result.
     callback: called with each iteration record (the keys of report.history's entries); returning False stops the run (status USER_ABORT). Ctrl-C stops it too and raises KeyboardInterrupt.
 
@@ -445,6 +450,10 @@ class HnetOptions:
     """(bool) Optimise meshes that are not simply connected (no exact extension exists in general): the vertices and the shape parameters are solved for together."""
     samples: int
     """(int, >= 1, <= 200) Samples per patch edge of the surface_mesh output."""
+    net: Literal['edges', 'diagonal']
+    """(choice) Which net to extend: edges (the mesh itself) or diagonal (one of the mesh's two diagonal meshes, for meshes whose diagonals follow the asymptotic directions: its edges are the quads' diagonals, its faces the rings of the other vertices; the H-net's vertices are the input's of one colour)."""
+    diagonal_colour: int
+    """(int, >= 0, <= 1) With net diagonal: which diagonal mesh, by the colour of its vertices (0: the one through vertex 0)."""
     def __init__(
         self,
         *,
@@ -474,6 +483,8 @@ class HnetOptions:
         frame_weight: float = 1.0,
         allow_not_simply_connected: bool = False,
         samples: int = 8,
+        net: Literal['edges', 'diagonal'] = 'edges',
+        diagonal_colour: int = 0,
     ) -> None: ...
 
 class HnetResult(Result):
@@ -518,6 +529,8 @@ def hnet(
     frame_weight: float = 1.0,
     allow_not_simply_connected: bool = False,
     samples: int = 8,
+    net: Literal['edges', 'diagonal'] = 'edges',
+    diagonal_colour: int = 0,
     outputs: Sequence[str] = (),
     callback: Optional[Callable[[Dict[str, Any]], Optional[bool]]] = None,
 ) -> HnetResult:
@@ -556,6 +569,8 @@ Arguments:
     frame_weight: (number, > 0) Weight of frame-point planarity.
     allow_not_simply_connected: (bool) Optimise meshes that are not simply connected (no exact extension exists in general): the vertices and the shape parameters are solved for together.
     samples: (int, >= 1, <= 200) Samples per patch edge of the surface_mesh output.
+    net: (choice) Which net to extend: edges (the mesh itself) or diagonal (one of the mesh's two diagonal meshes, for meshes whose diagonals follow the asymptotic directions: its edges are the quads' diagonals, its faces the rings of the other vertices; the H-net's vertices are the input's of one colour).
+    diagonal_colour: (int, >= 0, <= 1) With net diagonal: which diagonal mesh, by the colour of its vertices (0: the one through vertex 0).
     outputs: optional outputs to make as well (surface_mesh, picture); each is an attribute of the result.
     callback: called with each iteration record (the keys of report.history's entries); returning False stops the run (status USER_ABORT). Ctrl-C stops it too and raises KeyboardInterrupt.
 
@@ -1529,6 +1544,7 @@ def grid(
     c: float = 0.0,
     wave: float = 0.0,
     noise: float = 0.05,
+    diagonal: bool = False,
     seed: int = 1,
 ) -> Mesh:
     """A quad grid over [-1,1]^2 with every vertex moved by uniform noise: on z = a x^2 + b y^2 + c x y + wave sin(pi x) sin(pi y) (a test input for planarize), or an asymptotic net (hypar, hyperboloid, enneper; for anet and hnet) or a circular net (revolution; for the circular constructions).
@@ -1541,6 +1557,7 @@ def grid(
     c: (number, >= -1000000, <= 1000000) Coefficient of x y (paraboloid).
     wave: (number, >= -1000000, <= 1000000) Coefficient of sin(pi x) sin(pi y) (paraboloid).
     noise: (number, >= 0, <= 1000000) Noise amplitude as a fraction of the grid spacing (of the mean edge for the nets).
+    diagonal: (bool) Asymptotic nets only: the lattice turned by 45 degrees, so that the quads' diagonals (not their edges) follow the asymptotic lines (an input for anet --net diagonal).
     seed: (int, >= 0, <= 4294967295) Random seed.
 
 Returns a Mesh (V, F): (n, 3) float64 vertices and (m, 4) int32 faces.

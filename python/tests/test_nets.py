@@ -130,3 +130,26 @@ def test_darboux_refuses_what_cannot_make_a_skin():
         gproj.darboux(broken)
     with pytest.raises(TypeError, match="hnet: expected a dict, its JSON text or a path, not int"):
         gproj.darboux(3)
+
+
+def test_anet_on_the_diagonals_equals_the_command_line(cli):
+    V, F = gproj.grid(nu=11, nv=11, surface="hyperboloid", noise=0.05, diagonal=True)
+    result = compare_with_command_line(cli, "anet", V, F, {"net": "diagonal"},
+                                       ["--net", "diagonal"])
+    assert result.converged and result.report["net"] == "diagonal"
+    assert result.report.final["max_star_planarity"] <= 1e-9
+    assert result.report.final["non_convex_quads"] == 0
+    with pytest.raises(ValueError, match="net: 'diagonals' is not one of"):
+        gproj.anet(V, F, net="diagonals")
+
+
+def test_hnet_of_a_diagonal_mesh_names_its_input_vertices():
+    V, F = gproj.grid(nu=11, nv=11, surface="hyperboloid", noise=0.03, diagonal=True)
+    result = gproj.hnet(V, F, net="diagonal", diagonal_colour=1)
+    assert result.converged and result.report["net"] == "diagonal"
+    ids = result.output["input_vertices"]
+    assert len(ids) == len(result.output["vertices"]) and len(set(ids)) == len(ids)
+    moved = np.linalg.norm(np.array(result.output["vertices"]) - V[ids], axis=1)
+    assert moved.max() < 0.05
+    skin = gproj.darboux(result.output)
+    assert skin.converged and skin.report["measures"]["max_circle_deviation"] < 1e-10

@@ -1,5 +1,6 @@
 #include "gproj/geometry/mesh/parametric_grid.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -9,10 +10,19 @@ namespace gproj {
 PolyMesh MakeParametricGrid(const std::function<Eigen::Vector3d(double, double)>& f,
                             const ParametricGridOptions& o) {
   std::vector<Eigen::Vector3d> points;
+  const double ic = 0.5 * (o.nu - 1), jc = 0.5 * (o.nv - 1);
+  const double steps = std::max(o.nu, o.nv) - 1;
   for (int i = 0; i < o.nu; ++i)
-    for (int j = 0; j < o.nv; ++j)
-      points.push_back(
-          f(o.s0 + (o.s1 - o.s0) * i / (o.nu - 1), o.t0 + (o.t1 - o.t0) * j / (o.nv - 1)));
+    for (int j = 0; j < o.nv; ++j) {
+      if (o.diagonal) {
+        const double a = (i - ic + j - jc) / (2.0 * steps), b = (i - ic - j + jc) / (2.0 * steps);
+        points.push_back(
+            f(0.5 * (o.s0 + o.s1) + (o.s1 - o.s0) * a, 0.5 * (o.t0 + o.t1) + (o.t1 - o.t0) * b));
+      } else {
+        points.push_back(
+            f(o.s0 + (o.s1 - o.s0) * i / (o.nu - 1), o.t0 + (o.t1 - o.t0) * j / (o.nv - 1)));
+      }
+    }
   double edge_sum = 0.0;
   int edges = 0;
   for (int i = 0; i < o.nu; ++i)

@@ -17,6 +17,11 @@ struct ParametricGridOptions {
   // Each vertex moves by a uniform random vector in [−jitter·h, jitter·h]³, h the mean edge.
   double jitter = 0.0;
   uint32_t seed = 1;
+  // The lattice turned by 45°: vertex (i, j) at s = s_c + (i − i_c + j − j_c) δs / 2,
+  // t = t_c + (i − i_c − j + j_c) δt / 2 about the rectangle's centre (i_c = (nu − 1) / 2, δ the
+  // range over max(nu, nv) − 1), so that the quads' diagonals follow the s and t lines (a
+  // diamond of the rectangle, its tips at the rectangle's sides when nu = nv).
+  bool diagonal = false;
 };
 
 // Vertex (i, j) = f(s_i, t_j) has index i * nv + j; faces (i, j), (i+1, j), (i+1, j+1), (i, j+1).

@@ -13,6 +13,7 @@ namespace {
 
 struct GridSettings {
   std::string surface = "paraboloid";
+  bool diagonal = false;
   QuadGridOptions grid = [] {
     QuadGridOptions g;
     g.noise = 0.05;
@@ -51,6 +52,11 @@ const OptionSchema<GridSettings>& Schema() {
                     "nets)",
                     [](S& x) -> double& { return x.grid.noise; })
         .Range(0.0, 1e6);
+    s.Field<bool>("diagonal", OptionType::kBool,
+                  "Asymptotic nets only: the lattice turned by 45 degrees, so that the quads' "
+                  "diagonals (not their edges) follow the asymptotic lines (an input for anet "
+                  "--net diagonal)",
+                  [](S& x) -> bool& { return x.diagonal; });
     s.Custom("seed", OptionType::kInt, "Random seed", 1, [](const nlohmann::json& v, S* x) {
        x->grid.seed = v.get<uint32_t>();
      }).Range(0, 4294967295.0);
@@ -65,6 +71,12 @@ RunResult Run(const RunInputs&, const nlohmann::json& values, const RunContext&)
   CheckMemory("`nu` " + std::to_string(s.grid.nu) + " `nv` " + std::to_string(s.grid.nv),
               400.0 * s.grid.nu * s.grid.nv);
   const Construction construction(ConstructionMethod::kClosedForm, "test grid");
+  const bool asymptotic = s.surface != "paraboloid" && s.surface != "revolution";
+  if (s.diagonal && !asymptotic)
+    throw InputError(
+        "`diagonal` applies to the asymptotic nets (hypar, hyperboloid, enneper), "
+        "not to `surface` " +
+        s.surface);
   RunResult result;
   if (s.surface == "paraboloid") {
     result.meshes["output"] = MakeQuadGrid(s.grid);
@@ -74,6 +86,7 @@ RunResult Run(const RunInputs&, const nlohmann::json& values, const RunContext&)
     o.nv = s.grid.nv;
     o.jitter = s.grid.noise;
     o.seed = s.grid.seed;
+    o.diagonal = s.diagonal;
     const auto surface = s.surface == "revolution"
                              ? std::function<Eigen::Vector3d(double, double)>(RevolutionSurface)
                              : AsymptoticSurface(s.surface);
@@ -81,8 +94,9 @@ RunResult Run(const RunInputs&, const nlohmann::json& values, const RunContext&)
   }
   result.report = construction.Finish({}, {}, true);
   char line[160];
-  std::snprintf(line, sizeof(line), "%s grid: %d x %d vertices, noise %g of the spacing",
-                s.surface.c_str(), s.grid.nu, s.grid.nv, s.grid.noise);
+  std::snprintf(line, sizeof(line), "%s grid%s: %d x %d vertices, noise %g of the spacing",
+                s.surface.c_str(), s.diagonal ? " (diagonals along the net)" : "", s.grid.nu,
+                s.grid.nv, s.grid.noise);
   result.Info(line);
   return result;
 }

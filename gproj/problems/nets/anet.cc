@@ -13,14 +13,25 @@
 #include "gproj/solver/ceres_adapter.h"
 
 namespace gproj::nets {
-namespace {
 
-// Neighbours of v in cyclic order.
-std::vector<int> Ring(const PolyMesh& mesh, PolyMesh::VertexHandle v) {
-  std::vector<int> ring;
-  for (auto w : mesh.vv_range(v)) ring.push_back(w.idx());
-  return ring;
+const char* NetKindName(NetKind net) { return net == NetKind::kDiagonals ? "diagonal" : "edges"; }
+
+std::vector<int> StarPoints(const PolyMesh& mesh, PolyMesh::VertexHandle v, NetKind net) {
+  std::vector<int> points;
+  if (net == NetKind::kEdges) {
+    for (auto w : mesh.vv_range(v)) points.push_back(w.idx());
+    return points;
+  }
+  // The outgoing halfedges in the order vv_range gives the neighbours; each one's quad (when it
+  // has one) has the corner after its head opposite v.
+  for (auto h : mesh.voh_range(v)) {
+    if (mesh.is_boundary(h)) continue;
+    points.push_back(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)).idx());
+  }
+  return points;
 }
+
+namespace {
 
 // Unit normal of the least-squares plane through c containing the points as well as possible.
 Eigen::Vector3d StarNormal(const Eigen::Vector3d& c, const std::vector<Eigen::Vector3d>& points) {
@@ -76,14 +87,22 @@ namespace {
 
 // Per vertex: the largest distance of a neighbour from the star's least-squares plane / mean
 // edge (−1 for vertices with fewer than three neighbours).
-std::vector<double> VertexStarPlanarity(const PolyMesh& mesh) {
+std::vector<double> VertexStarPlanarity(const PolyMesh& mesh, NetKind net) {
   const double mean_edge = MeanEdgeLength(mesh);
   std::vector<double> values(mesh.n_vertices(), -1.0);
   std::vector<Eigen::Vector3d> points, ring;  // reused: measured every iteration
   for (auto v : mesh.vertices()) {
-    if (mesh.valence(v) < 3) continue;
+    if (net == NetKind::kEdges && mesh.valence(v) < 3) continue;
     points.assign(1, ToEigen(mesh.point(v)));  // the centre first, then the ring
-    for (auto w : mesh.vv_range(v)) points.push_back(ToEigen(mesh.point(w)));
+    if (net == NetKind::kEdges) {
+      for (auto w : mesh.vv_range(v)) points.push_back(ToEigen(mesh.point(w)));
+    } else {
+      for (auto h : mesh.voh_range(v))
+        if (!mesh.is_boundary(h))
+          points.push_back(
+              ToEigen(mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)))));
+      if (points.size() < 4) continue;
+    }
     // Measured at unit size (the centre at the origin), so that it is scale-free.
     const double extent = NormalizePolygon(points.data(), static_cast<int>(points.size()));
     ring.assign(points.begin() + 1, points.end());
@@ -97,16 +116,16 @@ std::vector<double> VertexStarPlanarity(const PolyMesh& mesh) {
 
 }  // namespace
 
-std::vector<double> FaceStarPlanarity(const PolyMesh& mesh) {
-  const std::vector<double> star = VertexStarPlanarity(mesh);
+std::vector<double> FaceStarPlanarity(const PolyMesh& mesh, NetKind net) {
+  const std::vector<double> star = VertexStarPlanarity(mesh, net);
   std::vector<double> values(mesh.n_faces(), 0.0);
   for (auto f : mesh.faces())
     for (auto v : mesh.fv_range(f)) values[f.idx()] = std::max(values[f.idx()], star[v.idx()]);
   return values;
 }
 
-std::string ANetFaceValuesCsv(const PolyMesh& mesh) {
-  const std::vector<double> star = FaceStarPlanarity(mesh);
+std::string ANetFaceValuesCsv(const PolyMesh& mesh, NetKind net) {
+  const std::vector<double> star = FaceStarPlanarity(mesh, net);
   const std::vector<QuadShape> shapes = MeasureQuadShapes(mesh);
   std::string csv = "face,star_planarity,kink_deg,min_angle_deg\n";
   char line[128];
@@ -118,15 +137,17 @@ std::string ANetFaceValuesCsv(const PolyMesh& mesh) {
   return csv;
 }
 
-ColourScale StarPlanarityColourScale(const PolyMesh& result) {
-  return ScaleFor("star planarity", FaceStarPlanarity(result), /*logarithmic=*/true);
+ColourScale StarPlanarityColourScale(const PolyMesh& result, NetKind net) {
+  return ScaleFor(net == NetKind::kDiagonals ? "diagonal star planarity" : "star planarity",
+                  FaceStarPlanarity(result, net), /*logarithmic=*/true);
 }
 
-StarPlanarityMeasures MeasureStarPlanarity(const PolyMesh& mesh, const PolyMesh& reference) {
+StarPlanarityMeasures MeasureStarPlanarity(const PolyMesh& mesh, const PolyMesh& reference,
+                                           NetKind net) {
   StarPlanarityMeasures m;
   double sum = 0.0;
   int count = 0;
-  const std::vector<double> star = VertexStarPlanarity(mesh);
+  const std::vector<double> star = VertexStarPlanarity(mesh, net);
   for (auto v : mesh.vertices()) {
     const double worst = star[v.idx()];
     if (worst < 0.0) continue;
@@ -143,12 +164,13 @@ StarPlanarityMeasures MeasureStarPlanarity(const PolyMesh& mesh, const PolyMesh&
   return m;
 }
 
-nlohmann::json ANetFacts(const PolyMesh& input, const PolyMesh& result) {
+nlohmann::json ANetFacts(const PolyMesh& input, const PolyMesh& result, NetKind net) {
   return {
       {"vertices", input.n_vertices()},
       {"faces", input.n_faces()},
+      {"net", NetKindName(net)},
       {"shape_change", ShapeChangeJson(CompareCornerAngles(input, result, kANetShapeChangeDeg))},
-      {"colour_scale", ColourScaleJson(StarPlanarityColourScale(result))}};
+      {"colour_scale", ColourScaleJson(StarPlanarityColourScale(result, net))}};
 }
 
 void CheckANetTopology(const PolyMesh& mesh, const std::string& path) {
@@ -166,8 +188,12 @@ void CheckANetTopology(const PolyMesh& mesh, const std::string& path) {
 
 ANetFamilies AddANetLayout(const PolyMesh& mesh, const ANetOptions& options, Problem* problem) {
   ANetFamilies out;
-  for (auto v : mesh.vertices())
-    if (mesh.valence(v) >= 3) out.star_vertices.push_back(v.idx());
+  for (auto v : mesh.vertices()) {
+    std::vector<int> points = StarPoints(mesh, v, options.net);
+    if (points.size() < 3) continue;
+    out.star_vertices.push_back(v.idx());
+    out.star_points.push_back(std::move(points));
+  }
   if (options.star_form == StarPlanarityForm::kNormals)
     out.normal_block = problem->layout().AddBlock(
         "star_normals", static_cast<int>(out.star_vertices.size()), 3, /*eliminable=*/true);
@@ -187,7 +213,7 @@ void AddANetFamilies(const PolyMesh& mesh, const ANetOptions& options, int verte
       const int v = layout_info.star_vertices[k];
       const int normal = BlockItems(layout, layout_info.normal_block)[static_cast<int>(k)];
       unit->Add({normal});
-      for (int w : Ring(mesh, PolyMesh::VertexHandle(v))) star->Add({normal, vertex[v], vertex[w]});
+      for (int w : layout_info.star_points[k]) star->Add({normal, vertex[v], vertex[w]});
     }
   } else {
     auto* quads =
@@ -195,8 +221,9 @@ void AddANetFamilies(const PolyMesh& mesh, const ANetOptions& options, int verte
     // n − 3 quads of neighbours make the ring planar, one quad with v puts v in that plane.
     // (Quads of v with two opposite neighbours would be satisfied by straightening the mesh
     // polylines instead of flattening the star.)
-    for (int v : layout_info.star_vertices) {
-      const std::vector<int> r = Ring(mesh, PolyMesh::VertexHandle(v));
+    for (size_t k = 0; k < layout_info.star_vertices.size(); ++k) {
+      const int v = layout_info.star_vertices[k];
+      const std::vector<int>& r = layout_info.star_points[k];
       for (size_t i = 2; i + 1 < r.size(); ++i)
         quads->Add({vertex[r[0]], vertex[r[1]], vertex[r[i]], vertex[r[i + 1]]});
       quads->Add({vertex[r[0]], vertex[r[1]], vertex[r[2]], vertex[v]});
@@ -225,7 +252,7 @@ void LoadANetNormals(const PolyMesh& mesh, int vertex_block, const ANetFamilies&
   for (size_t k = 0; k < layout_info.star_vertices.size(); ++k) {
     const int v = layout_info.star_vertices[k];
     points.clear();
-    for (int w : Ring(mesh, PolyMesh::VertexHandle(v)))
+    for (int w : layout_info.star_points[k])
       points.push_back(x.segment<3>(layout.Index(vertex_block, w, 0)));
     x.segment<3>(layout.Index(layout_info.normal_block, static_cast<int>(k), 0)) =
         StarNormal(x.segment<3>(layout.Index(vertex_block, v, 0)), points);
@@ -244,7 +271,7 @@ ANet::ANet(const PolyMesh& mesh, const PolyMesh* reference, const ANetOptions& o
   AddANetFamilies(mesh, options, vertex_block_, families_, reference != nullptr ? reference : &mesh,
                   norm_, &problem_);
   AddBoundsAndControl(options.panels, options.vertices);
-  start_planarity_ = MeasureStarPlanarity(mesh, mesh).max_star_planarity;
+  start_planarity_ = MeasureStarPlanarity(mesh, mesh, options.net).max_star_planarity;
 }
 
 SolverOptions ANet::solver_options() const {
@@ -252,7 +279,7 @@ SolverOptions ANet::solver_options() const {
 }
 
 StarPlanarityMeasures ANet::MeasuresAt(const Eigen::VectorXd& x) const {
-  StarPlanarityMeasures m = MeasureStarPlanarity(MeshAt(x), input_);
+  StarPlanarityMeasures m = MeasureStarPlanarity(MeshAt(x), input_, options_.net);
   if (control_.glide != nullptr)
     m.max_glide_distance = control_.MaxGlideDistance(problem_.layout(), x);
   return m;

@@ -27,6 +27,19 @@ enum class StarPlanarityForm {
   kQuads,    // planarity of n − 2 quads of the star (diagonal-distance approximation)
 };
 
+// Which net's stars must be planar. kEdges: each vertex with its edge neighbours (the mesh is
+// the A-net). kDiagonals: each vertex with the corners opposite it in its quads (the two
+// diagonal meshes of the quad mesh are A-nets; ArchGeo's diagonal option): for meshes whose
+// diagonals, not edges, follow the asymptotic directions. The quads, their bounds and fairness
+// stay those of the mesh itself.
+enum class NetKind { kEdges, kDiagonals };
+// "edges", "diagonal"
+const char* NetKindName(NetKind net);
+
+// The points of v's star in cyclic order: its neighbours (kEdges), or the corners opposite v in
+// its quads (kDiagonals; a boundary vertex's open fan gives one per quad).
+std::vector<int> StarPoints(const PolyMesh& mesh, PolyMesh::VertexHandle v, NetKind net);
+
 // Guided projection's defaults for A-nets: 50 iterations, ω_f = 0.5, soft weights fading by 0.1
 // per iteration down to 1e-12, monotone steps; the star-planarity measure decides convergence.
 SolverOptions ANetSolverDefaults();
@@ -35,6 +48,7 @@ struct ANetOptions {
   // Guided projection (ω_f = solver.fairness_weight weighs the polyline fairness).
   SolverOptions solver = ANetSolverDefaults();
   StarPlanarityForm star_form = StarPlanarityForm::kNormals;
+  NetKind net = NetKind::kEdges;
   double planarity_weight = 1.0;
   // Distance to the reference's tangent plane at the closest point, and to the closest point
   // itself (ten times weaker). Strong at the start, they fade with the soft schedule: weak ones
@@ -69,26 +83,29 @@ struct StarPlanarityMeasures {
   double max_glide_distance = -1.0;  // of gliding boundary vertices / bbox diagonal (−1: none)
 };
 
-// Star planarity of every vertex with at least three neighbours: the largest distance of a
-// neighbour from the least-squares plane through the vertex, divided by the mean edge length.
+// Star planarity of every vertex with at least three star points (StarPoints of `net`): the
+// largest distance of a star point from the least-squares plane through the vertex, divided by
+// the mean edge length.
 // As named values (the report's keys): max_star_planarity, mean_star_planarity, worst_vertex,
 // max_displacement, the ShapeValues (non_convex_quads, min_corner_angle_deg, max_kink_deg,
 // max_planarity_abs) and, with gliding, max_glide_distance.
 NamedValues ToNamedValues(const StarPlanarityMeasures& m);
 
-StarPlanarityMeasures MeasureStarPlanarity(const PolyMesh& mesh, const PolyMesh& reference);
+StarPlanarityMeasures MeasureStarPlanarity(const PolyMesh& mesh, const PolyMesh& reference,
+                                           NetKind net = NetKind::kEdges);
 
 // Per face: the largest star planarity (as in MeasureStarPlanarity) of its corners.
-std::vector<double> FaceStarPlanarity(const PolyMesh& mesh);
+std::vector<double> FaceStarPlanarity(const PolyMesh& mesh, NetKind net = NetKind::kEdges);
 // The table of `anet --face-values`: "face,star_planarity,kink_deg,min_angle_deg" per face.
-std::string ANetFaceValuesCsv(const PolyMesh& mesh);
+std::string ANetFaceValuesCsv(const PolyMesh& mesh, NetKind net = NetKind::kEdges);
 // The colour scale of the per-face pictures: FaceStarPlanarity on a log scale.
-ColourScale StarPlanarityColourScale(const PolyMesh& result);
+ColourScale StarPlanarityColourScale(const PolyMesh& result, NetKind net = NetKind::kEdges);
 
 // The report's facts about a run besides the solver's: vertices, faces, shape_change (corner
 // angles changed by more than 30°: A-net quads are skew, their angles move more than planar
 // ones) and colour_scale.
-nlohmann::json ANetFacts(const PolyMesh& input, const PolyMesh& result);
+nlohmann::json ANetFacts(const PolyMesh& input, const PolyMesh& result,
+                         NetKind net = NetKind::kEdges);
 // The corner-angle change (degrees) that counts as a large shape change for A-nets.
 constexpr double kANetShapeChangeDeg = 30.0;
 
@@ -102,9 +119,11 @@ void CheckANetTopology(const PolyMesh& mesh, const std::string& path);
 // here, so call it before ResizeToLayout and LoadANetNormals after.
 struct ANetFamilies {
   int normal_block = -1;  // −1 for the quad form
-  // Vertices whose star must be planar: inner vertices and boundary vertices of valence ≥ 3
-  // (their star plane is the tangent plane of the patches meeting there), in block order.
+  // Vertices whose star must be planar: those with at least three star points (inner vertices,
+  // and boundary vertices of valence ≥ 3, or with three or more quads for the diagonal net:
+  // their star plane is the tangent plane of the patches meeting there), in block order.
   std::vector<int> star_vertices;
+  std::vector<std::vector<int>> star_points;  // StarPoints of each star vertex
 };
 ANetFamilies AddANetLayout(const PolyMesh& mesh, const ANetOptions& options, Problem* problem);
 void AddANetFamilies(const PolyMesh& mesh, const ANetOptions& options, int vertex_block,

@@ -14,6 +14,7 @@ struct ANetSettings {
   ANetOptions problem;
   SolverKind solver = SolverKind::kGuidedProjection;
   std::string star_form = "normals";
+  std::string net = "edges";
 };
 
 const OptionSchema<ANetSettings>& Schema() {
@@ -24,6 +25,14 @@ const OptionSchema<ANetSettings>& Schema() {
         &s, [](S& x) -> ANetOptions& { return x.problem; },
         [](S& x) -> SolverKind& { return x.solver; },
         [](S& x) -> std::string& { return x.star_form; });
+    s.Field<std::string>(
+         "net", OptionType::kChoice,
+         "Whose stars must be planar: edges (each vertex with its neighbours: the mesh is the "
+         "A-net) or diagonal (each vertex with the corners opposite it in its quads: the mesh's "
+         "two diagonal meshes are A-nets, for meshes whose diagonals follow the asymptotic "
+         "directions; the quads, their bounds and fairness stay the mesh's own)",
+         [](S& x) -> std::string& { return x.net; })
+        .Choices({"edges", "diagonal"});
     return s;
   }();
   return schema;
@@ -33,6 +42,8 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   ANetSettings settings = Schema().Apply(values);
   ANetOptions& options = settings.problem;
   options.star_form = StarFormOf(settings.star_form);
+  options.net = settings.net == "diagonal" ? NetKind::kDiagonals : NetKind::kEdges;
+  const bool diagonal = options.net == NetKind::kDiagonals;
   const PolyMesh& mesh = inputs.Mesh("mesh");
   const std::string source = inputs.Source("mesh");
   options.vertices.fixed = inputs.VertexIds("fixed");
@@ -44,8 +55,9 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
     throw InputError(source + ": " + e.what());
   }
   char line[512];
-  std::snprintf(line, sizeof(line), "%s: %zu vertices, %zu quads, %d variables", source.c_str(),
-                mesh.n_vertices(), mesh.n_faces(), anet->problem().layout().num_variables());
+  std::snprintf(line, sizeof(line), "%s: %zu vertices, %zu quads, %d variables%s", source.c_str(),
+                mesh.n_vertices(), mesh.n_faces(), anet->problem().layout().num_variables(),
+                diagonal ? "; stars along the diagonals" : "");
   context.Headline(line);
 
   const RunCallback record = [&context, &anet](const RunRecord& r) {
@@ -58,24 +70,27 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   result.tolerance_measure = "max_star_planarity";
   result.tolerance = options.tolerance;
   const PolyMesh net = anet->Result();
-  result.facts = ANetFacts(mesh, net);
+  result.facts = ANetFacts(mesh, net, options.net);
   result.facts["fixed_vertices"] = options.vertices.fixed.size();
   if (context.soft_free_start) result.facts["soft_free_start"] = true;
   if (result.report.failed) return result;
 
   const StarPlanarityMeasures m = anet->Measures();
   result.meshes["output"] = net;
-  std::snprintf(line, sizeof(line), "A-net: %zu quads, max star planarity %.2e", mesh.n_faces(),
-                m.max_star_planarity);
-  AddFaceOutputTexts(net, FaceStarPlanarity(net), StarPlanarityColourScale(net),
-                     ANetFaceValuesCsv(net), line, context, &result);
-  std::snprintf(
-      line, sizeof(line),
-      "final: max star planarity %.3e, mean %.3e, max displacement %.3e of the bbox diagonal",
-      m.max_star_planarity, m.mean_star_planarity, m.max_displacement);
+  const char* star = diagonal ? "diagonal star" : "star";
+  std::snprintf(line, sizeof(line), "A-net%s: %zu quads, max %s planarity %.2e",
+                diagonal ? " on the diagonals" : "", mesh.n_faces(), star, m.max_star_planarity);
+  AddFaceOutputTexts(net, FaceStarPlanarity(net, options.net),
+                     StarPlanarityColourScale(net, options.net),
+                     ANetFaceValuesCsv(net, options.net), line, context, &result);
+  std::snprintf(line, sizeof(line),
+                "final: max %s planarity %.3e, mean %.3e, max displacement %.3e of the bbox "
+                "diagonal",
+                star, m.max_star_planarity, m.mean_star_planarity, m.max_displacement);
   result.Info(line);
-  AddPanelMessages("an A-net (asymptotic)", mesh, net, kANetShapeChangeDeg, m.max_displacement,
-                   &result);
+  AddPanelMessages(
+      diagonal ? "an A-net on its diagonals (asymptotic diagonals)" : "an A-net (asymptotic)", mesh,
+      net, kANetShapeChangeDeg, m.max_displacement, &result);
   if (!result.report.converged && !BoundaryControlNote(options.vertices).empty())
     result.shortfalls.push_back(BoundaryControlNote(options.vertices));
   return result;

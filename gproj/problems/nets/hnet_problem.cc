@@ -5,6 +5,7 @@
 
 #include "gproj/geometry/render/svg_render.h"
 #include "gproj/problems/nets/anet_options.h"
+#include "gproj/problems/nets/diagonal_mesh.h"
 #include "gproj/problems/nets/hnet.h"
 #include "gproj/problems/run/builtin_problems.h"
 
@@ -16,6 +17,8 @@ struct HNetSettings {
   SolverKind solver = SolverKind::kGuidedProjection;
   std::string star_form = "normals";
   int samples = 8;
+  std::string net = "edges";
+  int diagonal_colour = 0;
 };
 
 const OptionSchema<HNetSettings>& Schema() {
@@ -39,6 +42,19 @@ const OptionSchema<HNetSettings>& Schema() {
     s.Field<int>("samples", OptionType::kInt, "Samples per patch edge of the surface_mesh output",
                  [](S& x) -> int& { return x.samples; })
         .Range(1, 200);
+    s.Field<std::string>(
+         "net", OptionType::kChoice,
+         "Which net to extend: edges (the mesh itself) or diagonal (one of the mesh's two "
+         "diagonal meshes, for meshes whose diagonals follow the asymptotic directions: its "
+         "edges are the quads' diagonals, its faces the rings of the other vertices; the H-net's "
+         "vertices are the input's of one colour)",
+         [](S& x) -> std::string& { return x.net; })
+        .Choices({"edges", "diagonal"});
+    s.Field<int>("diagonal_colour", OptionType::kInt,
+                 "With net diagonal: which diagonal mesh, by the colour of its vertices (0: the "
+                 "one through vertex 0)",
+                 [](S& x) -> int& { return x.diagonal_colour; })
+        .Range(0, 1);
     return s;
   }();
   return schema;
@@ -103,18 +119,55 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   options.anet.star_form = StarFormOf(settings.star_form);
   options.solver = settings.solver;
   options.anet.vertices.fixed = inputs.VertexIds("fixed");
-  const PolyMesh& mesh = inputs.Mesh("mesh");
+  const PolyMesh& input = inputs.Mesh("mesh");
   const std::string source = inputs.Source("mesh");
-  CheckANetTopology(mesh, source);
+  CheckANetTopology(input, source);
   const PolyMesh* reference = inputs.OptionalMesh("reference");
+  // The diagonal net: the H-net of one diagonal mesh, the input mesh its reference surface.
+  const bool diagonal = settings.net == "diagonal";
+  DiagonalMesh diagonal_mesh;
+  if (diagonal) {
+    try {
+      diagonal_mesh = MakeDiagonalMesh(input, settings.diagonal_colour, DiagonalRings::kQuads);
+    } catch (const InputError& e) {
+      throw InputError(source + ": `net` diagonal: " + e.what());
+    }
+    if (reference == nullptr) reference = &input;
+    for (int& v : options.anet.vertices.fixed) {
+      if (diagonal_mesh.vertex_of[v] < 0)
+        throw InputError("`fixed`: vertex " + std::to_string(v) +
+                         " is not on the diagonal mesh of colour " +
+                         std::to_string(settings.diagonal_colour) + " (use `diagonal_colour` " +
+                         std::to_string(1 - settings.diagonal_colour) + " for it)");
+      v = diagonal_mesh.vertex_of[v];
+    }
+  }
+  const PolyMesh& mesh = diagonal ? diagonal_mesh.mesh : input;
+  // Rings of singular vertices are not quads: holes of the diagonal mesh.
+  std::string open_rings;
+  if (!diagonal_mesh.open_rings.empty()) {
+    open_rings = std::to_string(diagonal_mesh.open_rings.size()) +
+                 " rings of singular vertices (not quads) are left open as holes of the diagonal "
+                 "mesh: vertices ";
+    for (std::size_t k = 0; k < diagonal_mesh.open_rings.size() && k < 10; ++k)
+      open_rings += (k ? ", " : "") + std::to_string(diagonal_mesh.open_rings[k]);
+    if (diagonal_mesh.open_rings.size() > 10) open_rings += ", ...";
+  }
   std::unique_ptr<HNet> hnet;
   try {
     hnet = std::make_unique<HNet>(mesh, reference, options);
   } catch (const InputError& e) {
-    throw InputError(source + ": " + e.what());
+    throw InputError(source + ": " + e.what() +
+                     (open_rings.empty() ? std::string() : " (" + open_rings + ")"));
   }
-  context.Headline(source + ": " + std::to_string(mesh.n_vertices()) + " vertices, " +
-                   std::to_string(mesh.n_faces()) + " quads");
+  context.Headline(source + ": " + std::to_string(input.n_vertices()) + " vertices, " +
+                   std::to_string(input.n_faces()) + " quads" +
+                   (diagonal ? "; its diagonal mesh of colour " +
+                                   std::to_string(settings.diagonal_colour) + ": " +
+                                   std::to_string(mesh.n_vertices()) + " vertices, " +
+                                   std::to_string(mesh.n_faces()) + " quads"
+                             : std::string()));
+  if (!open_rings.empty()) context.Info(open_rings);
   context.Info("A-net step:");
   const HNetSummary summary =
       hnet->Run([&context](const RunRecord& r) { return context.Record(r); },
@@ -122,12 +175,20 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   RunResult result;
   result.report = summary.report;
   result.facts = HNet::ReportFacts(summary);
+  result.facts["net"] = diagonal ? "diagonal" : "edges";
+  if (diagonal) {
+    result.facts["diagonal_colour"] = settings.diagonal_colour;
+    result.facts["input_vertices"] = diagonal_mesh.input_vertices;
+    result.facts["open_rings"] = diagonal_mesh.open_rings;
+  }
   result.tolerance_measure = "weight_change";
   result.tolerance = options.weight_tolerance;
   if (result.report.failed || summary.rounds.empty()) return result;
 
   const HNetRound& last = summary.rounds.back();
-  result.texts["output"] = HNetJson(hnet->mesh(), hnet->weights()).dump(1) + "\n";
+  nlohmann::json output = HNetJson(hnet->mesh(), hnet->weights());
+  if (diagonal) output["input_vertices"] = diagonal_mesh.input_vertices;
+  result.texts["output"] = output.dump(1) + "\n";
   if (context.Wants("surface_mesh"))
     result.meshes["surface_mesh"] =
         SampleHNetSurface(hnet->mesh(), hnet->weights(), settings.samples);

@@ -1,0 +1,34 @@
+#pragma once
+// The diagonal meshes of a quad mesh: the quads' diagonals as edges, one face per inner vertex
+// (the ring of its neighbours). When the vertices can be 2-coloured the diagonals split into
+// two meshes, one on each colour: the faces of one are the rings of the other's inner vertices.
+// A net whose diagonals follow the asymptotic directions is an A-net / H-net on these.
+
+#include <string>
+#include <vector>
+
+#include "gproj/geometry/io/mesh_io.h"
+
+namespace gproj::nets {
+
+struct DiagonalMesh {
+  PolyMesh mesh;                    // its vertices numbered from 0
+  std::vector<int> input_vertices;  // diagonal-mesh vertex → vertex of the quad mesh
+  std::vector<int> vertex_of;       // quad-mesh vertex → diagonal-mesh vertex (−1: not on it)
+  // Inner vertices of the other colour whose rings are not quads (singular vertices), left
+  // open: holes of the diagonal mesh (with DiagonalRings::kQuads).
+  std::vector<int> open_rings;
+};
+
+enum class DiagonalRings {
+  kAll,    // every ring a face
+  kQuads,  // rings of 4 vertices only; the others left open (DiagonalMesh::open_rings)
+};
+
+// The diagonal mesh of colour `colour` (0: the colour of the lowest vertex of each component, as
+// TwoColourVertices gives it; 1 the other): one face per inner vertex of the other colour, the
+// ring of its neighbours, oriented like the quads. Throws InputError when the vertices cannot be
+// 2-coloured and when the diagonal mesh has no face.
+DiagonalMesh MakeDiagonalMesh(const PolyMesh& quads, int colour, DiagonalRings rings);
+
+}  // namespace gproj::nets

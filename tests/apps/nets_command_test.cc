@@ -1,0 +1,143 @@
+// `gproj anet --net diagonal` as a user runs it: a generated net whose diagonals are asymptotic
+// (`gproj grid --diagonal`), against the edge net's run on the same mesh.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "apps/command_test_util.h"
+#include "gproj/geometry/io/mesh_io.h"
+#include "gproj/problems/nets/anet.h"
+
+namespace gproj {
+namespace {
+
+class NetsCommandTest : public CommandTest {};
+
+TEST_F(NetsCommandTest, DiagonalNetOfATurnedEnneperGrid) {
+  const CommandRun grid = Gproj(
+      "grid --surface enneper --diagonal --nu 17 --nv 17 --noise 0.05 "
+      "--seed 9 -o " +
+      Path("grid.obj"));
+  ASSERT_EQ(grid.exit_code, 0) << grid.err;
+  EXPECT_NE(grid.out.find("diagonals along the net"), std::string::npos) << grid.out;
+  const CommandRun diagonal =
+      Gproj("anet " + Path("grid.obj") + " --net diagonal -o " + Path("d.obj") + " --report " +
+            Path("d.json") + " --heatmap " + Path("d.ply"));
+  ASSERT_EQ(diagonal.exit_code, 0) << diagonal.err << diagonal.out;
+  const nlohmann::json d = Json("d.json");
+  EXPECT_EQ(d["net"], "diagonal");
+  EXPECT_EQ(d["options"]["net"], "diagonal");
+  EXPECT_EQ(d["colour_scale"]["measure"], "diagonal star planarity");
+  EXPECT_LE(d["final"]["max_star_planarity"].get<double>(), 1e-9);
+  EXPECT_EQ(d["final"]["non_convex_quads"], 0);
+  EXPECT_LT(d["final"]["max_displacement"].get<double>(), 0.01);
+  EXPECT_NE(diagonal.out.find("max diagonal star planarity"), std::string::npos);
+  EXPECT_EQ(diagonal.err.find("far from"), std::string::npos) << diagonal.err;
+  // The written mesh: the input's quads, diagonal stars planar.
+  const PolyMesh input = ReadMesh(Path("grid.obj")), result = ReadMesh(Path("d.obj"));
+  ASSERT_EQ(result.n_faces(), input.n_faces());
+  EXPECT_LE(nets::MeasureStarPlanarity(result, input, nets::NetKind::kDiagonals).max_star_planarity,
+            1e-8);
+
+  // The edge net of the same mesh is another problem: it moves the mesh far.
+  const CommandRun edges =
+      Gproj("anet " + Path("grid.obj") + " -o " + Path("e.obj") + " --report " + Path("e.json"));
+  EXPECT_NE(edges.err.find("far from an A-net"), std::string::npos) << edges.err;
+  EXPECT_GT(Json("e.json")["final"]["max_displacement"].get<double>(), 0.05);
+  EXPECT_EQ(Json("e.json")["net"], "edges");
+}
+
+// hnet --net diagonal: the H-net of each diagonal mesh (one per colour), its vertices the
+// input's of that colour; the edge net of the same mesh does not settle.
+TEST_F(NetsCommandTest, HNetOfTheDiagonalMeshes) {
+  ASSERT_EQ(Gproj("grid --surface hyperboloid --diagonal --nu 13 --nv 13 --noise 0.03 -o " +
+                  Path("grid.obj"))
+                .exit_code,
+            0);
+  const PolyMesh input = ReadMesh(Path("grid.obj"));
+  for (int colour : {0, 1}) {
+    const std::string out = "h" + std::to_string(colour);
+    const CommandRun run = Gproj("hnet " + Path("grid.obj") + " --net diagonal --diagonal-colour " +
+                                 std::to_string(colour) + " -o " + Path(out + ".json") +
+                                 " --report " + Path(out + "_report.json"));
+    ASSERT_EQ(run.exit_code, 0) << run.err << run.out;
+    EXPECT_NE(run.out.find("diagonal mesh of colour " + std::to_string(colour)), std::string::npos)
+        << run.out;
+    const nlohmann::json report = Json(out + "_report.json");
+    EXPECT_EQ(report["net"], "diagonal");
+    EXPECT_LE(report["final"]["max_tangent_angle_deg"].get<double>(), 1e-6);
+    const nlohmann::json hnet = Json(out + ".json");
+    ASSERT_EQ(hnet["input_vertices"].size(), hnet["vertices"].size());
+    EXPECT_EQ(hnet["input_vertices"], report["input_vertices"]);
+    // Each H-net vertex near its input vertex (the A-net step moves them a little).
+    for (std::size_t k = 0; k < hnet["vertices"].size(); ++k) {
+      const auto& p = input.point(PolyMesh::VertexHandle(hnet["input_vertices"][k].get<int>()));
+      const auto& q = hnet["vertices"][k];
+      const double d = std::hypot(q[0].get<double>() - p[0], q[1].get<double>() - p[1],
+                                  q[2].get<double>() - p[2]);
+      EXPECT_LT(d, 0.05) << k;
+    }
+  }
+  EXPECT_EQ(Json("h0.json")["vertices"].size() + Json("h1.json")["vertices"].size(),
+            input.n_vertices() - 4);  // the four corners are on no ring
+  // A held vertex of the other colour is named with the option that takes it.
+  const CommandRun fixed = Gproj("hnet " + Path("grid.obj") + " --net diagonal --fixed " +
+                                 Write("fixed.txt", "1\n") + " -o " + Path("f.json"));
+  EXPECT_EQ(fixed.exit_code, 1);
+  ExpectOneLineError(fixed, "--fixed: vertex 1 is not on the diagonal mesh of colour 0");
+  EXPECT_NE(fixed.err.find("--diagonal-colour 1"), std::string::npos) << fixed.err;
+  EXPECT_FALSE(Exists("f.json"));
+}
+
+// A real mesh: ArchGeo's complete01 (holes, singular vertices), an A-net on its diagonals to
+// 5e-6 as shipped. anet --net diagonal finishes it without moving it; the edge net cannot be
+// reached near it; each diagonal mesh extends to an H-net (the rings of singular vertices open).
+TEST_F(NetsCommandTest, ArchGeoSampleIsAnANetOnItsDiagonals) {
+  const std::string mesh = std::string(GPROJ_SOURCE_DIR) + "/tests/data/archgeo_complete01.obj";
+  const CommandRun diagonal =
+      Gproj("anet " + mesh + " --net diagonal -o " + Path("d.obj") + " --report " + Path("d.json"));
+  ASSERT_EQ(diagonal.exit_code, 0) << diagonal.err;
+  const nlohmann::json d = Json("d.json");
+  EXPECT_LT(d["initial"]["max_star_planarity"].get<double>(), 1e-5);
+  EXPECT_LE(d["final"]["max_star_planarity"].get<double>(), 1e-9);
+  EXPECT_LE(d["iterations"].get<int>(), 5);
+  EXPECT_LT(d["final"]["max_displacement"].get<double>(), 1e-5);
+  EXPECT_EQ(d["final"]["non_convex_quads"], 0);
+  const CommandRun edges =
+      Gproj("anet " + mesh + " -o " + Path("e.obj") + " --report " + Path("e.json"));
+  EXPECT_EQ(edges.exit_code, 3);
+  EXPECT_GT(Json("e.json")["initial"]["max_star_planarity"].get<double>(), 0.1);
+
+  const CommandRun refused =
+      Gproj("hnet " + mesh + " --net diagonal --diagonal-colour 1 -o " + Path("r.json"));
+  EXPECT_EQ(refused.exit_code, 1);
+  ExpectOneLineError(refused, "not simply connected");
+  EXPECT_NE(refused.err.find("8 rings of singular vertices"), std::string::npos) << refused.err;
+  for (int colour : {0, 1}) {
+    const std::string out = "h" + std::to_string(colour);
+    const CommandRun hnet = Gproj("hnet " + mesh +
+                                  " --net diagonal --allow-not-simply-connected "
+                                  "--diagonal-colour " +
+                                  std::to_string(colour) + " -o " + Path(out + ".json") +
+                                  " --report " + Path(out + "_r.json"));
+    ASSERT_EQ(hnet.exit_code, 0) << hnet.err << hnet.out;
+    const nlohmann::json r = Json(out + "_r.json");
+    EXPECT_LE(r["final"]["max_tangent_angle_deg"].get<double>(), 1e-8);
+    EXPECT_EQ(r["final"]["non_convex_quads"], 0);
+    EXPECT_LT(r["final"]["max_reference_distance"].get<double>(), 1e-3);
+    EXPECT_EQ(r["open_rings"].size(), colour == 0 ? 0u : 8u);
+  }
+}
+
+TEST_F(NetsCommandTest, DiagonalGridOnlyForAsymptoticNets) {
+  const CommandRun run = Gproj("grid --surface paraboloid --diagonal -o " + Path("p.obj"));
+  EXPECT_EQ(run.exit_code, 1);
+  ExpectOneLineError(run, "--diagonal");
+  EXPECT_FALSE(Exists("p.obj"));
+  const CommandRun net = Gproj("anet " + Path("p.obj") + " --net diagonals -o " + Path("x.obj"));
+  EXPECT_EQ(net.exit_code, 1);
+}
+
+}  // namespace
+}  // namespace gproj
