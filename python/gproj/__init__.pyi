@@ -38,7 +38,7 @@ class PlanarizeOptions:
     max_iterations: int
     """(int, >= 0, <= 100000) Iterations at most."""
     fairness: float
-    """(number, >= 0) omega_f: weight of the fairness (second differences along polylines)."""
+    """(number, >= 0) omega_f: weight of the fairness (second differences along polylines; at vertices of polygon meshes that no polyline passes, twice the offset from the neighbours' centroid)."""
     soft_decay: float
     """(number, >= 1e-12, <= 1) Closeness and fairness weights are multiplied by this each iteration ...."""
     soft_floor: float
@@ -153,7 +153,7 @@ Arguments:
     fairness_order: (int, >= 2, <= 3) 2: second differences, 3: third differences.
     ceres_soft_scale: (number, >= 0) With solver ceres: fixed factor on the closeness and fairness weights (0: tolerance / 100).
     max_iterations: (int, >= 0, <= 100000) Iterations at most.
-    fairness: (number, >= 0) omega_f: weight of the fairness (second differences along polylines).
+    fairness: (number, >= 0) omega_f: weight of the fairness (second differences along polylines; at vertices of polygon meshes that no polyline passes, twice the offset from the neighbours' centroid).
     soft_decay: (number, >= 1e-12, <= 1) Closeness and fairness weights are multiplied by this each iteration ....
     soft_floor: (number, >= 0, <= 1) ... down to this fraction of their initial value.
     soft_residual: (number, >= 0) ... and, when > 0, also by this times the max constraint residual of the iteration (the soft weights vanish as the constraints converge).
@@ -248,7 +248,7 @@ class AnetOptions:
     max_iterations: int
     """(int, >= 0, <= 100000) Iterations at most."""
     fairness: float
-    """(number, >= 0) omega_f: weight of the fairness (second differences along polylines)."""
+    """(number, >= 0) omega_f: weight of the fairness (second differences along polylines; at vertices of polygon meshes that no polyline passes, twice the offset from the neighbours' centroid)."""
     soft_decay: float
     """(number, >= 1e-12, <= 1) Closeness and fairness weights are multiplied by this each iteration ...."""
     soft_floor: float
@@ -367,7 +367,7 @@ Arguments:
     point: (number, >= 0) Weight of the distance to the reference's closest points.
     fairness_order: (int, >= 2, <= 3) 2: second differences, 3: third differences.
     max_iterations: (int, >= 0, <= 100000) Iterations at most.
-    fairness: (number, >= 0) omega_f: weight of the fairness (second differences along polylines).
+    fairness: (number, >= 0) omega_f: weight of the fairness (second differences along polylines; at vertices of polygon meshes that no polyline passes, twice the offset from the neighbours' centroid).
     soft_decay: (number, >= 1e-12, <= 1) Closeness and fairness weights are multiplied by this each iteration ....
     soft_floor: (number, >= 0, <= 1) ... down to this fraction of their initial value.
     soft_residual: (number, >= 0) ... and, when > 0, also by this times the max constraint residual of the iteration (the soft weights vanish as the constraints converge).
@@ -413,7 +413,7 @@ class HnetOptions:
     max_iterations: int
     """(int, >= 0, <= 100000) Iterations at most."""
     fairness: float
-    """(number, >= 0) omega_f: weight of the fairness (second differences along polylines)."""
+    """(number, >= 0) omega_f: weight of the fairness (second differences along polylines; at vertices of polygon meshes that no polyline passes, twice the offset from the neighbours' centroid)."""
     soft_decay: float
     """(number, >= 1e-12, <= 1) Closeness and fairness weights are multiplied by this each iteration ...."""
     soft_floor: float
@@ -452,8 +452,8 @@ class HnetOptions:
     """(int, >= 1, <= 200) Samples per patch edge of the surface_mesh output."""
     net: Literal['edges', 'diagonal']
     """(choice) Which net to extend: edges (the mesh itself) or diagonal (one of the mesh's two diagonal meshes, for meshes whose diagonals follow the asymptotic directions: its edges are the quads' diagonals, its faces the rings of the other vertices; the H-net's vertices are the input's of one colour)."""
-    diagonal_colour: int
-    """(int, >= 0, <= 1) With net diagonal: which diagonal mesh, by the colour of its vertices (0: the one through vertex 0)."""
+    diagonal_colour: Optional[int]
+    """(int, >= 0, <= 1) With net diagonal: which diagonal mesh, by the colour of its vertices (0, the default: the one through vertex 0)."""
     def __init__(
         self,
         *,
@@ -484,7 +484,7 @@ class HnetOptions:
         allow_not_simply_connected: bool = False,
         samples: int = 8,
         net: Literal['edges', 'diagonal'] = 'edges',
-        diagonal_colour: int = 0,
+        diagonal_colour: Optional[int] = None,
     ) -> None: ...
 
 class HnetResult(Result):
@@ -530,7 +530,7 @@ def hnet(
     allow_not_simply_connected: bool = False,
     samples: int = 8,
     net: Literal['edges', 'diagonal'] = 'edges',
-    diagonal_colour: int = 0,
+    diagonal_colour: Optional[int] = None,
     outputs: Sequence[str] = (),
     callback: Optional[Callable[[Dict[str, Any]], Optional[bool]]] = None,
 ) -> HnetResult:
@@ -550,7 +550,7 @@ Arguments:
     point: (number, >= 0) Weight of the distance to the reference's closest points.
     fairness_order: (int, >= 2, <= 3) 2: second differences, 3: third differences.
     max_iterations: (int, >= 0, <= 100000) Iterations at most.
-    fairness: (number, >= 0) omega_f: weight of the fairness (second differences along polylines).
+    fairness: (number, >= 0) omega_f: weight of the fairness (second differences along polylines; at vertices of polygon meshes that no polyline passes, twice the offset from the neighbours' centroid).
     soft_decay: (number, >= 1e-12, <= 1) Closeness and fairness weights are multiplied by this each iteration ....
     soft_floor: (number, >= 0, <= 1) ... down to this fraction of their initial value.
     soft_residual: (number, >= 0) ... and, when > 0, also by this times the max constraint residual of the iteration (the soft weights vanish as the constraints converge).
@@ -570,7 +570,7 @@ Arguments:
     allow_not_simply_connected: (bool) Optimise meshes that are not simply connected (no exact extension exists in general): the vertices and the shape parameters are solved for together.
     samples: (int, >= 1, <= 200) Samples per patch edge of the surface_mesh output.
     net: (choice) Which net to extend: edges (the mesh itself) or diagonal (one of the mesh's two diagonal meshes, for meshes whose diagonals follow the asymptotic directions: its edges are the quads' diagonals, its faces the rings of the other vertices; the H-net's vertices are the input's of one colour).
-    diagonal_colour: (int, >= 0, <= 1) With net diagonal: which diagonal mesh, by the colour of its vertices (0: the one through vertex 0).
+    diagonal_colour: (int, >= 0, <= 1) With net diagonal: which diagonal mesh, by the colour of its vertices (0, the default: the one through vertex 0).
     outputs: optional outputs to make as well (surface_mesh, picture); each is an attribute of the result.
     callback: called with each iteration record (the keys of report.history's entries); returning False stops the run (status USER_ABORT). Ctrl-C stops it too and raises KeyboardInterrupt.
 

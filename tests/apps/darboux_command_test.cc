@@ -102,6 +102,18 @@ TEST_F(DarbouxCommandTest, DefaultInversionAndRefusals) {
   EXPECT_EQ(radius.exit_code, 1);
   ExpectOneLineError(radius, "--radius");
   EXPECT_FALSE(Exists("b.json"));
+
+  // Patches that meet at kinks (all weights 1 on a hyperboloid: not an H-net) are warned about.
+  nlohmann::json kinked = h;
+  for (auto& w : kinked["weights"]) w = {1.0, 1.0, 1.0, 1.0};
+  Write("kinked.json", kinked.dump());
+  const CommandRun kinks = Gproj("darboux " + Path("kinked.json") + " -o " + Path("k.json"));
+  EXPECT_EQ(kinks.exit_code, 0) << kinks.err;
+  EXPECT_NE(kinks.err.find("not a smooth H-net"), std::string::npos) << kinks.err;
+  // A centre so far off that rounding would show is refused.
+  const CommandRun far = Gproj("darboux " + hnet + " --centre 1e8,0,0 -o " + Path("f.json"));
+  EXPECT_EQ(far.exit_code, 1);
+  ExpectOneLineError(far, "--centre: (1e+08, 0, 0) is");
 }
 
 }  // namespace

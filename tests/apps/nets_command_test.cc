@@ -137,6 +137,12 @@ TEST_F(NetsCommandTest, DiagonalGridOnlyForAsymptoticNets) {
   EXPECT_FALSE(Exists("p.obj"));
   const CommandRun net = Gproj("anet " + Path("p.obj") + " --net diagonals -o " + Path("x.obj"));
   EXPECT_EQ(net.exit_code, 1);
+  ASSERT_EQ(Gproj("grid --surface hypar --nu 5 --nv 5 -o " + Path("g.obj")).exit_code, 0);
+  const CommandRun colour =
+      Gproj("hnet " + Path("g.obj") + " --diagonal-colour 1 -o " + Path("h.json"));
+  EXPECT_EQ(colour.exit_code, 1);
+  ExpectOneLineError(colour, "--diagonal-colour chooses a diagonal mesh: it needs --net diagonal");
+  EXPECT_FALSE(Exists("h.json"));
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gproj/constraints/polyline_fairness.h"
+#include "gproj/constraints/umbrella_fairness.h"
 
 namespace gproj {
 
@@ -51,11 +52,12 @@ int AddMeshFairness(const PolyMesh& mesh, int order, int vertex_block, Problem* 
   const VariableLayout& layout = problem->layout();
   auto* fairness = problem->AddFamily<PolylineFairness>(order, 3);
   const BlockItems vertex(layout, vertex_block);
+  const int umbrellas = AddUmbrellaFairness(mesh, vertex_block, problem);
   if (order == 2) {
     ForEachPolylineTriple(mesh, [&](int a, int b, int c) {
       fairness->AddElement({vertex[a], vertex[b], vertex[c]});
     });
-    return fairness->num_elements();
+    return fairness->num_elements() + umbrellas;
   }
   // Third differences: extend each triple (a, b, c) by the vertex d beyond c when the
   // polyline continues through c.
@@ -70,7 +72,27 @@ int AddMeshFairness(const PolyMesh& mesh, int order, int vertex_block, Problem* 
       }
     }
   }
-  return fairness->num_elements();
+  return fairness->num_elements() + umbrellas;
+}
+
+int AddUmbrellaFairness(const PolyMesh& mesh, int vertex_block, Problem* problem) {
+  std::vector<char> on_polyline(mesh.n_vertices(), 0);
+  ForEachPolylineTriple(mesh, [&](int, int b, int) { on_polyline[b] = 1; });
+  std::vector<std::vector<int>> elements;
+  const BlockItems vertex(problem->layout(), vertex_block);
+  for (auto v : mesh.vertices()) {
+    if (mesh.is_boundary(v) || on_polyline[v.idx()] || mesh.valence(v) < 3) continue;
+    bool polygon = false;
+    for (auto f : mesh.vf_range(v)) polygon = polygon || mesh.valence(f) != 4;
+    if (!polygon) continue;
+    std::vector<int> items = {vertex[v.idx()]};
+    for (auto w : mesh.vv_range(v)) items.push_back(vertex[w.idx()]);
+    elements.push_back(std::move(items));
+  }
+  if (elements.empty()) return 0;
+  auto* umbrella = problem->AddFamily<UmbrellaFairness>(3);
+  for (const std::vector<int>& items : elements) umbrella->AddElement(items);
+  return umbrella->num_elements();
 }
 
 }  // namespace gproj

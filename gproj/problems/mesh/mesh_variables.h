@@ -58,8 +58,14 @@ void ForEachPolylineTriple(const PolyMesh& mesh, Visit visit) {
   }
 }
 
-// Adds a PolylineFairness family of the given order (2 or 3) over the mesh polylines; returns
-// its number of elements.
+// Adds a PolylineFairness family of the given order (2 or 3) over the mesh polylines, and
+// AddUmbrellaFairness; returns their number of elements.
 int AddMeshFairness(const PolyMesh& mesh, int order, int vertex_block, Problem* problem);
+
+// Umbrella rows (constraints/umbrella_fairness.h) at the inner vertices that no mesh polyline
+// passes through and that touch a face other than a quad: the valence-3 vertices of hexagonal
+// meshes, which have no polyline to be fair along. Quad meshes get none (their singular vertices
+// stay free as before). Adds the family only when there are such vertices; returns their count.
+int AddUmbrellaFairness(const PolyMesh& mesh, int vertex_block, Problem* problem);
 
 }  // namespace gproj

@@ -33,6 +33,32 @@ std::vector<Eigen::Vector3d> MeshPoints(const PolyMesh& mesh) {
   return points;
 }
 
+// The H-net's bounding box: its centre and diagonal.
+struct Box {
+  Eigen::Vector3d centre;
+  double diagonal = 0.0;
+};
+Box BoxOf(const PolyMesh& mesh) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+  for (auto v : mesh.vertices()) lo = lo.cwiseMin(P(mesh, v)), hi = hi.cwiseMax(P(mesh, v));
+  return {0.5 * (lo + hi), (hi - lo).norm()};
+}
+
+// The patch in the frame where the box's centre is the origin and its diagonal 1: measured
+// there, nothing overflows or underflows at any scale of the input.
+RationalBezierPatch InUnitFrame(const RationalBezierPatch& patch, const Box& box) {
+  RationalBezierPatch out = patch;
+  for (Eigen::Vector4d& h : out.control)
+    h.head<3>() = (h.head<3>() - box.centre * h[3]) / box.diagonal;
+  return out;
+}
+std::vector<RationalBezierPatch> InUnitFrame(const std::vector<RationalBezierPatch>& patches,
+                                             const Box& box) {
+  std::vector<RationalBezierPatch> out;
+  for (const RationalBezierPatch& p : patches) out.push_back(InUnitFrame(p, box));
+  return out;
+}
+
 std::string Xyz(const Eigen::Vector3d& p) {
   char text[96];
   std::snprintf(text, sizeof(text), "(%.6g, %.6g, %.6g)", p.x(), p.y(), p.z());
@@ -198,18 +224,38 @@ Inversion DefaultInversion(const PolyMesh& mesh) {
 }
 
 DarbouxSkin MakeDarbouxSkin(const HNetPatchwork& hnet, const Inversion& inversion) {
-  if (!(inversion.radius > 0.0) || !std::isfinite(inversion.radius))
-    throw InputError("`radius`: must be a positive finite number (got " +
-                     std::to_string(inversion.radius) + ")");
+  const Box box = BoxOf(hnet.mesh);
+  const double diagonal = box.diagonal;
+  char text[512];
+  if (!(diagonal > 0.0) || !std::isfinite(diagonal))
+    throw InputError("the H-net has no extent (its bounding-box diagonal is " +
+                     std::to_string(diagonal) + ")");
   if (!inversion.centre.allFinite()) throw InputError("`centre`: must be finite");
+  if (!((inversion.centre - box.centre).norm() <= kMaxCentreDistance * diagonal)) {
+    std::snprintf(text, sizeof(text),
+                  "`centre`: %s is %.3g H-net diagonals from the H-net; at most %g (farther, the "
+                  "inversion is nearly a similarity and the skin loses precision)",
+                  Xyz(inversion.centre).c_str(), (inversion.centre - box.centre).norm() / diagonal,
+                  kMaxCentreDistance);
+    throw InputError(text);
+  }
+  if (!(inversion.radius >= kRadiusRange[0] * diagonal &&
+        inversion.radius <= kRadiusRange[1] * diagonal)) {
+    std::snprintf(text, sizeof(text),
+                  "`radius`: %g is %.3g of the H-net's diagonal (%g); it must be within %g … %g "
+                  "of it",
+                  inversion.radius, inversion.radius / diagonal, diagonal, kRadiusRange[0],
+                  kRadiusRange[1]);
+    throw InputError(text);
+  }
   DarbouxSkin skin;
   skin.inversion = inversion;
   for (auto f : hnet.mesh.faces())
     skin.hnet_patches.push_back(HNetPatch(hnet.mesh, f, hnet.weights[f.idx()]));
-  const double diagonal = Diagonal(MeshPoints(hnet.mesh));
-  skin.nearest = FindNearestPatchPoint(skin.hnet_patches, inversion.centre);
+  skin.nearest = FindNearestPatchPoint(InUnitFrame(skin.hnet_patches, box),
+                                       (inversion.centre - box.centre) / diagonal);
+  skin.nearest.distance *= diagonal;
   if (!(skin.nearest.distance >= kMinCentreDistance * diagonal)) {
-    char text[512];
     std::snprintf(text, sizeof(text),
                   "`centre`: %s lies %.3g of the H-net's diagonal from patch %d (at u %.3f, v "
                   "%.3f); the inversion sends the surface at its centre to infinity, so the "
@@ -225,9 +271,8 @@ DarbouxSkin MakeDarbouxSkin(const HNetPatchwork& hnet, const Inversion& inversio
     for (const Eigen::Vector4d& h : skin.patches.back().control)
       if (!h.allFinite())
         throw InputError("the image of patch " + std::to_string(f) +
-                         " has control points that are not finite (`centre` " +
-                         Xyz(inversion.centre) + ", `radius` " + std::to_string(inversion.radius) +
-                         "): choose a centre and radius nearer the H-net's scale");
+                         " has control points that are not finite: the H-net's coordinates are "
+                         "too large for its inversion");
   }
   return skin;
 }
@@ -237,15 +282,23 @@ DarbouxMeasures MeasureDarbouxSkin(const HNetPatchwork& hnet, const DarbouxSkin&
   DarbouxMeasures m;
   const PolyMesh& mesh = hnet.mesh;
   const int s = std::max(samples, 2);
+  // Everything measured in the H-net's unit frame (scale-free measures; K × diagonal²).
+  const Box box = BoxOf(mesh);
+  const std::vector<RationalBezierPatch> patches = InUnitFrame(skin.patches, box);
+  const std::vector<RationalBezierPatch> hnet_patches = InUnitFrame(skin.hnet_patches, box);
+  Inversion inversion;
+  inversion.centre = (skin.inversion.centre - box.centre) / box.diagonal;
+  inversion.radius = skin.inversion.radius / box.diagonal;
   std::vector<Eigen::Vector3d> skin_points;
-  for (const RationalBezierPatch& patch : skin.patches)
+  for (const RationalBezierPatch& patch : patches)
     for (int i = 0; i <= s; ++i)
       for (int j = 0; j <= s; ++j)
         skin_points.push_back(
             EvaluatePoint(patch, static_cast<double>(i) / s, static_cast<double>(j) / s));
-  m.hnet_diagonal = Diagonal(MeshPoints(mesh));
-  m.skin_diagonal = Diagonal(skin_points);
-  m.centre_distance = skin.nearest.distance / m.hnet_diagonal;
+  const double unit_skin_diagonal = Diagonal(skin_points);
+  m.hnet_diagonal = box.diagonal;
+  m.skin_diagonal = unit_skin_diagonal * box.diagonal;
+  m.centre_distance = skin.nearest.distance / box.diagonal;
 
   // Tangent planes along the inner edges, at the same points of the straight edge from both
   // patches.
@@ -261,10 +314,10 @@ DarbouxMeasures MeasureDarbouxSkin(const HNetPatchwork& hnet, const DarbouxSkin&
       const double frac = static_cast<double>(k) / s;
       const Eigen::Vector2d uf = EdgeUv(kf, EdgeParameterAt(frac, wf[kf], wf[(kf + 1) % 4]));
       const Eigen::Vector2d ug = EdgeUv(kg, EdgeParameterAt(1.0 - frac, wg[kg], wg[(kg + 1) % 4]));
-      const double before = AngleDeg(UnitNormal(skin.hnet_patches[f.idx()], uf),
-                                     UnitNormal(skin.hnet_patches[g.idx()], ug));
+      const double before =
+          AngleDeg(UnitNormal(hnet_patches[f.idx()], uf), UnitNormal(hnet_patches[g.idx()], ug));
       const double after =
-          AngleDeg(UnitNormal(skin.patches[f.idx()], uf), UnitNormal(skin.patches[g.idx()], ug));
+          AngleDeg(UnitNormal(patches[f.idx()], uf), UnitNormal(patches[g.idx()], ug));
       m.hnet_max_tangent_angle_deg = std::max(m.hnet_max_tangent_angle_deg, before);
       m.max_tangent_angle_deg = std::max(m.max_tangent_angle_deg, after);
       m.max_tangent_angle_change_deg =
@@ -273,7 +326,7 @@ DarbouxMeasures MeasureDarbouxSkin(const HNetPatchwork& hnet, const DarbouxSkin&
   }
 
   // The images of the rulings: circles through the centre.
-  for (const RationalBezierPatch& patch : skin.patches)
+  for (const RationalBezierPatch& patch : patches)
     for (int family = 0; family < 2; ++family)
       for (int r = 0; r <= 4; ++r) {
         const double fixed = r / 4.0;
@@ -286,25 +339,25 @@ DarbouxMeasures MeasureDarbouxSkin(const HNetPatchwork& hnet, const DarbouxSkin&
         const Circle circle = CircleThrough(points.front(), points[s / 2], points.back());
         for (const Eigen::Vector3d& p : points)
           m.max_circle_deviation =
-              std::max(m.max_circle_deviation, DistanceToCircle(p, circle) / m.skin_diagonal);
+              std::max(m.max_circle_deviation, DistanceToCircle(p, circle) / unit_skin_diagonal);
         m.max_centre_off_circle =
             std::max(m.max_centre_off_circle,
-                     DistanceToCircle(skin.inversion.centre, circle) / m.skin_diagonal);
+                     DistanceToCircle(inversion.centre, circle) / unit_skin_diagonal);
         ++m.rulings;
       }
 
   // Gaussian curvature at the cell centres, against the inversion's formula.
-  const double scale = m.skin_diagonal * m.skin_diagonal;
-  const double r2 = skin.inversion.radius * skin.inversion.radius;
+  const double scale = unit_skin_diagonal * unit_skin_diagonal;
+  const double r2 = inversion.radius * inversion.radius;
   m.skin_min_k = INFINITY, m.skin_max_k = -INFINITY;
-  for (std::size_t f = 0; f < skin.patches.size(); ++f)
+  for (std::size_t f = 0; f < patches.size(); ++f)
     for (int i = 0; i < s; ++i)
       for (int j = 0; j < s; ++j) {
         const double u = (i + 0.5) / s, v = (j + 0.5) / s;
-        const PatchJet before = EvaluateJet(skin.hnet_patches[f], u, v);
+        const PatchJet before = EvaluateJet(hnet_patches[f], u, v);
         const PatchCurvature kb = CurvatureOf(before);
-        const PatchCurvature ka = CurvatureOf(EvaluateJet(skin.patches[f], u, v));
-        const Eigen::Vector3d d = before.point - skin.inversion.centre;
+        const PatchCurvature ka = CurvatureOf(EvaluateJet(patches[f], u, v));
+        const Eigen::Vector3d d = before.point - inversion.centre;
         const double a = d.squaredNorm() / r2, b = 2.0 * d.dot(kb.normal) / r2;
         const double predicted = a * a * kb.gaussian + 2.0 * a * b * kb.mean + b * b;
         m.max_curvature_formula_error = std::max(
@@ -316,11 +369,11 @@ DarbouxMeasures MeasureDarbouxSkin(const HNetPatchwork& hnet, const DarbouxSkin&
         m.skin_max_k = std::max(m.skin_max_k, k_scaled);
         if (k_scaled > 1e-9) ++m.skin_k_positive;
         if (k_scaled < -1e-9) ++m.skin_k_negative;
-        const double hnet_scaled = kb.gaussian * m.hnet_diagonal * m.hnet_diagonal;
+        const double hnet_scaled = kb.gaussian;  // the H-net's diagonal is 1 here
         if (hnet_scaled > 1e-9) ++m.hnet_k_positive;
         if (hnet_scaled < -1e-9) ++m.hnet_k_negative;
       }
-  for (const RationalBezierPatch& patch : skin.patches)
+  for (const RationalBezierPatch& patch : patches)
     if (std::any_of(patch.control.begin(), patch.control.end(),
                     [](const Eigen::Vector4d& h) { return !(h[3] > 0.0); }))
       ++m.patches_with_nonpositive_weights;
@@ -360,7 +413,11 @@ nlohmann::json DarbouxSkinJson(const HNetPatchwork& hnet, const DarbouxSkin& ski
   const Eigen::Vector3d& c = skin.inversion.centre;
   return {{"inversion", {{"centre", {c.x(), c.y(), c.z()}}, {"radius", skin.inversion.radius}}},
           {"patches", patches},
-          {"hnet", HNetJson(hnet.mesh, hnet.weights)}};
+          {"hnet", [&hnet] {
+             nlohmann::json source = HNetJson(hnet.mesh, hnet.weights);
+             source.update(hnet.extra);
+             return source;
+           }()}};
 }
 
 PolyMesh SampleDarbouxSkin(const HNetPatchwork& hnet, const DarbouxSkin& skin, int samples) {

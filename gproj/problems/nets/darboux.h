@@ -56,6 +56,11 @@ NearestPatchPoint FindNearestPatchPoint(const std::vector<RationalBezierPatch>& 
 // reaches beyond ~1 / kMinCentreDistance times the radius² / diagonal, and on the surface it is
 // unbounded.
 inline constexpr double kMinCentreDistance = 1e-3;
+// The centre at most this many diagonals from the H-net's box centre (farther, the inversion is
+// nearly a similarity and its cancellations cost the skin's precision), and the radius within
+// this range of diagonals.
+inline constexpr double kMaxCentreDistance = 1e3;
+inline constexpr double kRadiusRange[2] = {1e-6, 1e6};
 
 struct DarbouxSkin {
   Inversion inversion;
@@ -65,9 +70,10 @@ struct DarbouxSkin {
 };
 
 // The skin of an H-net. Throws InputError (naming `centre` and `radius` as options) when the
-// radius is not positive or the centre is not finite, when the centre lies within
-// kMinCentreDistance of the diagonal of the H-net (naming the face and parameters), and when a
-// control point of the image is not finite.
+// radius is outside kRadiusRange diagonals of the H-net, when the centre is not finite, farther
+// than kMaxCentreDistance diagonals from the H-net or within kMinCentreDistance of the diagonal
+// of its surface (naming the face and parameters), and when a control point of the image is
+// not finite.
 DarbouxSkin MakeDarbouxSkin(const HNetPatchwork& hnet, const Inversion& inversion);
 
 // The default inversion: centre half the H-net's bounding-box diagonal off its box's centre
@@ -75,6 +81,8 @@ DarbouxSkin MakeDarbouxSkin(const HNetPatchwork& hnet, const Inversion& inversio
 // to itself, so the skin stays about where and as large as the H-net).
 Inversion DefaultInversion(const PolyMesh& mesh);
 
+// The measures, taken in the H-net's unit frame (its box's centre at the origin, its diagonal
+// 1), so that they are the same at every scale of the input.
 struct DarbouxMeasures {
   // Tangent planes along the images of the inner edges (samples + 1 points each), degrees: the
   // skin's largest angle, the H-net's at the same points, and the largest difference.

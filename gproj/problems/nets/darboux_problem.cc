@@ -9,6 +9,15 @@
 namespace gproj::nets {
 namespace {
 
+// Rounding the exact construction may leave: distances / the skin's diagonal, and seam angles.
+constexpr double kSkinTolerance = 1e-8, kSkinAngleTolerance = 1e-6;
+// H-net patches meeting at more than this (degrees) are not smooth: warned about.
+constexpr double kSmoothHNetDeg = 1e-4;
+// A centre nearer the surface (× the H-net's diagonal) is warned about.
+constexpr double kNearCentre = 1e-2;
+// Samples of the measures and the surface at most (patches × (samples + 1)²).
+constexpr double kMaxSkinSamples = 2e7;
+
 struct DarbouxSettings {
   std::vector<double> centre;  // empty: DefaultInversion
   double radius = 0.0;         // 0: DefaultInversion's (or, with a centre, the distance from it
@@ -78,6 +87,17 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   const DarbouxSettings settings = Schema().Apply(values);
   const std::string source = inputs.Source("hnet");
   const HNetPatchwork hnet = ParseHNetJson(*inputs.Text("hnet"), source);
+  // The samples of the measures and the surface, checked before anything is allocated.
+  const double samples = static_cast<double>(hnet.mesh.n_faces()) * (settings.samples + 1.0) *
+                         (settings.samples + 1.0);
+  if (samples > kMaxSkinSamples) {
+    char text[256];
+    std::snprintf(text, sizeof(text),
+                  "`samples` %d on %zu patches asks for %.3g samples; at most %g (fewer samples "
+                  "per patch edge)",
+                  settings.samples, hnet.mesh.n_faces(), samples, kMaxSkinSamples);
+    throw InputError(text);
+  }
   Inversion inversion = DefaultInversion(hnet.mesh);
   const bool default_centre = settings.centre.empty();
   if (!default_centre) {
@@ -100,8 +120,24 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   context.Headline(line);
   const DarbouxSkin skin = MakeDarbouxSkin(hnet, inversion);
   const DarbouxMeasures m = MeasureDarbouxSkin(hnet, skin, settings.samples);
+  // The construction is exact: its measures show what rounding left (circles, seams).
+  const bool exact = m.max_circle_deviation <= kSkinTolerance &&
+                     m.max_centre_off_circle <= kSkinTolerance &&
+                     m.max_tangent_angle_change_deg <= kSkinAngleTolerance;
   RunResult result;
-  result.report = construction.Finish({}, Values(m), true);
+  result.report = construction.Finish({}, Values(m), exact);
+  result.tolerance_measure = "max_circle_deviation";
+  result.tolerance = kSkinTolerance;
+  if (!exact) {
+    char text[320];
+    std::snprintf(text, sizeof(text),
+                  "the skin lost precision to rounding: rulings %.2g off their circles (%.2g "
+                  "for the centre), seam angles changed by %.2g deg (at most %g, %g and %g deg): "
+                  "choose a centre nearer the H-net",
+                  m.max_circle_deviation, m.max_centre_off_circle, m.max_tangent_angle_change_deg,
+                  kSkinTolerance, kSkinTolerance, kSkinAngleTolerance);
+    result.shortfalls.push_back(text);
+  }
   if (result.report.failed) return result;
   result.facts = {{"inversion",
                    {{"centre", {c.x(), c.y(), c.z()}},
@@ -131,16 +167,26 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
                 m.curvature_samples, m.skin_k_positive, m.skin_k_negative, m.hnet_k_positive,
                 m.hnet_k_negative, m.skin_min_k, m.skin_max_k);
   result.Info(line);
-  if (m.skin_k_positive == 0)
+  if (m.skin_k_positive == 0 && m.skin_k_negative > 0)
     result.Info("no region of K > 0: a centre nearer the surface shifts the curvature further");
+  if (m.hnet_max_tangent_angle_deg > kSmoothHNetDeg) {
+    std::snprintf(line, sizeof(line),
+                  "the input's patches meet at up to %.3g deg along their common edges: it is "
+                  "not a smooth H-net (gproj hnet makes one), and the skin keeps those kinks",
+                  m.hnet_max_tangent_angle_deg);
+    result.Warn(line);
+  }
   if (m.patches_with_nonpositive_weights > 0)
     result.Warn(std::to_string(m.patches_with_nonpositive_weights) +
                 " patches have non-positive weights (the centre is near them): the output "
                 "gives them as homogeneous control points only, not as NURBS weights");
-  if (m.skin_diagonal > 100.0 * m.hnet_diagonal)
-    result.Warn("the skin is " +
-                std::to_string(static_cast<long long>(m.skin_diagonal / m.hnet_diagonal)) +
-                " times the H-net's size: the centre is near the surface");
+  if (m.centre_distance < kNearCentre) {
+    std::snprintf(line, sizeof(line),
+                  "the centre is %.3g of the H-net's diagonal off its surface: the skin is "
+                  "stretched near it (%.3g times its diagonal)",
+                  m.centre_distance, m.skin_diagonal / m.hnet_diagonal);
+    result.Warn(line);
+  }
   result.texts["output"] = DarbouxSkinJson(hnet, skin).dump(1) + "\n";
   if (context.Wants("surface"))
     result.meshes["surface"] = SampleDarbouxSkin(hnet, skin, settings.samples);

@@ -21,8 +21,11 @@ DiagonalMesh MakeDiagonalMesh(const PolyMesh& quads, int colour, DiagonalRings w
     rings.push_back(std::move(ring));
   }
   if (rings.empty())
-    throw InputError("the diagonal mesh of colour " + std::to_string(colour) +
-                     " has no face (no inner vertex of the other colour)");
+    throw InputError("the diagonal mesh of colour " + std::to_string(colour) + " has no face (" +
+                     (out.open_rings.empty()
+                          ? std::string("no inner vertex of the other colour")
+                          : "the rings of the other colour's inner vertices are not quads") +
+                     ")");
   for (const std::vector<int>& ring : rings)
     for (int a : ring)
       if (out.vertex_of[a] < 0) {

@@ -1,6 +1,8 @@
 #include "gproj/problems/nets/hnet_json.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 
 namespace gproj::nets {
@@ -45,6 +47,8 @@ HNetPatchwork ParseHNetJson(const std::string& text, const std::string& name) {
     root = Json::parse(text);
   } catch (const Json::parse_error& e) {
     throw InputError(pre + "not valid JSON (at byte " + std::to_string(e.byte) + ")");
+  } catch (const Json::exception&) {
+    throw InputError(pre + "a number is beyond the range of a double (e.g. 1e999)");
   }
   if (!root.is_object())
     throw InputError(pre + "expected an H-net: a JSON object with vertices, faces and weights");
@@ -78,22 +82,45 @@ HNetPatchwork ParseHNetJson(const std::string& text, const std::string& name) {
       if (!row[k].is_number_integer() || row[k].get<long long>() < 0 ||
           row[k].get<long long>() >= static_cast<long long>(vertices.size()))
         throw InputError(pre + Place("faces", f) + "[" + std::to_string(k) +
-                         "]: expected a vertex id in [0, " + std::to_string(vertices.size()) + ")");
+                         "]: expected an integer vertex id in [0, " +
+                         std::to_string(vertices.size()) + ")");
       face.push_back(row[k].get<int>());
     }
     soup.faces.push_back(face);
     soup.face_lines.push_back(0);
   }
+  std::vector<char> used(vertices.size(), 0);
+  for (const std::vector<int>& face : soup.faces)
+    for (int v : face) used[v] = 1;
+  for (std::size_t v = 0; v < used.size(); ++v)
+    if (!used[v])
+      throw InputError(pre + Place("vertices", v) +
+                       " is used by no face (an H-net's vertices are its patches' corners)");
   HNetPatchwork hnet;
+  for (auto it = root.begin(); it != root.end(); ++it)
+    if (it.key() != "vertices" && it.key() != "faces" && it.key() != "weights")
+      hnet.extra[it.key()] = it.value();
   hnet.weights.resize(faces.size());
   for (std::size_t f = 0; f < faces.size(); ++f) {
     const std::vector<double> w = Numbers(weights[f], 4, Place("weights", f), pre);
     for (int k = 0; k < 4; ++k) {
-      if (!(w[k] > 0.0))
-        throw InputError(pre + Place("weights", f) + "[" + std::to_string(k) +
-                         "] = " + std::to_string(w[k]) +
+      if (!(w[k] > 0.0)) {
+        char text[64];
+        std::snprintf(text, sizeof(text), "] = %g", w[k]);
+        throw InputError(pre + Place("weights", f) + "[" + std::to_string(k) + text +
                          " is not positive (an H-net's corner weights are positive)");
+      }
       hnet.weights[f][k] = w[k];
+    }
+    const double ratio =
+        *std::max_element(w.begin(), w.end()) / *std::min_element(w.begin(), w.end());
+    if (!(ratio <= kMaxCornerWeightRatio)) {
+      char text[160];
+      std::snprintf(text, sizeof(text),
+                    ": the corner weights differ by a factor %.3g, more than %g (the patch "
+                    "degenerates towards its heavier corners)",
+                    ratio, kMaxCornerWeightRatio);
+      throw InputError(pre + Place("weights", f) + text);
     }
   }
   MeshRequirements requirements;

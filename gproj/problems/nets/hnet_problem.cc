@@ -1,4 +1,5 @@
 // `hnet` in the registry: an A-net extended to smoothly joined rational bilinear patches.
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -18,7 +19,7 @@ struct HNetSettings {
   std::string star_form = "normals";
   int samples = 8;
   std::string net = "edges";
-  int diagonal_colour = 0;
+  int diagonal_colour = -1;  // not given (0 with net diagonal)
 };
 
 const OptionSchema<HNetSettings>& Schema() {
@@ -50,10 +51,10 @@ const OptionSchema<HNetSettings>& Schema() {
          "vertices are the input's of one colour)",
          [](S& x) -> std::string& { return x.net; })
         .Choices({"edges", "diagonal"});
-    s.Field<int>("diagonal_colour", OptionType::kInt,
-                 "With net diagonal: which diagonal mesh, by the colour of its vertices (0: the "
-                 "one through vertex 0)",
-                 [](S& x) -> int& { return x.diagonal_colour; })
+    s.Optional<int>("diagonal_colour", OptionType::kInt,
+                    "With net diagonal: which diagonal mesh, by the colour of its vertices (0, "
+                    "the default: the one through vertex 0)",
+                    [](S& x) -> int& { return x.diagonal_colour; })
         .Range(0, 1);
     return s;
   }();
@@ -125,21 +126,35 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   const PolyMesh* reference = inputs.OptionalMesh("reference");
   // The diagonal net: the H-net of one diagonal mesh, the input mesh its reference surface.
   const bool diagonal = settings.net == "diagonal";
+  if (!diagonal && settings.diagonal_colour >= 0)
+    throw InputError("`diagonal_colour` chooses a diagonal mesh: it needs `net` diagonal");
+  const int colour = std::max(settings.diagonal_colour, 0);
   DiagonalMesh diagonal_mesh;
+  const std::string diagonal_name = "its diagonal mesh of colour " + std::to_string(colour);
   if (diagonal) {
     try {
-      diagonal_mesh = MakeDiagonalMesh(input, settings.diagonal_colour, DiagonalRings::kQuads);
+      diagonal_mesh = MakeDiagonalMesh(input, colour, DiagonalRings::kQuads);
     } catch (const InputError& e) {
       throw InputError(source + ": `net` diagonal: " + e.what());
     }
     if (reference == nullptr) reference = &input;
     for (int& v : options.anet.vertices.fixed) {
-      if (diagonal_mesh.vertex_of[v] < 0)
+      if (diagonal_mesh.vertex_of[v] < 0) {
+        const DiagonalMesh other = MakeDiagonalMesh(input, 1 - colour, DiagonalRings::kAll);
         throw InputError("`fixed`: vertex " + std::to_string(v) +
-                         " is not on the diagonal mesh of colour " +
-                         std::to_string(settings.diagonal_colour) + " (use `diagonal_colour` " +
-                         std::to_string(1 - settings.diagonal_colour) + " for it)");
+                         " is not on the diagonal mesh of colour " + std::to_string(colour) +
+                         (other.vertex_of[v] >= 0
+                              ? " (use `diagonal_colour` " + std::to_string(1 - colour) + " for it)"
+                              : " nor on the other (no ring of an inner vertex contains it)"));
+      }
       v = diagonal_mesh.vertex_of[v];
+    }
+    // With `weld`, the ids are the welded mesh's: given as the input's first vertex of each.
+    const auto weld = inputs.weld_maps.find("mesh");
+    if (weld != inputs.weld_maps.end()) {
+      std::vector<int> first(input.n_vertices(), -1);
+      for (std::size_t k = weld->second.size(); k-- > 0;) first[weld->second[k]] = k;
+      for (int& v : diagonal_mesh.input_vertices) v = first[v];
     }
   }
   const PolyMesh& mesh = diagonal ? diagonal_mesh.mesh : input;
@@ -157,15 +172,13 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   try {
     hnet = std::make_unique<HNet>(mesh, reference, options);
   } catch (const InputError& e) {
-    throw InputError(source + ": " + e.what() +
+    throw InputError(source + ": " + (diagonal ? diagonal_name + ": " : std::string()) + e.what() +
                      (open_rings.empty() ? std::string() : " (" + open_rings + ")"));
   }
   context.Headline(source + ": " + std::to_string(input.n_vertices()) + " vertices, " +
                    std::to_string(input.n_faces()) + " quads" +
-                   (diagonal ? "; its diagonal mesh of colour " +
-                                   std::to_string(settings.diagonal_colour) + ": " +
-                                   std::to_string(mesh.n_vertices()) + " vertices, " +
-                                   std::to_string(mesh.n_faces()) + " quads"
+                   (diagonal ? "; " + diagonal_name + ": " + std::to_string(mesh.n_vertices()) +
+                                   " vertices, " + std::to_string(mesh.n_faces()) + " quads"
                              : std::string()));
   if (!open_rings.empty()) context.Info(open_rings);
   context.Info("A-net step:");
@@ -177,7 +190,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   result.facts = HNet::ReportFacts(summary);
   result.facts["net"] = diagonal ? "diagonal" : "edges";
   if (diagonal) {
-    result.facts["diagonal_colour"] = settings.diagonal_colour;
+    result.facts["diagonal_colour"] = colour;
     result.facts["input_vertices"] = diagonal_mesh.input_vertices;
     result.facts["open_rings"] = diagonal_mesh.open_rings;
   }

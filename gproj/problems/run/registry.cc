@@ -349,11 +349,16 @@ std::string ReferenceMarkdown(const ProblemSpec& spec) {
           " | " + DefaultText(option) + " | " + Cell(option.RangeText()) + " | " + option.unit +
           " | " + Cell(option.doc) + " |\n";
   }
-  md += "\nLive log columns: ";
-  for (size_t i = 0; i < spec.log_measures.size(); ++i)
-    md += (i ? ", `" : "`") + spec.log_measures[i] + "`";
+  if (spec.log_measures.empty()) {
+    md += "\nNo live log: the run builds its result without iterating.";
+  } else {
+    md += "\nLive log columns: ";
+    for (size_t i = 0; i < spec.log_measures.size(); ++i)
+      md += (i ? ", `" : "`") + spec.log_measures[i] + "`";
+    md += ".";
+  }
   md +=
-      ".\n\nExit codes (command line): 0 converged (the tolerance is met), 1 bad input or "
+      "\n\nExit codes (command line): 0 converged (the tolerance is met), 1 bad input or "
       "option (nothing written), 3 tolerance not reached (result written), 4 numerical failure "
       "(nothing written).\n";
   return md;

@@ -61,7 +61,8 @@ void AddSolverOptions(OptionSchema<S>* schema, std::function<SolverOptions&(S&)>
   schema
       ->template Field<double>("fairness", OptionType::kNumber,
                                "omega_f: weight of the fairness (second differences along "
-                               "polylines)",
+                               "polylines; at vertices of polygon meshes that no polyline "
+                               "passes, twice the offset from the neighbours' centroid)",
                                field(&SolverOptions::fairness_weight))
       .NonNegative()
       .Group("solver");

@@ -203,13 +203,48 @@ TEST(DarbouxTest, HNetJsonErrorsNameTheKeyAndIndex) {
   EXPECT_NE(error(j).find("faces[4]: expected four vertex ids"), std::string::npos);
   j = good;
   j["faces"][1][3] = 99;
-  EXPECT_NE(error(j).find("faces[1][3]: expected a vertex id in [0, 16)"), std::string::npos);
+  EXPECT_NE(error(j).find("faces[1][3]: expected an integer vertex id in [0, 16)"),
+            std::string::npos);
   j = good;
   j["vertices"][3][2] = "x";
   EXPECT_NE(error(j).find("vertices[3][2] is not a number"), std::string::npos);
   EXPECT_NE(
       InputErrorOf([] { ParseHNetJson("{\"vertices\": [", "h.json"); }).find("not valid JSON"),
       std::string::npos);
+}
+
+// The measures are taken in the H-net's unit frame: the same at every scale and position.
+TEST(DarbouxTest, MeasuresAreTheSameAtEveryScale) {
+  const HNetPatchwork hnet = Hyperboloid(7);
+  const DarbouxMeasures base =
+      MeasureDarbouxSkin(hnet, MakeDarbouxSkin(hnet, At({0.0, 0.0, 0.0}, 1.2)), 6);
+  ASSERT_GT(base.skin_k_positive, 0);
+  for (double scale : {1e-150, 1e-20, 1e20, 1e150}) {
+    HNetPatchwork scaled = hnet;
+    const Eigen::Vector3d shift(3.0, -2.0, 1.0);
+    for (auto v : scaled.mesh.vertices())
+      scaled.mesh.set_point(v, (hnet.mesh.point(v) + PolyMesh::Point(3.0, -2.0, 1.0)) * scale);
+    const DarbouxSkin skin = MakeDarbouxSkin(scaled, At(shift * scale, 1.2 * scale));
+    const DarbouxMeasures m = MeasureDarbouxSkin(scaled, skin, 6);
+    EXPECT_EQ(m.skin_k_positive, base.skin_k_positive) << scale;
+    EXPECT_EQ(m.skin_k_negative, base.skin_k_negative) << scale;
+    EXPECT_NEAR(m.skin_max_k, base.skin_max_k, 1e-8 * std::abs(base.skin_max_k)) << scale;
+    EXPECT_LT(m.max_circle_deviation, 1e-10) << scale;
+    EXPECT_NEAR(m.skin_diagonal / scale, base.skin_diagonal, 1e-10 * base.skin_diagonal);
+  }
+  // A radius or a centre the precision cannot take is refused, naming the option.
+  EXPECT_NE(InputErrorOf([&] {
+              MakeDarbouxSkin(hnet, At({0, 0, 0}, 1e300));
+            }).find("`radius`"),
+            std::string::npos);
+  EXPECT_NE(InputErrorOf([&] {
+              MakeDarbouxSkin(hnet, At({0, 0, 0}, 1e-300));
+            }).find("`radius`"),
+            std::string::npos);
+  EXPECT_NE(InputErrorOf([&] {
+              MakeDarbouxSkin(hnet, At({1e12, 0, 0}, 1.0));
+            }).find("`centre`: (1e+12, 0, 0) is"),
+            std::string::npos);
 }
 
 // The welded sample: as many vertices as the H-net's, each on the skin (its corners at the
