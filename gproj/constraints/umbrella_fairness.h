@@ -14,7 +14,8 @@ namespace gproj {
 class UmbrellaFairness : public ConstraintFamily {
  public:
   // `dim` the dimension of the items (3 for vertices).
-  explicit UmbrellaFairness(int dim = 3, double weight = 1.0, std::string name = "fairness_umbrella");
+  explicit UmbrellaFairness(int dim = 3, double weight = 1.0,
+                            std::string name = "fairness_umbrella");
 
   void EvaluateElement(int e, const double* x, double* phi, double* jac) const override;
   bool RowTouches(int e, int row, int local) const override { return local % dim_ == row; }

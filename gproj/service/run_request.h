@@ -52,7 +52,8 @@ std::string DumpJson(const nlohmann::json& value);
 //   inputs   input name -> value: a mesh as {"vertices": [[x,y,z],...], "faces": [[i,j,k,l],...]}
 //            or as a file's contents {"obj" | "off" | "ply": "..."}; vertex ids as a list of
 //            0-based ids; a curve as a list of [x,y,z]; a B-spline as its JSON object; a text as
-//            a string; a JSON input (an H-net) as its object or its text. No value names a file on the server.
+//            a string; a JSON input (an H-net) as its object or its text. No value names a file on
+//            the server.
 //   options  option name -> value, as Python's keywords (checked by the schema)
 //   outputs  optional outputs wanted besides the required ones (e.g. ["face_values"])
 //   weld     merge coincident vertices of the input meshes (default false)
