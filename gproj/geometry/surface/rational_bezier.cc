@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <cassert>
 #include <cmath>
 
 namespace gproj {
@@ -15,24 +16,24 @@ double Binomial(int n, int k) {
   return b;
 }
 
-// Bernstein polynomials of degree n at t, B_0..B_n (0 outside that range).
-std::vector<double> Bernstein(int n, double t) {
-  std::vector<double> b(n + 1, 0.0);
-  if (n < 0) return b;
+// Bernstein polynomials of degree n at t, B_0..B_n, zero beyond (no allocation: patches are
+// evaluated at every sample of their measures).
+using Basis = std::array<double, kMaxPatchDegree + 1>;
+Basis Bernstein(int n, double t) {
+  Basis b{};
   for (int i = 0; i <= n; ++i) b[i] = Binomial(n, i) * std::pow(t, i) * std::pow(1.0 - t, n - i);
   return b;
 }
 
 // B_i^n and its first and second derivatives at t.
 struct BasisJet {
-  std::vector<double> value, first, second;
+  Basis value{}, first{}, second{};
 };
 BasisJet BernsteinJet(int n, double t) {
-  BasisJet jet{Bernstein(n, t), std::vector<double>(n + 1, 0.0), std::vector<double>(n + 1, 0.0)};
-  const std::vector<double> b1 = Bernstein(n - 1, t), b2 = Bernstein(n - 2, t);
-  const auto at = [](const std::vector<double>& b, int i) {
-    return i >= 0 && i < static_cast<int>(b.size()) ? b[i] : 0.0;
-  };
+  BasisJet jet;
+  jet.value = Bernstein(n, t);
+  const Basis b1 = Bernstein(n - 1, t), b2 = Bernstein(n - 2, t);
+  const auto at = [](const Basis& b, int i) { return i >= 0 ? b[i] : 0.0; };
   for (int i = 0; i <= n; ++i) {
     if (n >= 1) jet.first[i] = n * (at(b1, i - 1) - at(b1, i));
     if (n >= 2) jet.second[i] = n * (n - 1) * (at(b2, i - 2) - 2.0 * at(b2, i - 1) + at(b2, i));
@@ -43,7 +44,9 @@ BasisJet BernsteinJet(int n, double t) {
 }  // namespace
 
 RationalBezierPatch::RationalBezierPatch(int du, int dv)
-    : degree_u(du), degree_v(dv), control((du + 1) * (dv + 1), Eigen::Vector4d::Zero()) {}
+    : degree_u(du), degree_v(dv), control((du + 1) * (dv + 1), Eigen::Vector4d::Zero()) {
+  assert(du >= 1 && dv >= 1 && du <= kMaxPatchDegree && dv <= kMaxPatchDegree);
+}
 
 PatchJet EvaluateJet(const RationalBezierPatch& patch, double u, double v) {
   const BasisJet bu = BernsteinJet(patch.degree_u, u), bv = BernsteinJet(patch.degree_v, v);
@@ -72,7 +75,7 @@ PatchJet EvaluateJet(const RationalBezierPatch& patch, double u, double v) {
 }
 
 Eigen::Vector3d EvaluatePoint(const RationalBezierPatch& patch, double u, double v) {
-  const std::vector<double> bu = Bernstein(patch.degree_u, u), bv = Bernstein(patch.degree_v, v);
+  const Basis bu = Bernstein(patch.degree_u, u), bv = Bernstein(patch.degree_v, v);
   Eigen::Vector4d h = Eigen::Vector4d::Zero();
   for (int i = 0; i <= patch.degree_u; ++i)
     for (int j = 0; j <= patch.degree_v; ++j) h += bu[i] * bv[j] * patch.At(i, j);

@@ -8,6 +8,9 @@
 
 namespace gproj {
 
+// The highest degree a patch may have (the image of a bilinear patch under an inversion has 2).
+inline constexpr int kMaxPatchDegree = 8;
+
 // point(u, v) = Σ B_i(u) B_j(v) H_ij.head<3>() / Σ B_i(u) B_j(v) H_ij[3] on (u, v) ∈ [0, 1]²,
 // B the Bernstein polynomials of degree (degree_u, degree_v) and H_ij the homogeneous control
 // points (w x, w y, w z, w).
@@ -16,7 +19,7 @@ struct RationalBezierPatch {
   std::vector<Eigen::Vector4d> control;  // H_ij at i * (degree_v + 1) + j
 
   RationalBezierPatch() = default;
-  RationalBezierPatch(int du, int dv);
+  RationalBezierPatch(int du, int dv);  // 1 ≤ du, dv ≤ kMaxPatchDegree
   Eigen::Vector4d& At(int i, int j) { return control[i * (degree_v + 1) + j]; }
   const Eigen::Vector4d& At(int i, int j) const { return control[i * (degree_v + 1) + j]; }
 };

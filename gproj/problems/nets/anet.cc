@@ -18,16 +18,8 @@ const char* NetKindName(NetKind net) { return net == NetKind::kDiagonals ? "diag
 
 std::vector<int> StarPoints(const PolyMesh& mesh, PolyMesh::VertexHandle v, NetKind net) {
   std::vector<int> points;
-  if (net == NetKind::kEdges) {
-    for (auto w : mesh.vv_range(v)) points.push_back(w.idx());
-    return points;
-  }
-  // The outgoing halfedges in the order vv_range gives the neighbours; each one's quad (when it
-  // has one) has the corner after its head opposite v.
-  for (auto h : mesh.voh_range(v)) {
-    if (mesh.is_boundary(h)) continue;
-    points.push_back(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)).idx());
-  }
+  ForEachStarPoint(mesh, v, net,
+                   [&points](PolyMesh::VertexHandle w) { points.push_back(w.idx()); });
   return points;
 }
 
@@ -92,17 +84,10 @@ std::vector<double> VertexStarPlanarity(const PolyMesh& mesh, NetKind net) {
   std::vector<double> values(mesh.n_vertices(), -1.0);
   std::vector<Eigen::Vector3d> points, ring;  // reused: measured every iteration
   for (auto v : mesh.vertices()) {
-    if (net == NetKind::kEdges && mesh.valence(v) < 3) continue;
     points.assign(1, ToEigen(mesh.point(v)));  // the centre first, then the ring
-    if (net == NetKind::kEdges) {
-      for (auto w : mesh.vv_range(v)) points.push_back(ToEigen(mesh.point(w)));
-    } else {
-      for (auto h : mesh.voh_range(v))
-        if (!mesh.is_boundary(h))
-          points.push_back(
-              ToEigen(mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)))));
-      if (points.size() < 4) continue;
-    }
+    ForEachStarPoint(mesh, v, net,
+                     [&](PolyMesh::VertexHandle w) { points.push_back(ToEigen(mesh.point(w))); });
+    if (points.size() < 4) continue;  // fewer than three star points
     // Measured at unit size (the centre at the origin), so that it is scale-free.
     const double extent = NormalizePolygon(points.data(), static_cast<int>(points.size()));
     ring.assign(points.begin() + 1, points.end());

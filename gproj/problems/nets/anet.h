@@ -36,8 +36,20 @@ enum class NetKind { kEdges, kDiagonals };
 // "edges", "diagonal"
 const char* NetKindName(NetKind net);
 
-// The points of v's star in cyclic order: its neighbours (kEdges), or the corners opposite v in
-// its quads (kDiagonals; a boundary vertex's open fan gives one per quad).
+// Calls visit(w) for the points w of v's star in cyclic order: its neighbours (kEdges), or the
+// corners opposite v in its quads (kDiagonals; a boundary vertex's open fan gives one per quad).
+template <typename Visit>
+void ForEachStarPoint(const PolyMesh& mesh, PolyMesh::VertexHandle v, NetKind net, Visit visit) {
+  if (net == NetKind::kEdges) {
+    for (auto w : mesh.vv_range(v)) visit(w);
+    return;
+  }
+  // The outgoing halfedges in the order vv_range gives the neighbours; each one's quad (when it
+  // has one) has the corner after its head opposite v.
+  for (auto h : mesh.voh_range(v))
+    if (!mesh.is_boundary(h)) visit(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
+}
+// The same as a list of vertex ids.
 std::vector<int> StarPoints(const PolyMesh& mesh, PolyMesh::VertexHandle v, NetKind net);
 
 // Guided projection's defaults for A-nets: 50 iterations, ω_f = 0.5, soft weights fading by 0.1

@@ -18,30 +18,21 @@ Eigen::Vector3d P(const PolyMesh& mesh, PolyMesh::VertexHandle v) {
   return {p[0], p[1], p[2]};
 }
 
-double Diagonal(const std::vector<Eigen::Vector3d>& points) {
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
-  for (const Eigen::Vector3d& p : points) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  return points.empty() ? 0.0 : (hi - lo).norm();
-}
-
-std::vector<Eigen::Vector3d> MeshPoints(const PolyMesh& mesh) {
-  std::vector<Eigen::Vector3d> points;
-  for (auto v : mesh.vertices()) points.push_back(P(mesh, v));
-  return points;
-}
-
-// The H-net's bounding box: its centre and diagonal.
+// A bounding box: its centre and diagonal.
 struct Box {
-  Eigen::Vector3d centre;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   double diagonal = 0.0;
 };
-Box BoxOf(const PolyMesh& mesh) {
+Box BoxOf(const std::vector<Eigen::Vector3d>& points) {
+  if (points.empty()) return {};
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
-  for (auto v : mesh.vertices()) lo = lo.cwiseMin(P(mesh, v)), hi = hi.cwiseMax(P(mesh, v));
+  for (const Eigen::Vector3d& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   return {0.5 * (lo + hi), (hi - lo).norm()};
+}
+Box BoxOf(const PolyMesh& mesh) {
+  std::vector<Eigen::Vector3d> points;
+  for (auto v : mesh.vertices()) points.push_back(P(mesh, v));
+  return BoxOf(points);
 }
 
 // The patch in the frame where the box's centre is the origin and its diagonal 1: measured
@@ -63,27 +54,6 @@ std::string Xyz(const Eigen::Vector3d& p) {
   char text[96];
   std::snprintf(text, sizeof(text), "(%.6g, %.6g, %.6g)", p.x(), p.y(), p.z());
   return text;
-}
-
-// The parameter t of a rational segment with end weights w0, w1 at the point at fraction s of
-// the straight segment.
-double EdgeParameterAt(double s, double w0, double w1) {
-  const double a = s * w0, b = (1.0 - s) * w1;
-  return a / (a + b);
-}
-
-// (u, v) of the point at parameter t along corner k → k + 1 of a patch.
-Eigen::Vector2d EdgeUv(int k, double t) {
-  switch (k) {
-    case 0:
-      return {t, 0.0};
-    case 1:
-      return {1.0, t};
-    case 2:
-      return {1.0 - t, 1.0};
-    default:
-      return {0.0, 1.0 - t};
-  }
 }
 
 // The corner of face f at vertex v.
@@ -206,20 +176,24 @@ NearestPatchPoint FindNearestPatchPoint(const std::vector<RationalBezierPatch>& 
 }
 
 Inversion DefaultInversion(const PolyMesh& mesh) {
-  const std::vector<Eigen::Vector3d> points = MeshPoints(mesh);
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
-  for (const Eigen::Vector3d& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const Box box = BoxOf(mesh);
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
   for (auto f : mesh.faces()) {
     std::vector<Eigen::Vector3d> c;
     for (auto fv : mesh.fv_range(f)) c.push_back(P(mesh, fv));
     if (c.size() == 4) normal += 0.5 * (c[2] - c[0]).cross(c[3] - c[1]);
   }
-  const double diagonal = (hi - lo).norm();
-  if (!(normal.norm() > 1e-9 * diagonal * diagonal)) normal = Eigen::Vector3d::UnitZ();
+  if (!(normal.norm() > 1e-9 * box.diagonal * box.diagonal)) normal = Eigen::Vector3d::UnitZ();
   Inversion inversion;
-  inversion.centre = 0.5 * (lo + hi) + 0.5 * diagonal * normal.normalized();
-  inversion.radius = 0.5 * diagonal;
+  inversion.centre = box.centre + 0.5 * box.diagonal * normal.normalized();
+  inversion.radius = 0.5 * box.diagonal;
+  return inversion;
+}
+
+Inversion InversionAbout(const PolyMesh& mesh, const Eigen::Vector3d& centre) {
+  Inversion inversion;
+  inversion.centre = centre;
+  inversion.radius = (centre - BoxOf(mesh).centre).norm();
   return inversion;
 }
 
@@ -295,7 +269,7 @@ DarbouxMeasures MeasureDarbouxSkin(const HNetPatchwork& hnet, const DarbouxSkin&
       for (int j = 0; j <= s; ++j)
         skin_points.push_back(
             EvaluatePoint(patch, static_cast<double>(i) / s, static_cast<double>(j) / s));
-  const double unit_skin_diagonal = Diagonal(skin_points);
+  const double unit_skin_diagonal = BoxOf(skin_points).diagonal;
   m.hnet_diagonal = box.diagonal;
   m.skin_diagonal = unit_skin_diagonal * box.diagonal;
   m.centre_distance = skin.nearest.distance / box.diagonal;
@@ -312,8 +286,9 @@ DarbouxMeasures MeasureDarbouxSkin(const HNetPatchwork& hnet, const DarbouxSkin&
     const auto& wg = hnet.weights[g.idx()];
     for (int k = 0; k <= s; ++k) {
       const double frac = static_cast<double>(k) / s;
-      const Eigen::Vector2d uf = EdgeUv(kf, EdgeParameterAt(frac, wf[kf], wf[(kf + 1) % 4]));
-      const Eigen::Vector2d ug = EdgeUv(kg, EdgeParameterAt(1.0 - frac, wg[kg], wg[(kg + 1) % 4]));
+      const Eigen::Vector2d uf = PatchEdgeUv(kf, EdgeParameterAt(frac, wf[kf], wf[(kf + 1) % 4]));
+      const Eigen::Vector2d ug =
+          PatchEdgeUv(kg, EdgeParameterAt(1.0 - frac, wg[kg], wg[(kg + 1) % 4]));
       const double before =
           AngleDeg(UnitNormal(hnet_patches[f.idx()], uf), UnitNormal(hnet_patches[g.idx()], ug));
       const double after =

@@ -80,6 +80,8 @@ DarbouxSkin MakeDarbouxSkin(const HNetPatchwork& hnet, const Inversion& inversio
 // along the mean face normal, radius the distance from there to the box's centre (which maps
 // to itself, so the skin stays about where and as large as the H-net).
 Inversion DefaultInversion(const PolyMesh& mesh);
+// The inversion about `centre` whose radius is its distance to the H-net's box centre.
+Inversion InversionAbout(const PolyMesh& mesh, const Eigen::Vector3d& centre);
 
 // The measures, taken in the H-net's unit frame (its box's centre at the origin, its diagonal
 // 1), so that they are the same at every scale of the input.

@@ -98,18 +98,12 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
                   settings.samples, hnet.mesh.n_faces(), samples, kMaxSkinSamples);
     throw InputError(text);
   }
-  Inversion inversion = DefaultInversion(hnet.mesh);
   const bool default_centre = settings.centre.empty();
-  if (!default_centre) {
-    inversion.centre = Eigen::Vector3d(settings.centre[0], settings.centre[1], settings.centre[2]);
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
-    for (auto v : hnet.mesh.vertices()) {
-      const auto& p = hnet.mesh.point(v);
-      lo = lo.cwiseMin(Eigen::Vector3d(p[0], p[1], p[2]));
-      hi = hi.cwiseMax(Eigen::Vector3d(p[0], p[1], p[2]));
-    }
-    inversion.radius = (inversion.centre - 0.5 * (lo + hi)).norm();
-  }
+  Inversion inversion =
+      default_centre
+          ? DefaultInversion(hnet.mesh)
+          : InversionAbout(hnet.mesh, Eigen::Vector3d(settings.centre[0], settings.centre[1],
+                                                      settings.centre[2]));
   if (settings.radius > 0.0) inversion.radius = settings.radius;
   const Eigen::Vector3d& c = inversion.centre;
   char line[512];

@@ -208,36 +208,35 @@ void EvaluatePatch(const PolyMesh& mesh, PolyMesh::FaceHandle f, const std::arra
   *normal = tu.cross(tv).normalized();
 }
 
-namespace {
-// (u, v) of the point at fraction t of the parameter along corner k → k+1 of a patch.
-void EdgeParameter(int k, double t, double* u, double* v) {
+double EdgeParameterAt(double s, double w0, double w1) {
+  if (!(w0 * w1 > 0.0)) return s;
+  const double a = s * w0, b = (1.0 - s) * w1;
+  return a / (a + b);
+}
+
+Eigen::Vector2d PatchEdgeUv(int k, double t) {
   switch (k) {
     case 0:
-      *u = t, *v = 0;
-      break;
+      return {t, 0.0};
     case 1:
-      *u = 1, *v = t;
-      break;
+      return {1.0, t};
     case 2:
-      *u = 1 - t, *v = 1;
-      break;
+      return {1.0 - t, 1.0};
     default:
-      *u = 0, *v = 1 - t;
-      break;
+      return {0.0, 1.0 - t};
   }
 }
+
+namespace {
 // Normal of face f's patch at the point (1 − s) a + s b of its edge from vertex a to vertex b.
 Eigen::Vector3d NormalOnEdge(const PolyMesh& mesh, PolyMesh::FaceHandle f,
                              const std::array<double, 4>& w, int a, double s) {
   const std::array<int, 4> c = FaceVertices(mesh, f);
   int k = 0;
   while (c[k] != a) ++k;
-  const double wa = w[k], wb = w[(k + 1) % 4];
-  const double t = s * wa / (s * wa + (1 - s) * wb);
-  double u, v;
-  EdgeParameter(k, t, &u, &v);
+  const Eigen::Vector2d uv = PatchEdgeUv(k, EdgeParameterAt(s, w[k], w[(k + 1) % 4]));
   Eigen::Vector3d point, normal;
-  EvaluatePatch(mesh, f, w, u, v, &point, &normal);
+  EvaluatePatch(mesh, f, w, uv.x(), uv.y(), &point, &normal);
   return normal;
 }
 }  // namespace
@@ -321,20 +320,6 @@ std::string SimplyConnectedProblem(const PolyMesh& mesh) {
   return "the mesh is not simply connected (" + std::to_string(loops) + " boundary loops, genus " +
          std::to_string(genus2 / 2) + ")";
 }
-
-namespace {
-
-// The parameter t ∈ [0, 1] along a patch edge from a corner of weight w0 to one of weight w1 at
-// which the rational edge ((1 − t) w0 A + t w1 B) / ((1 − t) w0 + t w1) reaches the point at
-// fraction s of the straight segment A B (the edge of a rational bilinear patch is that
-// segment). Weights of different signs (a pole on the edge): t = s.
-double EdgeParameterAt(double s, double w0, double w1) {
-  if (!(w0 * w1 > 0.0)) return s;
-  const double a = s * w0, b = (1.0 - s) * w1;
-  return a / (a + b);
-}
-
-}  // namespace
 
 PolyMesh SampleHNetSurface(const PolyMesh& mesh, const std::vector<std::array<double, 4>>& weights,
                            int samples) {

@@ -62,6 +62,15 @@ std::array<double, 4> CornerWeights(const PolyMesh& mesh, const std::vector<int>
 void EvaluatePatch(const PolyMesh& mesh, PolyMesh::FaceHandle f, const std::array<double, 4>& w,
                    double u, double v, Eigen::Vector3d* point, Eigen::Vector3d* normal);
 
+// The parameter t ∈ [0, 1] along a patch edge from a corner of weight w0 to one of weight w1 at
+// which the rational edge ((1 − t) w0 A + t w1 B) / ((1 − t) w0 + t w1) reaches the point at
+// fraction s of the straight segment A B (the edge of a rational bilinear patch is that
+// segment). Weights of different signs (a pole on the edge): t = s.
+double EdgeParameterAt(double s, double w0, double w1);
+// (u, v) of the point at parameter t along the edge from corner k to corner k + 1 of a patch
+// (corners at (0, 0), (1, 0), (1, 1), (0, 1)).
+Eigen::Vector2d PatchEdgeUv(int k, double t);
+
 // Per edge the max angle (degrees) between the tangent planes of its two patches, sampled at
 // `samples` + 1 points along it (0 on the boundary).
 std::vector<double> TangentPlaneAngles(const PolyMesh& mesh,
