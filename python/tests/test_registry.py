@@ -117,6 +117,32 @@ def test_remesh_is_the_command_lines(cli):
     assert np.asarray(Fq).shape[1] == 4
 
 
+def test_remesh_cuts_through_holes(cli):
+    """A catenoid's neck (an annulus) built in numpy: the quads close up around it."""
+    nu, nv = 72, 24
+    u, v = np.meshgrid(2 * np.pi * np.arange(nu) / nu, np.linspace(-0.8, 0.8, nv + 1),
+                       indexing="ij")
+    V = np.stack([np.cosh(v) * np.cos(u), np.cosh(v) * np.sin(u), v], axis=-1).reshape(-1, 3)
+    at = lambda i, j: (i % nu) * (nv + 1) + j  # noqa: E731
+    F = [[at(i, j), at(i + 1, j), at(i + 1, j + 1)] for i in range(nu) for j in range(nv)]
+    F += [[at(i, j), at(i + 1, j + 1), at(i, j + 1)] for i in range(nu) for j in range(nv)]
+    result = gproj.remesh(V, np.array(F), edge_length=0.1)
+    assert result.report["converged"]
+    assert result.report["boundary_loops"] == 2
+    Vq, Fq = result.output
+    Fq = np.asarray(Fq)
+    edges = {tuple(sorted((f[k], f[(k + 1) % 4]))) for f in Fq for k in range(4)}
+    assert len(np.unique(Fq)) - len(edges) + len(Fq) == 0  # an annulus: closed around the neck
+    # every edge along an asymptotic line, at 45 degrees to the meridian and the parallel
+    a, b = Vq[Fq[:, 0]], Vq[Fq[:, 1]]
+    d = b - a
+    mid = 0.5 * (a + b)
+    parallel = np.stack([-mid[:, 1], mid[:, 0], 0 * mid[:, 0]], axis=1)
+    cosine = np.abs(np.einsum("ij,ij->i", d, parallel)) / (
+        np.linalg.norm(d, axis=1) * np.linalg.norm(parallel, axis=1))
+    assert np.mean(np.abs(np.degrees(np.arccos(np.clip(cosine, 0, 1))) - 45)) < 3
+
+
 DATA = pathlib.Path(__file__).resolve().parents[2] / "examples" / "data"
 
 

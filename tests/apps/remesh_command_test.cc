@@ -15,6 +15,26 @@ namespace {
 
 class RemeshCommandTest : public CommandTest {};
 
+// `mesh` without the faces whose centroid lies over one of two discs in the plan (two holes in
+// the monkey saddle), and without the vertices left unused.
+PolyMesh WithTwoHoles(const PolyMesh& mesh) {
+  PolyMesh holed;
+  std::vector<int> index(mesh.n_vertices(), -1);
+  for (auto f : mesh.faces()) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (auto v : mesh.fv_range(f)) c += Eigen::Vector3d(mesh.point(v).data()) / mesh.valence(f);
+    if (std::hypot(c.x() - 0.45, c.y() - 0.2) < 0.2 || std::hypot(c.x() + 0.3, c.y() + 0.45) < 0.2)
+      continue;
+    std::vector<PolyMesh::VertexHandle> corners;
+    for (auto v : mesh.fv_range(f)) {
+      if (index[v.idx()] < 0) index[v.idx()] = holed.add_vertex(mesh.point(v)).idx();
+      corners.push_back(holed.vertex_handle(index[v.idx()]));
+    }
+    holed.add_face(corners);
+  }
+  return holed;
+}
+
 // The shipped monkey saddle remeshed along its asymptotic directions: quads only, one vertex of
 // valence 6 at the flat point (004 Theorem 6), every other inner vertex of valence 4; the
 // report, the field and the picture written.
@@ -58,22 +78,7 @@ TEST_F(RemeshCommandTest, TrianglesToHNetWithAndWithoutHoles) {
   EXPECT_LT(report["final"]["max_reference_distance"].get<double>(), 0.005);
   EXPECT_LT(report["final"]["max_displacement"].get<double>(), 0.02);
   // Two holes.
-  const PolyMesh quads = ReadMesh(Path("quads.obj"));
-  PolyMesh holed;
-  std::vector<int> index(quads.n_vertices(), -1);
-  for (auto f : quads.faces()) {
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (auto v : quads.fv_range(f)) c += Eigen::Vector3d(quads.point(v).data()) / 4.0;
-    if (std::hypot(c.x() - 0.45, c.y() - 0.2) < 0.2 || std::hypot(c.x() + 0.3, c.y() + 0.45) < 0.2)
-      continue;
-    std::vector<PolyMesh::VertexHandle> corners;
-    for (auto v : quads.fv_range(f)) {
-      if (index[v.idx()] < 0) index[v.idx()] = holed.add_vertex(quads.point(v)).idx();
-      corners.push_back(holed.vertex_handle(index[v.idx()]));
-    }
-    holed.add_face(corners);
-  }
-  WriteMeshAtomically(holed, Path("holed.obj"));
+  WriteMeshAtomically(WithTwoHoles(ReadMesh(Path("quads.obj"))), Path("holed.obj"));
   const std::string holed_hnet = "hnet " + Path("holed.obj") + " --reference " +
                                  Data("monkey_saddle_tri.obj") + " -o " + Path("hh.json") +
                                  " --report " + Path("hh_report.json");
@@ -88,6 +93,32 @@ TEST_F(RemeshCommandTest, TrianglesToHNetWithAndWithoutHoles) {
   EXPECT_EQ(r["simply_connected"], false);
   EXPECT_TRUE(r["worst_edges"].is_array());
   EXPECT_NE(joint.out.find("optimised the vertices and weights together"), std::string::npos);
+}
+
+// The triangles themselves with two holes: `remesh` cuts through the holes and the quads close
+// up around them (3 boundary loops, Euler characteristic −1), then `hnet
+// --allow-not-simply-connected` makes them an H-net with the same holes.
+TEST_F(RemeshCommandTest, TrianglesWithHolesToHNet) {
+  WriteMeshAtomically(WithTwoHoles(ReadMesh(Data("monkey_saddle_tri.obj"))), Path("holed_tri.obj"));
+  const CommandRun remesh = Gproj("remesh " + Path("holed_tri.obj") + " -o " + Path("quads.obj") +
+                                  " --edge-length 0.12 --report " + Path("r.json"));
+  ASSERT_EQ(remesh.exit_code, 0) << remesh.err << remesh.out;
+  EXPECT_NE(remesh.out.find("3 boundary loops, cut through the holes"), std::string::npos)
+      << remesh.out;
+  EXPECT_EQ(Json("r.json")["boundary_loops"], 3);
+  const PolyMesh quads = ReadMesh(Path("quads.obj"));
+  int used = 0;
+  for (auto v : quads.vertices()) used += !quads.is_isolated(v);
+  EXPECT_EQ(used - static_cast<long>(quads.n_edges()) + static_cast<long>(quads.n_faces()), -1);
+  const CommandRun hnet = Gproj("hnet " + Path("quads.obj") + " --reference " +
+                                Path("holed_tri.obj") + " -o " + Path("h.json") + " --report " +
+                                Path("h_report.json") + " --allow-not-simply-connected");
+  ASSERT_EQ(hnet.exit_code, 0) << hnet.err << hnet.out;
+  const nlohmann::json report = Json("h_report.json");
+  EXPECT_EQ(report["simply_connected"], false);
+  EXPECT_LT(report["final"]["max_tangent_angle_deg"].get<double>(), 0.01);
+  EXPECT_GT(report["final"]["w_min"].get<double>(), 0.0);
+  EXPECT_LT(report["final"]["max_reference_distance"].get<double>(), 0.005);
 }
 
 // Quads that are not a valid net are written with exit 3 and the reasons: here asymptotic

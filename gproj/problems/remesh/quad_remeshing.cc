@@ -6,12 +6,15 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <queue>
 #include <string>
 
 #include "gproj/geometry/mesh/scale_free.h"
+#include "gproj/problems/mesh/vertex_control.h"
+#include "gproj/problems/nets/hnet.h"
 
 namespace gproj::remesh {
 namespace {
@@ -168,54 +171,104 @@ std::vector<FrameSingularity> FrameSingularities(const Surface& s) {
   return out;
 }
 
-// Shortest paths (by length) from every singularity to the boundary, each avoiding the other
-// singularities and the paths already cut. Per path its vertices from the singularity on.
-std::vector<std::vector<int>> CutPaths(const PolyMesh& m,
-                                       const std::vector<FrameSingularity>& singularities) {
-  std::vector<char> blocked(m.n_vertices(), 0);
-  for (const FrameSingularity& s : singularities) blocked[s.vertex] = 1;
-  std::vector<std::vector<int>> paths;
-  std::vector<double> distance(m.n_vertices());
-  std::vector<int> previous(m.n_vertices());
-  for (const FrameSingularity& s : singularities) {
-    std::fill(distance.begin(), distance.end(), std::numeric_limits<double>::infinity());
-    std::fill(previous.begin(), previous.end(), -1);
-    using Item = std::pair<double, int>;
-    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
-    distance[s.vertex] = 0.0;
-    queue.push({0.0, s.vertex});
-    int reached = -1;
-    while (!queue.empty()) {
-      const auto [d, v] = queue.top();
-      queue.pop();
-      if (d > distance[v]) continue;
-      const auto vh = m.vertex_handle(v);
-      if (m.is_boundary(vh)) {
-        reached = v;
-        break;
-      }
-      for (auto h : m.voh_range(vh)) {
-        const int w = m.to_vertex_handle(h).idx();
-        if (blocked[w]) continue;
-        const double step = (m.point(m.to_vertex_handle(h)) - m.point(vh)).norm();
-        if (d + step < distance[w]) {
-          distance[w] = d + step;
-          previous[w] = v;
-          queue.push({d + step, w});
-        }
+// The shortest path (by length) from any of `sources` to a vertex `target` accepts, through
+// vertices not `blocked`; its vertices from the source on, or empty when there is none.
+std::vector<int> ShortestPath(const PolyMesh& m, const std::vector<int>& sources,
+                              const std::function<bool(int)>& target,
+                              const std::vector<char>& blocked) {
+  std::vector<double> distance(m.n_vertices(), std::numeric_limits<double>::infinity());
+  std::vector<int> previous(m.n_vertices(), -1);
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  for (int v : sources) distance[v] = 0.0, queue.push({0.0, v});
+  while (!queue.empty()) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (d > distance[v]) continue;
+    if (target(v)) {
+      std::vector<int> path;
+      for (int w = v; w >= 0; w = previous[w]) path.push_back(w);
+      std::reverse(path.begin(), path.end());
+      return path;
+    }
+    const auto vh = m.vertex_handle(v);
+    for (auto h : m.voh_range(vh)) {
+      const int w = m.to_vertex_handle(h).idx();
+      if (blocked[w]) continue;
+      const double step = (m.point(m.to_vertex_handle(h)) - m.point(vh)).norm();
+      if (d + step < distance[w]) {
+        distance[w] = d + step;
+        previous[w] = v;
+        queue.push({d + step, w});
       }
     }
-    if (reached < 0)
+  }
+  return {};
+}
+
+// Shortest paths that join every boundary loop to the longest one (each loop to one already
+// joined, so the paths form a tree), avoiding the `blocked` vertices and each other: cut along
+// them a surface with holes is a disk. Per path its vertices from the loop already joined on;
+// the paths' vertices are added to `blocked`.
+std::vector<std::vector<int>> HolePaths(const PolyMesh& m,
+                                        const std::vector<std::vector<int>>& loops,
+                                        std::vector<char>* blocked) {
+  std::vector<std::vector<int>> paths;
+  if (loops.size() < 2) return paths;
+  std::vector<int> loop_of(m.n_vertices(), -1);
+  std::vector<double> length(loops.size(), 0.0);
+  for (size_t l = 0; l < loops.size(); ++l)
+    for (size_t i = 0; i < loops[l].size(); ++i) {
+      loop_of[loops[l][i]] = static_cast<int>(l);
+      const int next = loops[l][(i + 1) % loops[l].size()];
+      length[l] += (m.point(m.vertex_handle(next)) - m.point(m.vertex_handle(loops[l][i]))).norm();
+    }
+  std::vector<char> joined(loops.size(), 0);
+  joined[std::max_element(length.begin(), length.end()) - length.begin()] = 1;
+  for (size_t round = 1; round < loops.size(); ++round) {
+    std::vector<int> sources;
+    for (size_t l = 0; l < loops.size(); ++l)
+      if (joined[l])
+        for (int v : loops[l])
+          if (!(*blocked)[v]) sources.push_back(v);
+    const std::vector<int> path = ShortestPath(
+        m, sources, [&](int v) { return loop_of[v] >= 0 && !joined[loop_of[v]] && !(*blocked)[v]; },
+        *blocked);
+    if (path.size() < 2) {
+      size_t l = 0;
+      while (joined[l]) ++l;
+      throw InputError("the hole bounded by vertex " + std::to_string(loops[l][0]) +
+                       " cannot be joined to the other boundary loops without crossing a frame "
+                       "singularity or another cut: the cut through the holes needs a path "
+                       "between them");
+    }
+    joined[loop_of[path.back()]] = 1;
+    for (int v : path) (*blocked)[v] = 1;
+    paths.push_back(path);
+  }
+  return paths;
+}
+
+// Shortest paths from every singularity to the boundary, each avoiding the other singularities,
+// the `blocked` vertices and the paths already cut. Per path its vertices from the singularity
+// on; the paths' vertices are added to `blocked`.
+std::vector<std::vector<int>> SingularityPaths(const PolyMesh& m,
+                                               const std::vector<FrameSingularity>& singularities,
+                                               std::vector<char>* blocked) {
+  for (const FrameSingularity& s : singularities) (*blocked)[s.vertex] = 1;
+  std::vector<std::vector<int>> paths;
+  for (const FrameSingularity& s : singularities) {
+    const std::vector<int> path = ShortestPath(
+        m, {s.vertex}, [&](int v) { return v != s.vertex && m.is_boundary(m.vertex_handle(v)); },
+        *blocked);
+    if (path.empty())
       throw InputError("the frame singularity at vertex " + std::to_string(s.vertex) +
                        " cannot be joined to the boundary without crossing another "
                        "singularity's cut: the field has " +
                        std::to_string(singularities.size()) +
                        " singularities, too many for a cut from each to the boundary (a noisy "
                        "mesh? smooth the field more with a smaller `smooth`, or the mesh)");
-    std::vector<int> path;
-    for (int v = reached; v >= 0; v = previous[v]) path.push_back(v);
-    std::reverse(path.begin(), path.end());
-    for (int v : path) blocked[v] = 1;  // the boundary end too: one cut per boundary vertex
+    for (int v : path) (*blocked)[v] = 1;  // the boundary end too: one cut per boundary vertex
     paths.push_back(path);
   }
   return paths;
@@ -227,7 +280,7 @@ PolyMesh::HalfedgeHandle HalfedgeBetween(const PolyMesh& m, int a, int b) {
 
 }  // namespace
 
-void CheckTriangulatedDisk(const PolyMesh& m) {
+int CheckTriangulatedSurface(const PolyMesh& m) {
   for (auto f : m.faces())
     if (m.valence(f) != 3)
       throw InputError("face " + std::to_string(f.idx()) + " has " + std::to_string(m.valence(f)) +
@@ -238,15 +291,9 @@ void CheckTriangulatedDisk(const PolyMesh& m) {
     if (boundary > 1)
       throw InputError("vertex " + std::to_string(v.idx()) +
                        " joins separate fans of faces (a non-manifold vertex): the remeshing "
-                       "needs a disk");
+                       "needs a manifold surface");
   }
-  std::vector<char> seen(m.n_halfedges(), 0);
-  int loops = 0;
-  for (auto h : m.halfedges()) {
-    if (!m.is_boundary(h) || seen[h.idx()]) continue;
-    ++loops;
-    for (auto g = h; !seen[g.idx()]; g = m.next_halfedge_handle(g)) seen[g.idx()] = 1;
-  }
+  const int loops = static_cast<int>(BoundaryLoops(m).size());
   int used = 0;
   for (auto v : m.vertices()) used += !m.is_isolated(v);
   const long euler =
@@ -262,12 +309,23 @@ void CheckTriangulatedDisk(const PolyMesh& m) {
     for (auto g : m.ff_range(f))
       if (!reached[g.idx()]) reached[g.idx()] = 1, ++count, stack.push_back(g.idx());
   }
-  if (euler != 1 || loops != 1 || count != m.n_faces())
-    throw InputError(
-        "the surface is not a disk (Euler characteristic " + std::to_string(euler) + ", " +
-        std::to_string(loops) + " boundary loops, " +
-        (count == m.n_faces() ? std::string("connected") : std::string("several components")) +
-        "): the quad remeshing cuts a disk from its singularities to its boundary");
+  const std::string shape = "Euler characteristic " + std::to_string(euler) + ", " +
+                            std::to_string(loops) + " boundary loop" + (loops == 1 ? "" : "s");
+  if (count != m.n_faces())
+    throw InputError("the surface has several components (" + shape +
+                     "): the remeshing needs one connected surface; remesh each on its own");
+  if (loops == 0)
+    throw InputError("the surface is closed (" + shape +
+                     "): the quad remeshing cuts it from its holes, so cut it open first");
+  // Genus g: χ = 2 − 2g − b.
+  if (euler != 2 - loops) {
+    const long twice_genus = 2 - loops - euler;
+    throw InputError("the surface has " + std::to_string(twice_genus / 2) + " handle" +
+                     (twice_genus == 2 ? "" : "s") + " (" + shape +
+                     "): the quad remeshing cuts through holes, not handles; cut each handle open "
+                     "along a closed curve first");
+  }
+  return loops;
 }
 
 bool QuadRemeshOptions::IsValid(std::string* why) const {
@@ -327,27 +385,47 @@ void RefuseSingularitiesNoQuadCanFollow(const std::vector<FrameSingularity>& sin
 // The cut of the mesh into a disk along paths from the singularities, and how the map jumps
 // across it.
 struct Cuts {
-  std::vector<std::vector<int>> paths;  // vertex paths, each from its singularity
-  std::vector<char> cut;                // per edge: on a path
-  std::vector<int> path_of_vertex;      // the path a vertex is an inner or end vertex of, or −1
-  std::vector<int> path_turns;          // per path: the quarter turns of the frames across it
-  // Per face and corner: on the right of a path (the map there is R u(v) + (I − R) u(s_p)).
+  // Vertex paths: first those through the holes (each from a boundary loop to another), then one
+  // from each singularity to the boundary.
+  std::vector<std::vector<int>> paths;
+  // Per path: −1 for a singularity's, whose translation is (I − R) u(s) (s its first vertex, a
+  // fixed point); k ≥ 0 for a hole's, whose translation t_k is unknown (map unknowns
+  // 2 n + 2k, 2 n + 2k + 1, n the vertices).
+  std::vector<int> translation;
+  int holes = 0;                    // paths through the holes
+  std::vector<char> cut;            // per edge: on a path
+  std::vector<int> path_of_vertex;  // the path a vertex is on (not a singularity), or −1
+  std::vector<int> path_turns;      // per path: the quarter turns of the frames across it
+  // Per face and corner: on the right of a path (the map there is R u(v) + t_p).
   std::vector<std::array<char, 3>> right_side;
+  // The first vertex of path p with corners on its right: a singularity's own corners are all
+  // on the left.
+  size_t FirstSplit(size_t p) const { return translation[p] < 0 ? 1 : 0; }
 };
 
 Cuts CutAlongPaths(const PolyMesh& m, const std::vector<FrameSingularity>& singularities,
                    std::vector<int>* cut_edges) {
   Cuts c;
-  c.paths = CutPaths(m, singularities);
+  std::vector<char> blocked(m.n_vertices(), 0);
+  for (const FrameSingularity& s : singularities) blocked[s.vertex] = 1;
+  c.paths = HolePaths(m, BoundaryLoops(m), &blocked);
+  c.holes = static_cast<int>(c.paths.size());
+  for (int k = 0; k < c.holes; ++k) c.translation.push_back(k);
+  for (auto& path : SingularityPaths(m, singularities, &blocked)) {
+    c.paths.push_back(std::move(path));
+    c.translation.push_back(-1);
+  }
   c.cut.assign(m.n_edges(), 0);
   c.path_of_vertex.assign(m.n_vertices(), -1);
-  for (size_t p = 0; p < c.paths.size(); ++p)
+  for (size_t p = 0; p < c.paths.size(); ++p) {
+    for (size_t i = c.FirstSplit(p); i < c.paths[p].size(); ++i)
+      c.path_of_vertex[c.paths[p][i]] = static_cast<int>(p);
     for (size_t i = 0; i + 1 < c.paths[p].size(); ++i) {
       const auto hh = HalfedgeBetween(m, c.paths[p][i], c.paths[p][i + 1]);
       c.cut[m.edge_handle(hh).idx()] = 1;
       cut_edges->push_back(m.edge_handle(hh).idx());
-      c.path_of_vertex[c.paths[p][i + 1]] = static_cast<int>(p);
     }
+  }
   return c;
 }
 
@@ -400,11 +478,13 @@ void FindRightSides(const PolyMesh& m, const Surface& s, Cuts* cuts) {
   const auto& paths = cuts->paths;
   cuts->right_side.assign(m.n_faces(), {0, 0, 0});
   for (size_t p = 0; p < paths.size(); ++p)
-    for (size_t i = 1; i < paths[p].size(); ++i) {
+    for (size_t i = cuts->FirstSplit(p); i < paths[p].size(); ++i) {
       const int v = paths[p][i];
-      const auto hh = HalfedgeBetween(m, paths[p][i - 1], v);
-      auto start = m.opposite_halfedge_handle(hh);  // v → previous: its face is on the right
-      std::vector<int> stack = {m.face_handle(start).idx()};
+      // The face on the right of the path's edge at v: that of v → previous, or of next → v at
+      // a hole path's first vertex.
+      const auto right =
+          i > 0 ? HalfedgeBetween(m, v, paths[p][i - 1]) : HalfedgeBetween(m, paths[p][i + 1], v);
+      std::vector<int> stack = {m.face_handle(right).idx()};
       std::vector<int> seen;
       while (!stack.empty()) {
         const int f = stack.back();
@@ -433,7 +513,7 @@ class MapSystem {
         cuts_(cuts),
         h_(h),
         options_(options),
-        n_(2 * static_cast<int>(m.n_vertices())),
+        n_(2 * static_cast<int>(m.n_vertices()) + 2 * cuts.holes),
         fixed_(n_, std::numeric_limits<double>::quiet_NaN()),
         x_(Eigen::VectorXd::Zero(n_)),
         solver_(CreateSparseCholesky(options.linear_solver, 0)) {}
@@ -447,15 +527,23 @@ class MapSystem {
       return;
     }
     const int p = cuts_.path_of_vertex[v];
-    const int sv = cuts_.paths[p][0];
     const Eigen::Matrix2d r = QuarterTurns(cuts_.path_turns[p]);
-    const Eigen::Matrix2d c = Eigen::Matrix2d::Identity() - r;
-    for (int j = 0; j < 2; ++j) {
+    for (int j = 0; j < 2; ++j)
       if (r(component, j) != 0.0) terms->push_back({2 * v + j, r(component, j)});
-      if (c(component, j) != 0.0) terms->push_back({2 * sv + j, c(component, j)});
+    if (cuts_.translation[p] >= 0) {  // a hole's cut: + t_k
+      terms->push_back({TranslationUnknown(cuts_.translation[p], component), 1.0});
+      return;
     }
+    const int sv = cuts_.paths[p][0];  // a singularity's cut: + (I − R) u(s)
+    const Eigen::Matrix2d c = Eigen::Matrix2d::Identity() - r;
+    for (int j = 0; j < 2; ++j)
+      if (c(component, j) != 0.0) terms->push_back({2 * sv + j, c(component, j)});
   }
 
+  // The unknown of component `component` of the translation across hole cut k.
+  int TranslationUnknown(int k, int component) const {
+    return 2 * static_cast<int>(m_.n_vertices()) + 2 * k + component;
+  }
   void Fix(int var, double value) { fixed_[var] = value; }
   const Eigen::VectorXd& x() const { return x_; }
 
@@ -528,6 +616,20 @@ class MapSystem {
   std::unique_ptr<SparseCholesky> solver_;
 };
 
+// The integer point nearest to t, or with even_sum the nearest with an even coordinate sum: an
+// asymptotic net's vertices are 2-coloured (its two families alternate, 004 §3), and a
+// translation with an odd sum around a hole would join the colours in an odd cycle.
+Eigen::Vector2d RoundTranslation(const Eigen::Vector2d& t, bool even_sum) {
+  Eigen::Vector2d r(std::round(t.x()), std::round(t.y()));
+  if (even_sum && std::fmod(std::abs(r.x() + r.y()), 2.0) == 1.0) {
+    // Move the coordinate that was rounded furthest to its other neighbour.
+    const Eigen::Vector2d error = t - r;
+    const int j = std::abs(error.x()) >= std::abs(error.y()) ? 0 : 1;
+    r[j] += error[j] >= 0.0 ? 1.0 : -1.0;
+  }
+  return r;
+}
+
 // The map at the corners, the quarter turns across the cuts, the frames in 3D.
 void WriteMap(const PolyMesh& m, const Surface& s, const Cuts& cuts, const MapSystem& system,
               FieldParametrization* out) {
@@ -570,18 +672,18 @@ void WriteMap(const PolyMesh& m, const Surface& s, const Cuts& cuts, const MapSy
 
 FieldParametrization ParametrizeAlongField(const PolyMesh& triangles, const DirectionField& field,
                                            const QuadRemeshOptions& options) {
+  FieldParametrization out;
   std::string why;
   if (!options.IsValid(&why)) throw InputError(why);
   if (triangles.n_faces() == 0) throw InputError("the mesh has no faces");
   if (field.curvature.size() != triangles.n_vertices())
     throw InputError("the direction field does not belong to the mesh");
-  CheckTriangulatedDisk(triangles);
+  out.boundary_loops = CheckTriangulatedSurface(triangles);
   UnitFrame unit;
   const PolyMesh m = UnitScaleCopy(triangles, &unit);
   const double h = UnitEdgeLength(options, unit);
   Surface s = Frames(m, field, options);
   PollStop(options.fit.stop, "the integer-grid map");
-  FieldParametrization out;
   out.edge_length = h * unit.length;
   out.singularities = FrameSingularities(s);
   RefuseSingularitiesNoQuadCanFollow(out.singularities);
@@ -592,10 +694,19 @@ FieldParametrization ParametrizeAlongField(const PolyMesh& triangles, const Dire
   PollStop(options.fit.stop, "the integer-grid map");
   MapSystem system(m, s, cuts, h, options);
   system.Solve();
-  if (!out.singularities.empty()) {
+  // Every transition a grid automorphism: the singularities' map and the holes' translations
+  // rounded to integers, and the map solved again.
+  if (!out.singularities.empty() || cuts.holes > 0) {
     for (const FrameSingularity& sg : out.singularities)
       for (int j = 0; j < 2; ++j)
         system.Fix(2 * sg.vertex + j, std::round(system.x()[2 * sg.vertex + j]));
+    for (int k = 0; k < cuts.holes; ++k) {
+      const int var[2] = {system.TranslationUnknown(k, 0), system.TranslationUnknown(k, 1)};
+      const Eigen::Vector2d t = RoundTranslation({system.x()[var[0]], system.x()[var[1]]},
+                                                 /*even_sum=*/s.step == 2);
+      system.Fix(var[0], t.x());
+      system.Fix(var[1], t.y());
+    }
     system.Solve();
   }
   WriteMap(m, s, cuts, system, &out);
@@ -611,6 +722,8 @@ std::vector<std::string> QuadRemeshResult::Problems() const {
   // asymptotic net, whose two families alternate around every vertex.
   if (field.kind == DirectionKind::kAsymptotic)
     add(odd_inner_vertices, "inner vertices of odd valence");
+  if (field.kind == DirectionKind::kAsymptotic && !odd_cycle.empty())
+    out.push_back("quad vertices that cannot be 2-coloured (" + odd_cycle + ")");
   add(inner_valence_count.size() > 2 ? inner_valence_count[2] : 0,
       "inner vertices of valence 2 (two quads folded onto each other)");
   add(nonconvex_quads, "non-convex quads");
@@ -636,7 +749,7 @@ QuadRemeshResult RemeshAlongField(const PolyMesh& triangles, const QuadRemeshOpt
     clock = now;
     return seconds;
   };
-  CheckTriangulatedDisk(triangles);
+  CheckTriangulatedSurface(triangles);
   out.field = EstimateDirectionField(triangles, options.directions, options.fit, options.smoothing);
   out.seconds_field = lap();
   PollStop(options.fit.stop, "the integer-grid map");
@@ -673,6 +786,14 @@ QuadRemeshResult RemeshAlongField(const PolyMesh& triangles, const QuadRemeshOpt
       out.inner_valence_count.resize(valence + 1, 0);
     ++out.inner_valence_count[valence];
     if (valence % 2) ++out.odd_inner_vertices;
+  }
+  try {
+    nets::TwoColourVertices(q);
+  } catch (const InputError& e) {
+    const std::string what = e.what();  // "... (edge a-b closes an odd cycle) ..."
+    const size_t open = what.find('('), close = what.find(')');
+    out.odd_cycle =
+        open < close && close != std::string::npos ? what.substr(open + 1, close - open - 1) : what;
   }
   out.min_corner_angle_deg = 180.0;
   for (auto f : q.faces()) {

@@ -8,13 +8,15 @@
 //      quarter turn is (a, b) → (b, −a); the principal cross matches by quarter turns, the
 //      asymptotic pair, whose families never trade places, by half turns);
 //   3. a seamless integer-grid map after Bommes, Zimmer, Kobbelt, "Mixed-integer
-//      quadrangulation", ACM TOG 28 (3), 2009: the surface (a disk) is cut from every
+//      quadrangulation", ACM TOG 28 (3), 2009: the surface is cut into a disk through its holes
+//      (shortest paths joining every boundary loop to the longest one) and from every
 //      singularity to the boundary, the frames combed across the remaining edges, and the map
 //      u: S → R² whose gradient best fits the frame (∇u a = (1, 0) / h, ∇u b = (0, 1) / h, in
 //      the least-squares sense over the area) is found by one sparse Cholesky solve
-//      (CHOLMOD); across a cut the map jumps by the cut's quarter turn R and a translation
-//      (I − R) u(s) fixed by its singularity s, whose map is rounded to an integer point and
-//      the map solved again, so every transition is a grid automorphism;
+//      (CHOLMOD); across a cut the map jumps by the cut's quarter turn R and a translation:
+//      (I − R) u(s) across a singularity's cut (s a fixed point), an unknown t across a hole's;
+//      the singularities' map and the holes' t are rounded to integers and the map solved
+//      again, so every transition is a grid automorphism;
 //   4. quad extraction along the integer iso-lines (geometry/quad_extraction, after QEx).
 // A singularity of index i becomes a quad vertex of valence 4 − 4i (004 Theorem 6: an ordinary
 // flat point, index −½, a vertex of valence 6).
@@ -62,18 +64,21 @@ struct FieldParametrization {
   std::vector<Eigen::Vector3d> frame_a, frame_b;
   std::vector<FrameSingularity> singularities;
   std::vector<int> cut_edges;  // the edges the surface was cut along
+  int boundary_loops = 0;      // 1: a disk; more: a surface with holes, cut through them
   int folded_faces = 0;        // faces whose image is folded (negative area)
   double edge_length = 0.0;    // the quads' edge length, input units
 };
 
-// Throws InputError unless `mesh` is a triangulated disk: triangles only, connected, manifold
-// vertices, one boundary loop, Euler characteristic 1 (the message names the rule broken).
-void CheckTriangulatedDisk(const PolyMesh& mesh);
+// The number of boundary loops of `mesh`; throws InputError unless it is a triangulated surface
+// the remeshing can cut into a disk: triangles only, connected, manifold vertices, at least one
+// boundary loop and no handles (Euler characteristic 2 − loops). The message names the rule
+// broken.
+int CheckTriangulatedSurface(const PolyMesh& mesh);
 
 // The field-aligned integer-grid map of `triangles` for `field` (EstimateDirectionField on the
-// same mesh). Throws InputError for a mesh that is not a triangulated disk (naming its Euler
-// characteristic and boundary loops), invalid options, a singularity that cannot be joined to
-// the boundary without crossing another cut, or a failed factorisation.
+// same mesh). Throws InputError for a mesh CheckTriangulatedSurface refuses, invalid options, a
+// singularity that cannot be joined to the boundary without crossing another cut, or a failed
+// factorisation.
 FieldParametrization ParametrizeAlongField(const PolyMesh& triangles, const DirectionField& field,
                                            const QuadRemeshOptions& options);
 
@@ -89,10 +94,14 @@ struct QuadRemeshResult {
   double area_covered = 0.0;  // quad area / triangle area
   int nonconvex_quads = 0;
   double min_corner_angle_deg = 0.0;
+  // Why the quad vertices cannot be 2-coloured (an odd cycle of edges, as around a hole whose
+  // grid closes with an odd shift); empty when they can.
+  std::string odd_cycle;
   double seconds_field = 0.0, seconds_map = 0.0, seconds_extraction = 0.0;
   // Why the quads are not a valid net, one entry per kind (empty: valid): inner vertices of
   // valence 2, non-convex quads, triangles folded by the map, and, for asymptotic directions,
-  // inner vertices of odd valence and K >= 0 on more than 1% of the area.
+  // inner vertices of odd valence, vertices that cannot be 2-coloured and K >= 0 on more than 1%
+  // of the area.
   std::vector<std::string> Problems() const;
 };
 

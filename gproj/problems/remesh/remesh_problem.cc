@@ -81,12 +81,17 @@ std::string RemeshSvg(const PolyMesh& mesh, const QuadRemeshResult& r,
   SvgOptions svg;
   svg.title = "Quad remeshing along the " + directions +
               " directions: " + std::to_string(x.quads.n_faces()) + " quads, " +
-              std::to_string(irregular) + " irregular vertices (red dots: frame singularities)";
+              std::to_string(irregular) + " irregular vertices (red: frame singularities and cuts)";
   const ColourScale scale{"worst edge against the field (deg)", 0.0, 10.0, false};
   svg.face_colours = ColoursOf(degrees, scale);
   svg.legend = "colour: the worst edge of each quad against the field, blue 0 to red 10 deg";
   for (const FrameSingularity& s : p.singularities)
     svg.dots.emplace_back(mesh.point(mesh.vertex_handle(s.vertex)).data());
+  for (int e : p.cut_edges) {
+    const auto h = mesh.halfedge_handle(mesh.edge_handle(e), 0);
+    svg.segments.emplace_back(Eigen::Vector3d(mesh.point(mesh.from_vertex_handle(h)).data()),
+                              Eigen::Vector3d(mesh.point(mesh.to_vertex_handle(h)).data()));
+  }
   return RenderMeshSvg(x.quads, svg);
 }
 
@@ -107,8 +112,11 @@ void Describe(const QuadRemeshResult& r, double smoothing, RunResult* result) {
   }
   result->Info(text);
   std::snprintf(line, sizeof(line),
-                "integer-grid map: %zu cut edges, %d folded triangles, in %.3f s",
-                p.cut_edges.size(), p.folded_faces, r.seconds_map);
+                "integer-grid map: %zu cut edges (%d boundary loop%s%s), %d folded triangles, in "
+                "%.3f s",
+                p.cut_edges.size(), p.boundary_loops, p.boundary_loops == 1 ? "" : "s",
+                p.boundary_loops > 1 ? ", cut through the holes" : "", p.folded_faces,
+                r.seconds_map);
   result->Info(line);
   std::snprintf(line, sizeof(line), "quads: %zu faces, %zu vertices from %d grid points in %.3f s",
                 x.quads.n_faces(), x.quads.n_vertices(), x.grid_points, r.seconds_extraction);
@@ -180,11 +188,10 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   }
   if (result.report.failed) return result;
   Describe(r, options.smoothing, &result);
-  result.facts = {{"directions", settings.directions},
-                  {"edge_length", p.edge_length},
-                  {"smoothing", options.smoothing},
-                  {"singularities", nlohmann::json::array()},
-                  {"inner_valences", nlohmann::json::object()}};
+  result.facts = {
+      {"directions", settings.directions},        {"edge_length", p.edge_length},
+      {"smoothing", options.smoothing},           {"boundary_loops", p.boundary_loops},
+      {"singularities", nlohmann::json::array()}, {"inner_valences", nlohmann::json::object()}};
   for (const FrameSingularity& s : p.singularities) {
     const auto& q = mesh.point(mesh.vertex_handle(s.vertex));
     result.facts["singularities"].push_back(
@@ -209,13 +216,16 @@ ProblemSpec RemeshSpec() {
   ProblemSpec spec;
   spec.name = "remesh";
   spec.summary =
-      "Quad remeshing of a triangulated disk along its asymptotic (K < 0) or principal "
-      "directions (004 §3.1): jet-fitted, smoothed direction field, seamless integer-grid map cut "
-      "from its singularities to the boundary (mixed-integer quadrangulation), quads extracted "
-      "along the integer iso-lines. Converged (exit 0) when the quads are a valid net (inner "
-      "valences above 2, quads convex, map unfolded, and for asymptotic directions even valences "
-      "and K < 0 on 99% of the area); otherwise the quads are returned and the reasons named.";
-  spec.inputs = {{"mesh", InputKind::kMesh, "Triangle mesh of a disk", true}};
+      "Quad remeshing of a triangulated disk, or of a surface with holes, along its asymptotic "
+      "(K < 0) or principal directions (004 §3.1): jet-fitted, smoothed direction field, "
+      "seamless integer-grid map cut through the holes and from its singularities to the "
+      "boundary (mixed-integer quadrangulation, integer transitions across every cut), quads "
+      "extracted along the integer iso-lines. Converged (exit 0) when the quads are a valid net "
+      "(inner valences above 2, quads convex, map unfolded, and for asymptotic directions even "
+      "valences, 2-coloured vertices and K < 0 on 99% of the area); otherwise the quads are "
+      "returned and the reasons named.";
+  spec.inputs = {{"mesh", InputKind::kMesh,
+                  "Triangle mesh of a disk or of a surface with holes (no handles)", true}};
   spec.outputs = {
       {"output", OutputKind::kMesh, "the quad mesh", true},
       {"field", OutputKind::kSegments,

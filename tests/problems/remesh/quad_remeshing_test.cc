@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <random>
 
+#include "gproj/problems/mesh/vertex_control.h"
 #include "gproj/problems/nets/hnet.h"
 #include "triangulated_surface_util.h"
 
@@ -155,7 +156,9 @@ TEST(QuadRemeshingTest, AsymptoticQuadsOfANegativelyCurvedHeightField) {
   EXPECT_TRUE(r.parametrization.singularities.empty());
   EXPECT_EQ(r.odd_inner_vertices, 0);
   for (size_t k = 0; k < r.inner_valence_count.size(); ++k)
-    if (k != 4) EXPECT_EQ(r.inner_valence_count[k], 0) << "valence " << k;
+    if (k != 4) {
+      EXPECT_EQ(r.inner_valence_count[k], 0) << "valence " << k;
+    }
   EXPECT_LT(exact.mean, 1.5);
   EXPECT_LT(exact.p95, 3.0);
   EXPECT_LT(exact.max, 6.0);
@@ -301,6 +304,145 @@ PolyMesh WithoutFaces(const PolyMesh& mesh,
   return out;
 }
 
+// The catenoid (cosh v cos u, cosh v sin u, v): minimal, K < 0, conformally parametrised, so its
+// principal directions are ∂u, ∂v and its asymptotic directions ∂u ± ∂v.
+Eigen::Vector3d Catenoid(double u, double v) {
+  return {std::cosh(v) * std::cos(u), std::cosh(v) * std::sin(u), v};
+}
+std::array<Eigen::Vector3d, 2> CatenoidDirections(const Eigen::Vector3d& p, bool principal) {
+  const double u = std::atan2(p.y(), p.x()), v = p.z();
+  const Eigen::Vector3d du(-std::sin(u), std::cos(u), 0.0);  // / cosh v
+  const Eigen::Vector3d dv(std::tanh(v) * std::cos(u), std::tanh(v) * std::sin(u), 1.0);  // ditto
+  const Eigen::Vector3d a = du, b = dv.normalized();
+  if (principal) return {a, b};
+  return {(a + b).normalized(), (a - b).normalized()};
+}
+
+// Euler characteristic, boundary loops and components of a mesh (faces joined by edges).
+struct Topology {
+  long euler = 0;
+  int loops = 0, components = 0;
+};
+Topology TopologyOf(const PolyMesh& m) {
+  Topology t;
+  int used = 0;
+  for (auto v : m.vertices()) used += !m.is_isolated(v);
+  t.euler =
+      static_cast<long>(used) - static_cast<long>(m.n_edges()) + static_cast<long>(m.n_faces());
+  t.loops = static_cast<int>(BoundaryLoops(m).size());
+  std::vector<char> seen(m.n_faces(), 0);
+  for (auto start : m.faces()) {
+    if (seen[start.idx()]) continue;
+    ++t.components;
+    std::vector<int> stack = {start.idx()};
+    seen[start.idx()] = 1;
+    while (!stack.empty()) {
+      const auto f = m.face_handle(stack.back());
+      stack.pop_back();
+      for (auto g : m.ff_range(f))
+        if (!seen[g.idx()]) seen[g.idx()] = 1, stack.push_back(g.idx());
+    }
+  }
+  return t;
+}
+
+// The quads of `r` as an H-net extended over the holes (vertices and weights optimised
+// together): converged, tangent-plane continuous, close to the triangles.
+void ExpectHNetWithHoles(const char* name, const QuadRemeshResult& r, const PolyMesh& triangles) {
+  nets::HNetOptions options;
+  options.allow_not_simply_connected = true;
+  nets::HNet hnet(r.extraction.quads, &triangles, options);
+  const nets::HNetSummary summary = hnet.Run(nullptr, nullptr);
+  ASSERT_FALSE(summary.rounds.empty()) << name << ": " << summary.report.termination;
+  const nets::HNetRound& last = summary.rounds.back();
+  std::printf(
+      "  %s → H-net: max tangent-plane angle %.2e deg, W in [%.3f, %.3f], %.2e of the "
+      "diagonal from the triangles\n",
+      name, last.max_tangent_angle_deg, last.min_w, last.max_w, summary.max_reference_distance);
+  EXPECT_TRUE(summary.report.converged) << name << ": " << summary.report.termination;
+  EXPECT_LE(last.max_tangent_angle_deg, 0.01) << name;
+  EXPECT_GT(last.min_w, 0.0) << name;
+  EXPECT_LE(summary.max_reference_distance, 0.005) << name;
+}
+
+// Surfaces with holes are cut into a disk through them (a path from every hole to the outer
+// boundary, integer transitions across it): the quads close up around every hole, with the
+// surface's topology, along the exact directions, and continue to an H-net with holes.
+TEST(QuadRemeshingTest, SurfacesWithHolesAreCutThroughTheirHoles) {
+  // The catenoid's neck, an annulus whose asymptotic lines wind around it.
+  const PolyMesh catenoid = TriangulatePeriodic(Catenoid, 72, 24, -0.8, 0.8, 5);
+  for (const bool principal : {false, true}) {
+    QuadRemeshOptions options;
+    options.edge_length = 0.1;
+    if (principal) options.directions = DirectionKind::kPrincipal;
+    const QuadRemeshResult r = RemeshAlongField(catenoid, options);
+    // Each edge against the nearer exact direction at its midpoint, (u, v) read from the point.
+    std::vector<double> angles;
+    const PolyMesh& q = r.extraction.quads;
+    for (auto e : q.edges()) {
+      const auto h = q.halfedge_handle(e, 0);
+      const Eigen::Vector3d a(q.point(q.from_vertex_handle(h)).data());
+      const Eigen::Vector3d b(q.point(q.to_vertex_handle(h)).data());
+      const auto d = CatenoidDirections(0.5 * (a + b), principal);
+      angles.push_back(std::min(LineAngleDeg(b - a, d[0]), LineAngleDeg(b - a, d[1])));
+    }
+    double mean = 0.0;
+    for (double angle : angles) mean += angle / angles.size();
+    std::sort(angles.begin(), angles.end());
+    const Topology t = TopologyOf(q);
+    std::printf(
+        "catenoid annulus, %s: %zu quads, Euler %ld, %d loops, edges against the exact "
+        "directions mean %.2f deg, 95%% %.2f deg; area covered %.1f%%\n",
+        principal ? "principal" : "asymptotic", q.n_faces(), t.euler, t.loops, mean,
+        angles[static_cast<size_t>(0.95 * (angles.size() - 1))], 100.0 * r.area_covered);
+    EXPECT_EQ(r.parametrization.boundary_loops, 2);
+    EXPECT_TRUE(r.Problems().empty()) << r.Problems()[0];
+    EXPECT_EQ(t.euler, 0);  // an annulus: closed around the neck, no gap along the cut
+    EXPECT_EQ(t.loops, 2);
+    EXPECT_EQ(t.components, 1);
+    for (size_t k = 0; k < r.inner_valence_count.size(); ++k)
+      if (k != 4) {
+        EXPECT_EQ(r.inner_valence_count[k], 0) << k;
+      }
+    EXPECT_LT(mean, 3.0);
+    EXPECT_GT(r.area_covered, 0.8);
+    if (!principal) ExpectHNetWithHoles("catenoid annulus", r, catenoid);
+  }
+  // An irregular triangulation of a negatively curved height field with two round holes, and
+  // the monkey saddle with two holes beside its flat point (a singularity's cut besides the
+  // holes' cuts).
+  for (const bool monkey : {false, true}) {
+    const HeightField surface = monkey ? MonkeySaddle() : Hyperbolic();
+    std::vector<Eigen::Vector2d> uv;
+    const PolyMesh triangles = WithoutFaces(
+        Triangulate(surface.AsSurface(), -1, 1, -1, 1, 48, &uv, 11), [](const Eigen::Vector3d& c) {
+          return std::hypot(c.x() - 0.42, c.y() - 0.22) < 0.2 ||
+                 std::hypot(c.x() + 0.35, c.y() + 0.42) < 0.2;
+        });
+    ASSERT_EQ(CheckTriangulatedSurface(triangles), 3);
+    QuadRemeshOptions options;
+    options.edge_length = 0.1;
+    const QuadRemeshResult r = RemeshAlongField(triangles, options);
+    const Alignment exact = EdgeAlignment(
+        r.extraction.quads, [&](double x, double y) { return surface.Asymptotic(x, y); });
+    const char* name = monkey ? "monkey saddle with two holes" : "hyperbolic field with two holes";
+    Print(name, r, exact);
+    const Topology t = TopologyOf(r.extraction.quads);
+    EXPECT_EQ(r.parametrization.boundary_loops, 3);
+    EXPECT_TRUE(r.Problems().empty()) << r.Problems()[0];
+    EXPECT_TRUE(r.odd_cycle.empty()) << r.odd_cycle;
+    EXPECT_EQ(t.euler, -1);  // two holes, both closed up
+    EXPECT_EQ(t.loops, 3);
+    EXPECT_EQ(t.components, 1);
+    EXPECT_EQ(r.parametrization.singularities.size(), monkey ? 1u : 0u);
+    const int six = r.inner_valence_count.size() > 6 ? r.inner_valence_count[6] : 0;
+    EXPECT_EQ(six, monkey ? 1 : 0);
+    EXPECT_LT(exact.mean, monkey ? 3.0 : 2.0);
+    EXPECT_GT(r.area_covered, 0.75);
+    ExpectHNetWithHoles(name, r, triangles);
+  }
+}
+
 // 004 §3 without a guarantee: quads with two holes and a valence-6 vertex, made an A-net with the
 // holes already there, have no exact H-net extension (the weights propagated around a hole do
 // not close up). With the weights as unknowns the patchwork becomes tangent-plane continuous
@@ -364,7 +506,9 @@ TEST(QuadRemeshingTest, GridAlignedWithTheField) {
     EXPECT_EQ(static_cast<int>(q.n_vertices()), r.extraction.grid_points) << n;
     EXPECT_TRUE(r.Problems().empty());
     for (size_t k = 0; k < r.inner_valence_count.size(); ++k)
-      if (k != 4) EXPECT_EQ(r.inner_valence_count[k], 0);
+      if (k != 4) {
+        EXPECT_EQ(r.inner_valence_count[k], 0);
+      }
     // One piece: every face reached from face 0.
     std::vector<char> seen(q.n_faces(), 0);
     std::vector<int> stack = {0};
@@ -425,32 +569,36 @@ TEST(QuadRemeshingTest, RefusesWhatItCannotRemesh) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("K >= 0"), std::string::npos) << e.what();
   }
-  // An annulus is not a disk.
-  PolyMesh annulus = Triangulate(
-      [](double a, double r) {
-        return Eigen::Vector3d(r * std::cos(a), r * std::sin(a), 0.1 * r * r * std::cos(2 * a));
+  // A closed surface (a torus), a torus with a hole (a handle) and two pieces are refused.
+  const PolyMesh torus = TriangulatePeriodic(
+      [](double a, double b) {
+        return Eigen::Vector3d((2 + std::cos(b)) * std::cos(a), (2 + std::cos(b)) * std::sin(a),
+                               std::sin(b));
       },
-      0, 2 * M_PI, 1, 2, 16, &uv);
-  // Close the seam: merge the a = 2π column into the a = 0 column by rebuilding the faces.
+      24, 12, 0, 2 * M_PI, 3, /*periodic_v=*/true);
+  // The torus without the faces around vertex 0.
+  PolyMesh punctured;
+  for (auto v : torus.vertices()) punctured.add_vertex(torus.point(v));
+  for (auto f : torus.faces()) {
+    std::vector<PolyMesh::VertexHandle> corners;
+    for (auto v : torus.fv_range(f)) corners.push_back(punctured.vertex_handle(v.idx()));
+    if (std::none_of(corners.begin(), corners.end(), [](auto v) { return v.idx() == 0; }))
+      punctured.add_face(corners);
+  }
+  PolyMesh two_pieces = Triangulate(Hyperbolic().AsSurface(), -1, 1, -1, 1, 8, &uv);
   {
-    PolyMesh closed;
-    const int n = 16;
-    std::vector<PolyMesh::VertexHandle> v;
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j <= n; ++j)
-        v.push_back(closed.add_vertex(annulus.point(annulus.vertex_handle(i * (n + 1) + j))));
-    auto at = [&](int i, int j) { return v[(i % n) * (n + 1) + j]; };
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j) {
-        closed.add_face({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-        closed.add_face({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-      }
+    const auto a = two_pieces.add_vertex({5, 5, 0}), b = two_pieces.add_vertex({6, 5, 0}),
+               c = two_pieces.add_vertex({5, 6, 0});
+    two_pieces.add_face(a, b, c);
+  }
+  for (const auto& [mesh, expected] : {std::pair<const PolyMesh*, const char*>{&torus, "closed"},
+                                       {&punctured, "1 handle"},
+                                       {&two_pieces, "several components"}}) {
     try {
-      RemeshAlongField(closed, options);
-      ADD_FAILURE() << "an annulus is not a disk";
+      CheckTriangulatedSurface(*mesh);
+      ADD_FAILURE() << expected;
     } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find("not a disk"), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find("2 boundary loops"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
     }
   }
   // Quads are not triangles.
@@ -486,7 +634,7 @@ TEST(QuadRemeshingTest, RefusesWhatItCannotRemesh) {
   bowtie.add_face(o, p1, p2);
   bowtie.add_face(o, p3, p4);
   try {
-    CheckTriangulatedDisk(bowtie);
+    CheckTriangulatedSurface(bowtie);
     ADD_FAILURE() << "a bowtie";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("non-manifold vertex"), std::string::npos) << e.what();
