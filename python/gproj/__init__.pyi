@@ -67,6 +67,10 @@ class PlanarizeOptions:
     """(bool) Every boundary vertex stays where it is."""
     glide_boundary: bool
     """(bool) Boundary vertices slide along the input's boundary (they stay on it to rounding)."""
+    net: Literal['edges', 'diagonal']
+    """(choice) Which faces to make planar: edges (the mesh's own faces) or diagonal (the faces of the quad mesh's diagonal meshes: the ring of every inner vertex, whose edges are the quads' diagonals; the result keeps the input's faces)."""
+    diagonal_colour: Optional[int]
+    """(int, >= 0, <= 1) With net diagonal: one diagonal mesh only, by the colour of its vertices (0: the one through vertex 0; the other colour's vertices stay in place); not given: both."""
     def __init__(
         self,
         *,
@@ -92,6 +96,8 @@ class PlanarizeOptions:
         allow_folds: bool = False,
         fix_boundary: bool = False,
         glide_boundary: bool = False,
+        net: Literal['edges', 'diagonal'] = 'edges',
+        diagonal_colour: Optional[int] = None,
     ) -> None: ...
 
 class PlanarizeResult(Result):
@@ -103,6 +109,8 @@ class PlanarizeResult(Result):
     """per-face values: face, planarity (/ mean edge), planarity_abs (input units), kink_deg (between the quad's two triangles), min_angle_deg (and concyclicity when circular) (None unless asked in outputs=)"""
     heatmap: Optional[str]
     """the result with a colour per face (planarity, log scale; the scale is in the report) (None unless asked in outputs=)"""
+    diagonal_mesh: Optional[Mesh]
+    """with net diagonal: the planarised diagonal faces on the input's vertices (the picture, face values and heat map show these faces) (None unless asked in outputs=)"""
 
 def planarize(
     V: ArrayLike,
@@ -134,6 +142,8 @@ def planarize(
     allow_folds: bool = False,
     fix_boundary: bool = False,
     glide_boundary: bool = False,
+    net: Literal['edges', 'diagonal'] = 'edges',
+    diagonal_colour: Optional[int] = None,
     outputs: Sequence[str] = (),
     callback: Optional[Callable[[Dict[str, Any]], Optional[bool]]] = None,
 ) -> PlanarizeResult:
@@ -168,13 +178,16 @@ Arguments:
     allow_folds: (bool) No corner-angle or default edge bounds: quads may turn non-convex or fold.
     fix_boundary: (bool) Every boundary vertex stays where it is.
     glide_boundary: (bool) Boundary vertices slide along the input's boundary (they stay on it to rounding).
-    outputs: optional outputs to make as well (picture, face_values, heatmap); each is an attribute of the result.
+    net: (choice) Which faces to make planar: edges (the mesh's own faces) or diagonal (the faces of the quad mesh's diagonal meshes: the ring of every inner vertex, whose edges are the quads' diagonals; the result keeps the input's faces).
+    diagonal_colour: (int, >= 0, <= 1) With net diagonal: one diagonal mesh only, by the colour of its vertices (0: the one through vertex 0; the other colour's vertices stay in place); not given: both.
+    outputs: optional outputs to make as well (picture, face_values, heatmap, diagonal_mesh); each is an attribute of the result.
     callback: called with each iteration record (the keys of report.history's entries); returning False stops the run (status USER_ABORT). Ctrl-C stops it too and raises KeyboardInterrupt.
 
 Returns a PlanarizeResult: `report` (a Report: status, converged, iterations, history, initial and final measures, options), `vertices` and `faces` (the mesh): the planarised mesh, and
     picture: a shaded picture of the result, each face coloured by its planarity (None unless asked in outputs=)
     face_values: per-face values: face, planarity (/ mean edge), planarity_abs (input units), kink_deg (between the quad's two triangles), min_angle_deg (and concyclicity when circular) (None unless asked in outputs=)
     heatmap: the result with a colour per face (planarity, log scale; the scale is in the report) (None unless asked in outputs=)
+    diagonal_mesh: with net diagonal: the planarised diagonal faces on the input's vertices (the picture, face values and heat map show these faces) (None unless asked in outputs=)
 When the run fails numerically, the result's mesh and outputs are None and report.status is FAILURE.
 
 Raises TypeError or ValueError naming the argument for bad arguments; warns (GprojWarning) when the input is far from the asked net or the result needs attention.
@@ -742,10 +755,10 @@ def remesh(
     outputs: Sequence[str] = (),
     callback: Optional[Callable[[Dict[str, Any]], Optional[bool]]] = None,
 ) -> RemeshResult:
-    """Quad remeshing of a triangulated disk along its asymptotic (K < 0) or principal directions (004 §3.1): jet-fitted, smoothed direction field, seamless integer-grid map cut from its singularities to the boundary (mixed-integer quadrangulation), quads extracted along the integer iso-lines. Converged (exit 0) when the quads are a valid net (inner valences above 2, quads convex, map unfolded, and for asymptotic directions even valences and K < 0 on 99% of the area); otherwise the quads are returned and the reasons named.
+    """Quad remeshing of a triangulated disk, or of a surface with holes, along its asymptotic (K < 0) or principal directions (004 §3.1): jet-fitted, smoothed direction field, seamless integer-grid map cut through the holes and from its singularities to the boundary (mixed-integer quadrangulation, integer transitions across every cut), quads extracted along the integer iso-lines. Converged (exit 0) when the quads are a valid net (inner valences above 2, quads convex, map unfolded, and for asymptotic directions even valences, 2-coloured vertices and K < 0 on 99% of the area); otherwise the quads are returned and the reasons named.
 
 Arguments:
-    V: the mesh: (n, 3) float vertex positions. Triangle mesh of a disk.
+    V: the mesh: (n, 3) float vertex positions. Triangle mesh of a disk or of a surface with holes (no handles).
     F: (m, k) integer faces, 0-based (a list of faces for mixed sizes).
     options: a RemeshOptions; keyword arguments override its fields.
     weld: merge the input meshes' coincident vertices (within 1e-9 of the bounding-box diagonal) first, as unwelded exports need; without it such a mesh is refused. Vertex ids (fixed, ...) then number the welded mesh; result.weld_map maps each input vertex to it.
@@ -1557,7 +1570,7 @@ def grid(
     c: (number, >= -1000000, <= 1000000) Coefficient of x y (paraboloid).
     wave: (number, >= -1000000, <= 1000000) Coefficient of sin(pi x) sin(pi y) (paraboloid).
     noise: (number, >= 0, <= 1000000) Noise amplitude as a fraction of the grid spacing (of the mean edge for the nets).
-    diagonal: (bool) Asymptotic nets only: the lattice turned by 45 degrees, so that the quads' diagonals (not their edges) follow the asymptotic lines (an input for anet --net diagonal).
+    diagonal: (bool) The lattice turned by 45 degrees, so that the quads' diagonals (not their edges) follow the asymptotic lines of the nets (an input for anet --net diagonal) or the x and y lines of the paraboloid (conjugate for c = wave = 0: an input for planarize --net diagonal); not for revolution.
     seed: (int, >= 0, <= 4294967295) Random seed.
 
 Returns a Mesh (V, F): (n, 3) float64 vertices and (m, 4) int32 faces.

@@ -6,7 +6,8 @@ import gproj
 from conftest import assert_close, compare_with_command_line
 
 
-@pytest.mark.parametrize("variant", ["gp", "ceres", "circular", "options", "control", "schedule"])
+@pytest.mark.parametrize("variant", ["gp", "ceres", "circular", "options", "control", "schedule",
+                                     "diagonal"])
 def test_planarize_equals_the_command_line(cli, variant):
     V, F = gproj.grid(nu=7, nv=6, noise=0.05)
     kwargs, args = {
@@ -24,6 +25,7 @@ def test_planarize_equals_the_command_line(cli, variant):
                      cli.write_mesh("ref.obj", *gproj.grid(nu=15, nv=15, noise=0.0))]),
         "schedule": ({"soft_residual": 0.0, "epsilon_min": 0.0},
                      ["--soft-residual", 0, "--epsilon-min", 0]),
+        "diagonal": ({"net": "diagonal"}, ["--net", "diagonal"]),
     }[variant]
     result = compare_with_command_line(cli, "planarize", V, F, kwargs, args)
     V_out, report = result.vertices, result.report
@@ -66,3 +68,17 @@ def test_a_boolean_mask_fixes_the_vertices_it_marks():
     assert not np.array_equal(V_out[[0, 1]], V[[0, 1]])
     with pytest.raises(ValueError, match="the boolean mask has 4 entries; the mesh has 25"):
         gproj.planarize(V, F, fixed=mask[:4])
+
+
+def test_planarize_diagonal_keeps_the_quads():
+    V, F = gproj.grid(nu=9, nv=9, a=0.3, b=-0.2, noise=0.05, diagonal=True)
+    result = gproj.planarize(V, F, net="diagonal", outputs=["diagonal_mesh"])
+    assert result.report["converged"] and result.report["net"] == "diagonal"
+    assert np.array_equal(np.asarray(result.faces), np.asarray(F))  # the input's quads
+    Vd, Fd = result.diagonal_mesh
+    assert np.array_equal(Vd, result.vertices)  # the rings on the same vertices
+    assert len(Fd) == len(result.report["diagonal_face_centres"]) == 7 * 7
+    for ring in np.asarray(Fd):  # each ring planar
+        p = Vd[ring]
+        n = np.cross(p[2] - p[0], p[3] - p[1])
+        assert abs(np.dot(p[1] - p[0], n)) / np.linalg.norm(n) < 1e-8

@@ -2,8 +2,12 @@
 // (`gproj grid --diagonal`), against the edge net's run on the same mesh.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
+#include <vector>
 
 #include "apps/command_test_util.h"
 #include "gproj/geometry/io/mesh_io.h"
@@ -130,8 +134,8 @@ TEST_F(NetsCommandTest, ArchGeoSampleIsAnANetOnItsDiagonals) {
   }
 }
 
-TEST_F(NetsCommandTest, DiagonalGridOnlyForAsymptoticNets) {
-  const CommandRun run = Gproj("grid --surface paraboloid --diagonal -o " + Path("p.obj"));
+TEST_F(NetsCommandTest, DiagonalGridNotForRevolution) {
+  const CommandRun run = Gproj("grid --surface revolution --diagonal -o " + Path("p.obj"));
   EXPECT_EQ(run.exit_code, 1);
   ExpectOneLineError(run, "--diagonal");
   EXPECT_FALSE(Exists("p.obj"));
@@ -143,6 +147,73 @@ TEST_F(NetsCommandTest, DiagonalGridOnlyForAsymptoticNets) {
   EXPECT_EQ(colour.exit_code, 1);
   ExpectOneLineError(colour, "--diagonal-colour chooses a diagonal mesh: it needs --net diagonal");
   EXPECT_FALSE(Exists("h.json"));
+}
+
+// The largest planarity of the rings of the inner vertices (each ring's diagonal distance /
+// its mean edge): the faces of the diagonal meshes.
+double MaxRingPlanarity(const PolyMesh& quads) {
+  double worst = 0.0;
+  for (auto v : quads.vertices()) {
+    if (quads.is_boundary(v) || quads.valence(v) != 4) continue;
+    std::vector<Eigen::Vector3d> p;
+    for (auto w : quads.vv_ccw_range(v)) p.emplace_back(quads.point(w).data());
+    const Eigen::Vector3d d1 = p[2] - p[0], d2 = p[3] - p[1];
+    const Eigen::Vector3d n = d1.cross(d2);
+    const double mean = 0.25 * ((p[1] - p[0]).norm() + (p[2] - p[1]).norm() + (p[3] - p[2]).norm() +
+                                (p[0] - p[3]).norm());
+    // The distance between the two diagonals' lines.
+    worst = std::max(worst, std::abs((p[1] - p[0]).dot(n)) / n.norm() / mean);
+  }
+  return worst;
+}
+
+// planarize --net diagonal: a noisy paraboloid grid turned by 45 degrees, whose diagonals follow
+// the conjugate x and y lines: the rings of the inner vertices become planar while the mesh keeps
+// its quads; with one colour the other's vertices stay where they were.
+TEST_F(NetsCommandTest, PlanarDiagonalMeshes) {
+  const CommandRun grid =
+      Gproj("grid --diagonal --nu 15 --nv 15 --a 0.3 --b -0.2 --noise 0.05 -o " + Path("grid.obj"));
+  ASSERT_EQ(grid.exit_code, 0) << grid.err;
+  const PolyMesh input = ReadMesh(Path("grid.obj"));
+  const double start = MaxRingPlanarity(input);
+  EXPECT_GT(start, 0.01);
+  const CommandRun both =
+      Gproj("planarize " + Path("grid.obj") + " --net diagonal -o " + Path("p.obj") +
+            " --diagonal-mesh " + Path("rings.obj") + " --report " + Path("p.json"));
+  ASSERT_EQ(both.exit_code, 0) << both.err << both.out;
+  EXPECT_NE(both.out.find("both diagonal meshes"), std::string::npos) << both.out;
+  const nlohmann::json report = Json("p.json");
+  EXPECT_EQ(report["net"], "diagonal");
+  EXPECT_EQ(report["diagonal_face_centres"].size(), 13u * 13u);
+  EXPECT_LT(report["final"]["max_displacement"].get<double>(), 0.01);
+  const PolyMesh result = ReadMesh(Path("p.obj")), rings = ReadMesh(Path("rings.obj"));
+  ASSERT_EQ(result.n_faces(), input.n_faces());
+  for (auto f : result.faces()) {
+    auto a = result.cfv_begin(f), b = input.cfv_begin(input.face_handle(f.idx()));
+    for (; a.is_valid(); ++a, ++b) ASSERT_EQ(a->idx(), b->idx());
+  }
+  EXPECT_EQ(rings.n_faces(), 13u * 13u);
+  const double end = MaxRingPlanarity(result);
+  std::printf("rings of a turned paraboloid grid: planarity %.2e -> %.2e, moved %.2e\n", start, end,
+              report["final"]["max_displacement"].get<double>());
+  EXPECT_LE(end, 2e-6);
+  // One diagonal mesh: the vertices of the other colour keep their place.
+  const CommandRun one = Gproj("planarize " + Path("grid.obj") +
+                               " --net diagonal --diagonal-colour 1 -o " + Path("one.obj"));
+  ASSERT_EQ(one.exit_code, 0) << one.err << one.out;
+  const PolyMesh moved = ReadMesh(Path("one.obj"));
+  int still = 0;
+  for (auto v : moved.vertices()) still += (moved.point(v) - input.point(v)).norm() < 1e-12;
+  EXPECT_GE(still, static_cast<int>(input.n_vertices()) / 2 - 1);
+  EXPECT_LT(still, static_cast<int>(input.n_vertices()));
+  // Refused: a diagonal colour without net diagonal, circular with it.
+  ExpectOneLineError(
+      Gproj("planarize " + Path("grid.obj") + " --diagonal-colour 0 -o " + Path("x.obj")),
+      "--diagonal-colour");
+  ExpectOneLineError(
+      Gproj("planarize " + Path("grid.obj") + " --net diagonal --circular -o " + Path("x.obj")),
+      "--circular");
+  EXPECT_FALSE(Exists("x.obj"));
 }
 
 }  // namespace

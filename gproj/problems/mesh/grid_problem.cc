@@ -53,9 +53,10 @@ const OptionSchema<GridSettings>& Schema() {
                     [](S& x) -> double& { return x.grid.noise; })
         .Range(0.0, 1e6);
     s.Field<bool>("diagonal", OptionType::kBool,
-                  "Asymptotic nets only: the lattice turned by 45 degrees, so that the quads' "
-                  "diagonals (not their edges) follow the asymptotic lines (an input for anet "
-                  "--net diagonal)",
+                  "The lattice turned by 45 degrees, so that the quads' diagonals (not their "
+                  "edges) follow the asymptotic lines of the nets (an input for anet --net "
+                  "diagonal) or the x and y lines of the paraboloid (conjugate for c = wave = 0: "
+                  "an input for planarize --net diagonal); not for revolution",
                   [](S& x) -> bool& { return x.diagonal; });
     s.Custom("seed", OptionType::kInt, "Random seed", 1, [](const nlohmann::json& v, S* x) {
        x->grid.seed = v.get<uint32_t>();
@@ -72,13 +73,13 @@ RunResult Run(const RunInputs&, const nlohmann::json& values, const RunContext&)
               400.0 * s.grid.nu * s.grid.nv);
   const Construction construction(ConstructionMethod::kClosedForm, "test grid");
   const bool asymptotic = s.surface != "paraboloid" && s.surface != "revolution";
-  if (s.diagonal && !asymptotic)
+  if (s.diagonal && !asymptotic && s.surface != "paraboloid")
     throw InputError(
-        "`diagonal` applies to the asymptotic nets (hypar, hyperboloid, enneper), "
-        "not to `surface` " +
+        "`diagonal` applies to the paraboloid and the asymptotic nets (hypar, hyperboloid, "
+        "enneper), not to `surface` " +
         s.surface);
   RunResult result;
-  if (s.surface == "paraboloid") {
+  if (s.surface == "paraboloid" && !s.diagonal) {
     result.meshes["output"] = MakeQuadGrid(s.grid);
   } else {
     ParametricGridOptions o;
@@ -87,9 +88,18 @@ RunResult Run(const RunInputs&, const nlohmann::json& values, const RunContext&)
     o.jitter = s.grid.noise;
     o.seed = s.grid.seed;
     o.diagonal = s.diagonal;
-    const auto surface = s.surface == "revolution"
-                             ? std::function<Eigen::Vector3d(double, double)>(RevolutionSurface)
-                             : AsymptoticSurface(s.surface);
+    const QuadGridOptions& g = s.grid;
+    std::function<Eigen::Vector3d(double, double)> surface;
+    if (s.surface == "revolution")
+      surface = RevolutionSurface;
+    else if (s.surface == "paraboloid")
+      surface = [g](double x, double y) {
+        return Eigen::Vector3d(x, y,
+                               g.a * x * x + g.b * y * y + g.c * x * y +
+                                   g.wave * std::sin(M_PI * x) * std::sin(M_PI * y));
+      };
+    else
+      surface = AsymptoticSurface(s.surface);
     result.meshes["output"] = MakeParametricGrid(surface, o);
   }
   result.report = construction.Finish({}, {}, true);

@@ -18,6 +18,7 @@ struct DiagonalMesh {
   // Inner vertices of the other colour whose rings are not quads (singular vertices), left
   // open: holes of the diagonal mesh (with DiagonalRings::kQuads).
   std::vector<int> open_rings;
+  std::vector<int> face_centres;  // per face: the quad-mesh vertex it is the ring of
 };
 
 enum class DiagonalRings {
@@ -30,5 +31,12 @@ enum class DiagonalRings {
 // ring of its neighbours, oriented like the quads. Throws InputError when the vertices cannot be
 // 2-coloured and when the diagonal mesh has no face.
 DiagonalMesh MakeDiagonalMesh(const PolyMesh& quads, int colour, DiagonalRings rings);
+
+// The faces of the diagonal meshes of `quads` on the quad mesh's own vertices (same numbering;
+// vertices on no ring are left isolated): of colour `colour` (0 or 1), or of both (−1), every
+// ring a face (DiagonalRings::kAll). face_centres[k] is the vertex face k is the ring of. The
+// faces a net on the diagonals makes planar. Throws InputError as MakeDiagonalMesh does (with
+// both colours, when neither has a face).
+DiagonalMesh MakeDiagonalFaces(const PolyMesh& quads, int colour);
 
 }  // namespace gproj::nets

@@ -5,6 +5,7 @@
 #include "gproj/geometry/mesh/polygon_shape.h"
 #include "gproj/problems/mesh/mesh_options.h"
 #include "gproj/problems/mesh/mesh_outputs.h"
+#include "gproj/problems/nets/diagonal_mesh.h"
 #include "gproj/problems/pq/pq_planarization.h"
 #include "gproj/problems/run/builtin_problems.h"
 #include "gproj/problems/run/shared_options.h"
@@ -15,6 +16,8 @@ namespace {
 struct PlanarizeSettings {
   PQPlanarizationOptions problem;
   SolverKind solver = SolverKind::kGuidedProjection;
+  std::string net = "edges";
+  int diagonal_colour = -1;  // not given (both diagonal meshes with net diagonal)
 };
 
 const OptionSchema<PlanarizeSettings>& Schema() {
@@ -50,24 +53,50 @@ const OptionSchema<PlanarizeSettings>& Schema() {
     AddPanelBoundsOptions<S>(&s, [](S& x) -> PanelBoundsOptions& { return x.problem.panels; });
     AddVertexControlOptions<S>(&s,
                                [](S& x) -> VertexControlOptions& { return x.problem.vertices; });
+    s.Field<std::string>(
+         "net", OptionType::kChoice,
+         "Which faces to make planar: edges (the mesh's own faces) or diagonal (the faces of the "
+         "quad mesh's diagonal meshes: the ring of every inner vertex, whose edges are the quads' "
+         "diagonals; the result keeps the input's faces)",
+         [](S& x) -> std::string& { return x.net; })
+        .Choices({"edges", "diagonal"});
+    s.Optional<int>("diagonal_colour", OptionType::kInt,
+                    "With net diagonal: one diagonal mesh only, by the colour of its vertices (0: "
+                    "the one through vertex 0; the other colour's vertices stay in place); not "
+                    "given: both",
+                    [](S& x) -> int& { return x.diagonal_colour; })
+        .Range(0, 1);
     return s;
   }();
   return schema;
 }
 
-void AddShortfalls(const PQPlanarization& pq, const std::string& panels, RunResult* result) {
+// Faces by id, or with net diagonal by the vertex each is the ring of.
+std::string FacesNamed(const std::vector<int>& faces, const nets::DiagonalMesh* diagonal) {
+  if (!diagonal) return FaceList(faces);
+  constexpr size_t kShown = 10;
+  std::string text = faces.size() == 1 ? "the ring of vertex " : "the rings of vertices ";
+  for (size_t i = 0; i < faces.size() && i < kShown; ++i)
+    text += (i > 0 ? ", " : "") + std::to_string(diagonal->face_centres[faces[i]]);
+  if (faces.size() > kShown) text += " (and " + std::to_string(faces.size() - kShown) + " more)";
+  return text;
+}
+
+void AddShortfalls(const PQPlanarization& pq, const std::string& panels,
+                   const nets::DiagonalMesh* diagonal, RunResult* result) {
   const PQPlanarizationOptions& options = pq.options();
   const std::vector<int> above = pq.FacesAboveTolerance();
   if (!above.empty())
-    result->shortfalls.push_back(std::to_string(above.size()) + " " + panels +
-                                 " above the tolerance, worst first: " + FaceList(above));
+    result->shortfalls.push_back(
+        std::to_string(above.size()) + " " + panels +
+        " above the tolerance, worst first: " + FacesNamed(above, diagonal));
   const std::vector<int> held = pq.FacesAtAngleBound();
   char bound[64];
   std::snprintf(bound, sizeof(bound), "%g", options.panels.min_angle_deg);
   if (!held.empty())
     result->shortfalls.push_back(std::to_string(held.size()) + " " + panels +
                                  " sit on their corner-angle bound (`min_angle` " + bound +
-                                 "): " + FaceList(held));
+                                 "): " + FacesNamed(held, diagonal));
   const double outside = ValueOf(pq.MeasureAt(pq.problem().x()), "out_of_range_edges");
   if (outside > 0.0)
     result->shortfalls.push_back(std::to_string(static_cast<int>(outside)) +
@@ -85,10 +114,30 @@ void AddShortfalls(const PQPlanarization& pq, const std::string& panels, RunResu
 RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunContext& context) {
   PlanarizeSettings settings = Schema().Apply(values);
   PQPlanarizationOptions& options = settings.problem;
-  const PolyMesh& input = inputs.Mesh("mesh");
+  const PolyMesh& given = inputs.Mesh("mesh");
   options.vertices.fixed = inputs.VertexIds("fixed");
   std::string why;
   if (!options.IsValid(&why)) throw InputError("invalid option: " + why);
+  // With net diagonal the faces made planar are the diagonal meshes' on the input's vertices.
+  const bool diagonal = settings.net == "diagonal";
+  if (!diagonal && settings.diagonal_colour >= 0)
+    throw InputError("`diagonal_colour` chooses a diagonal mesh: it needs `net` diagonal");
+  if (diagonal && options.circular)
+    throw InputError("`circular` applies to `net` edges (the faces of the mesh itself)");
+  nets::DiagonalMesh diagonal_faces;
+  if (diagonal) {
+    for (auto f : given.faces())
+      if (given.valence(f) != 4)
+        throw InputError(inputs.Source("mesh") + ": face " + std::to_string(f.idx()) + " has " +
+                         std::to_string(given.valence(f)) +
+                         " vertices; `net` diagonal needs a quad mesh");
+    try {
+      diagonal_faces = nets::MakeDiagonalFaces(given, settings.diagonal_colour);
+    } catch (const InputError& e) {
+      throw InputError(inputs.Source("mesh") + ": `net` diagonal: " + e.what());
+    }
+  }
+  const PolyMesh& input = diagonal ? diagonal_faces.mesh : given;
   const PolygonMeshSummary panels = SummarizePolygons(input);
   for (auto f : input.faces())
     if (options.circular && input.valence(f) != 4)
@@ -102,6 +151,7 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   PQPlanarization pq(input, options, inputs.OptionalMesh("reference"));
   const bool all_quads = panels.faces_by_corners.size() == 5 &&
                          panels.faces_by_corners[4] == static_cast<int>(input.n_faces());
+  const std::string face_name = diagonal ? "diagonal faces" : all_quads ? "quads" : "faces";
   const bool ceres = settings.solver == SolverKind::kCeres;
   if (!ceres && options.ceres_soft_scale != PQPlanarizationOptions().ceres_soft_scale)
     throw InputError("`ceres_soft_scale` applies to `solver` ceres only");
@@ -110,14 +160,21 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   const PlanarityMeasures initial = pq.Measures();
   std::snprintf(line, sizeof(line), "%s: %zu vertices, %zu %s, %d variables, solver %s",
                 inputs.Source("mesh").c_str(), input.n_vertices(), input.n_faces(),
-                all_quads ? "quads" : "faces", pq.problem().layout().num_variables(),
+                face_name.c_str(), pq.problem().layout().num_variables(),
                 ceres ? "ceres" : LinearSolverTypeName(options.solver.linear_solver));
   context.Headline(line);
+  if (diagonal)
+    context.Info(std::string("net diagonal: the faces planarised are the rings of the inner "
+                             "vertices (") +
+                 (settings.diagonal_colour >= 0
+                      ? "the diagonal mesh of colour " + std::to_string(settings.diagonal_colour)
+                      : std::string("both diagonal meshes")) +
+                 "); the result keeps the input's " + std::to_string(given.n_faces()) + " quads");
   std::snprintf(line, sizeof(line),
                 "start: max planarity %.3e, mean %.3e (diagonal distance / mean edge)",
                 initial.max_planarity, initial.mean_planarity);
   context.Info(line);
-  if (!all_quads) {
+  if (!all_quads && !diagonal) {
     context.Info("faces: " + FaceCountsText(panels.faces_by_corners) +
                  " (a plane per face of 4 or more vertices; triangles are left to closeness and "
                  "fairness)");
@@ -151,13 +208,25 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   result.facts.erase("options");
   result.facts["fixed_vertices"] = options.vertices.fixed.size();
   if (!all_quads) result.facts["faces_by_corners"] = panels.faces_by_corners;
+  result.facts["net"] = settings.net;
+  if (diagonal) {
+    if (settings.diagonal_colour >= 0) result.facts["diagonal_colour"] = settings.diagonal_colour;
+    result.facts["diagonal_face_centres"] = diagonal_faces.face_centres;
+  }
   if (context.soft_free_start) result.facts["soft_free_start"] = true;
   if (result.report.failed) return result;
 
   const PlanarityMeasures final_measures = pq.Measures();
-  result.meshes["output"] = mesh;
+  if (diagonal) {
+    PolyMesh moved = given;  // the input's faces at the new positions
+    for (auto v : moved.vertices()) moved.set_point(v, mesh.point(v));
+    result.meshes["output"] = moved;
+    if (context.Wants("diagonal_mesh")) result.meshes["diagonal_mesh"] = mesh;
+  } else {
+    result.meshes["output"] = mesh;
+  }
   std::snprintf(line, sizeof(line), "%zu %s, max planarity %.2e", input.n_faces(),
-                all_quads ? "quads" : "faces", final_measures.max_planarity);
+                face_name.c_str(), final_measures.max_planarity);
   AddFaceOutputTexts(mesh, RelativeFacePlanarity(mesh, options.circular),
                      PlanarityColourScale(mesh, options.circular),
                      QuadShapesCsv(mesh, options.circular), line, context, &result);
@@ -173,10 +242,12 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
     result.Info(line);
   }
   AddPanelMessages(options.circular ? "a circular mesh"
+                   : diagonal       ? "planar diagonal meshes"
                    : all_quads      ? "a PQ (conjugate) mesh"
                                     : "a planar polygon mesh",
                    input, mesh, 10.0, final_measures.max_displacement, &result);
-  if (!result.report.converged) AddShortfalls(pq, all_quads ? "quads" : "faces", &result);
+  if (!result.report.converged)
+    AddShortfalls(pq, face_name, diagonal ? &diagonal_faces : nullptr, &result);
   return result;
 }
 
@@ -207,7 +278,10 @@ ProblemSpec PlanarizeSpec() {
        "per-face values: face, planarity (/ mean edge), planarity_abs (input units), kink_deg "
        "(between the quad's two triangles), min_angle_deg (and concyclicity when circular)"},
       {"heatmap", OutputKind::kPly,
-       "the result with a colour per face (planarity, log scale; the scale is in the report)"}};
+       "the result with a colour per face (planarity, log scale; the scale is in the report)"},
+      {"diagonal_mesh", OutputKind::kMesh,
+       "with net diagonal: the planarised diagonal faces on the input's vertices (the picture, "
+       "face values and heat map show these faces)"}};
   spec.options = Schema().specs();
   spec.log_measures = {"max_planarity", "mean_planarity", "non_convex_quads",
                        "min_corner_angle_deg"};
