@@ -1435,6 +1435,10 @@ class CanalOptions:
     """(number, > 0) The same |P_k Q_k| for every curve point."""
     normal: Optional[Sequence[float]]
     """(numbers, 3 values) Normal of the cyclidic net at P_0 (not given: in the first quad's plane, across the curve; with second_curve: the surface normal at P_0, required)."""
+    normal_angle: Optional[float]
+    """(number, deg, >= -89, <= 89) The normal at P_0 at this angle to a reference plane (000 §3.3): the given or default normal is turned onto that cone (the nearest such normal), and smooth keeps it there, turning it about the plane's normal only."""
+    reference_plane: Optional[Sequence[float]]
+    """(numbers, 3 values) With normal_angle: the reference plane's normal (not given: 0,0,1, a horizontal plane)."""
     psi: float
     """(number, rad, >= -1000, <= 1000) Rotation of the frame's first tangent about the normal."""
     segments: int
@@ -1464,6 +1468,8 @@ class CanalOptions:
         lengths: Optional[Sequence[float]] = None,
         length: Optional[float] = None,
         normal: Optional[Sequence[float]] = None,
+        normal_angle: Optional[float] = None,
+        reference_plane: Optional[Sequence[float]] = None,
         psi: float = 0.0,
         segments: int = 12,
         section_scales: Optional[Sequence[float]] = None,
@@ -1498,6 +1504,8 @@ def canal(
     lengths: Optional[Sequence[float]] = None,
     length: Optional[float] = None,
     normal: Optional[Sequence[float]] = None,
+    normal_angle: Optional[float] = None,
+    reference_plane: Optional[Sequence[float]] = None,
     psi: float = 0.0,
     segments: int = 12,
     section_scales: Optional[Sequence[float]] = None,
@@ -1522,6 +1530,8 @@ Arguments:
     lengths: (numbers, > 0) |P_k Q_k| for every curve point.
     length: (number, > 0) The same |P_k Q_k| for every curve point.
     normal: (numbers, 3 values) Normal of the cyclidic net at P_0 (not given: in the first quad's plane, across the curve; with second_curve: the surface normal at P_0, required).
+    normal_angle: (number, deg, >= -89, <= 89) The normal at P_0 at this angle to a reference plane (000 §3.3): the given or default normal is turned onto that cone (the nearest such normal), and smooth keeps it there, turning it about the plane's normal only.
+    reference_plane: (numbers, 3 values) With normal_angle: the reference plane's normal (not given: 0,0,1, a horizontal plane).
     psi: (number, rad, >= -1000, <= 1000) Rotation of the frame's first tangent about the normal.
     segments: (int, >= 1, <= 100000) Quads across the strip in the canal mesh.
     section_scales: (numbers, > 0) C-canal surface (000 §5.2): one factor per segment scaling the first arc's edges into a planar cross-section; the lengths are then the C-canal's.

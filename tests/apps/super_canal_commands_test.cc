@@ -2,6 +2,7 @@
 // the shipped data.
 #include <gtest/gtest.h>
 
+#include <Eigen/Core>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -159,6 +160,31 @@ TEST_F(SuperCanalCommandTest, CanalBuildsACircularMeshAndSmoothingLowersTheEnerg
   EXPECT_LT(report["final"]["smoothness_energy"].get<double>(), 0.5 * before);
   EXPECT_GT(report["history"].size(), 1u);
   EXPECT_LT(report["final"]["max_concyclicity"].get<double>(), 1e-10);
+}
+
+// 000 §3.3: the normal at P_0 at a fixed angle to a reference plane; the smoothing turns it
+// along the cone only, and the report gives the angle reached.
+TEST_F(SuperCanalCommandTest, CanalNormalAtAFixedAngleToAPlane) {
+  const std::string base = "canal " + Data("canal_curve.txt") +
+                           " --first-point -0.5,0.5,2 --length 2 --smooth -o " + Path("out.obj") +
+                           " --report " + Path("r.json");
+  const CommandRun r = Gproj(base + " --normal-angle 25 --reference-plane 0,0.2,1");
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("onto that cone"), std::string::npos) << r.out;
+  const nlohmann::json report = Json("r.json");
+  EXPECT_NEAR(report["frame"]["normal_angle_deg"].get<double>(), 25.0, 1e-9);
+  const auto& n = report["frame"]["normal"];
+  const Eigen::Vector3d normal(n[0].get<double>(), n[1].get<double>(), n[2].get<double>());
+  EXPECT_NEAR(
+      std::asin(normal.normalized().dot(Eigen::Vector3d(0, 0.2, 1).normalized())) * 180 / M_PI,
+      25.0, 1e-9);
+  EXPECT_LT(report["final"]["smoothness_energy"].get<double>(),
+            report["initial"]["smoothness_energy"].get<double>());
+  EXPECT_LT(report["final"]["max_concyclicity"].get<double>(), 1e-10);
+  ExpectOneLineError(Gproj(base + " --reference-plane 0,0,1"), "--normal-angle");
+  ExpectOneLineError(Gproj(base + " --normal-angle 90"), "--normal-angle");
+  ExpectOneLineError(Gproj(base + " --normal-angle 10 --reference-plane 0,0,0"),
+                     "--reference-plane");
 }
 
 TEST_F(SuperCanalCommandTest, CanalSmoothingCutShortExitsThreeWithTheResultWritten) {

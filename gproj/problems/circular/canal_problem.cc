@@ -23,7 +23,7 @@ namespace gproj::circular {
 namespace {
 
 struct CanalSettings {
-  std::vector<double> first_point, lengths, normal, section_scales;
+  std::vector<double> first_point, lengths, normal, section_scales, reference_plane;
   double length = 0.0, psi = 0.0;
   bool closed = false, fixed_lengths = false;
   int surface_segments = 0;  // 0: not given (8)
@@ -50,6 +50,22 @@ void AddStripOptions(OptionSchema<CanalSettings>* s) {
        "Normal of the cyclidic net at P_0 (not given: in the first quad's plane, across the "
        "curve; with second_curve: the surface normal at P_0, required)",
        [](S & x) -> auto& { return x.normal; })
+      .Count(3, "X,Y,Z");
+  s->Custom("normal_angle", OptionType::kNumber,
+            "The normal at P_0 at this angle to a reference plane (000 §3.3): the given or default "
+            "normal is turned onto that cone (the nearest such normal), and smooth keeps it "
+            "there, turning it about the plane's normal only",
+            nullptr,
+            [](const nlohmann::json& v, S* x) {
+              x->options.smoothing.cone.enabled = true;
+              x->options.smoothing.cone.angle_deg = v.get<double>();
+            })
+      .Range(-89, 89)
+      .Unit("deg");
+  s->Optional<std::vector<double>>(
+       "reference_plane", OptionType::kNumbers,
+       "With normal_angle: the reference plane's normal (not given: 0,0,1, a horizontal plane)",
+       [](S & x) -> auto& { return x.reference_plane; })
       .Count(3, "X,Y,Z");
   s->Field<double>("psi", OptionType::kNumber,
                    "Rotation of the frame's first tangent about the normal",
@@ -361,6 +377,11 @@ RunResult RunStrip(const RunInputs& inputs, const CanalSettings& s, const RunCon
   angles.psi = s.psi;
   CanalSurfaceOptions options = s.options;
   options.smoothing.optimize_lengths = !s.fixed_lengths;
+  NormalCone& cone = options.smoothing.cone;
+  if (!s.reference_plane.empty()) {
+    cone.axis = Point(s.reference_plane);
+    if (!(cone.axis.norm() > 0.0)) throw InputError("`reference_plane` must not be zero");
+  }
   CanalSurface canal(input, angles, options);
   char line[512];
   std::snprintf(line, sizeof(line),
@@ -368,6 +389,16 @@ RunResult RunStrip(const RunInputs& inputs, const CanalSettings& s, const RunCon
                 inputs.Source("curve").c_str(), input.curve.size(), input.curve.size() - 1,
                 input.first_point.x(), input.first_point.y(), input.first_point.z());
   context.Headline(line);
+  if (cone.enabled) {
+    std::snprintf(line, sizeof(line),
+                  "the normal at P_0 at %g deg to the plane of normal (%g, %g, %g) (000 §3.3): "
+                  "turned %.3g deg onto that cone%s",
+                  cone.angle_deg, cone.axis.x(), cone.axis.y(), cone.axis.z(),
+                  std::acos(std::clamp(NormalOf(angles).dot(NormalOf(canal.angles())), -1.0, 1.0)) *
+                      180.0 / M_PI,
+                  options.smooth ? "; the smoothing turns it about the plane's normal only" : "");
+    context.Info(line);
+  }
   if (options.smooth) context.Info("shape smoothing (000 eq. 5), Ceres line-search BFGS");
   RunResult result;
   result.report = canal.Run([&context](const RunRecord& r) { return context.Record(r); });
@@ -387,6 +418,10 @@ RunResult RunStrip(const RunInputs& inputs, const CanalSettings& s, const RunCon
   result.facts = {{"lengths", canal.input().lengths}};
   result.facts["frame"] = {{"lambda", a.lambda}, {"theta", a.theta}, {"psi", a.psi}};
   result.facts["frame"]["normal"] = {n.x(), n.y(), n.z()};
+  if (cone.enabled) {
+    result.facts["frame"]["normal_angle_deg"] = cone.AngleOf(n);
+    result.facts["frame"]["reference_plane"] = {cone.axis.x(), cone.axis.y(), cone.axis.z()};
+  }
   result.facts["strip"] = MeasuresJson(strip);
   result.facts["mesh"] = {{"rows", canal.strip().p.size() - 1}, {"segments", options.segments}};
   AddSmoothSurface(smooth.get(), context, &result);
@@ -402,6 +437,11 @@ RunResult RunStrip(const RunInputs& inputs, const CanalSettings& s, const RunCon
 std::string Misuse(const RunInputs& inputs, const CanalSettings& s, const RunContext& context) {
   const CanalSettings d;
   const bool surface = context.Wants("surface") || context.Wants("surface_picture");
+  const bool cone = s.options.smoothing.cone.enabled;
+  if (!s.reference_plane.empty() && !cone) return "`reference_plane` needs `normal_angle`";
+  if (cone && (s.closed || !s.section_scales.empty() || inputs.Has("second_curve")))
+    return "`normal_angle` constrains the frame of a circular strip (000 §3.3): `closed`, "
+           "`section_scales` and `second_curve` do not apply";
   if (s.surface_segments > 0 && !surface)
     return "`surface_segments` needs `surface` or `surface_picture`";
   if (!s.closed &&

@@ -176,11 +176,11 @@ Vec3<T> NormalOfAngles(const T& lambda, const T& theta) {
   return Vec3<T>(cos(lambda) * cos(theta), cos(lambda) * sin(theta), sin(lambda));
 }
 
+// The frame at P_0 of the unit normal n and the turn ψ of t1 about it.
 template <typename T>
-void FrameAtStart(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const T* angles,
-                  Vec3<T>* t1, Vec3<T>* t2, Vec3<T>* n) {
-  const T &lambda = angles[0], &theta = angles[1], &psi = angles[2];
-  *n = NormalOfAngles<T>(lambda, theta);
+void FrameAtStart(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Vec3<T>& normal,
+                  const T& psi, Vec3<T>* t1, Vec3<T>* t2, Vec3<T>* n) {
+  *n = normal;
   const Vec3<T> chord = Cast<T>(p1) - Cast<T>(p0);
   const Vec3<T> projected = chord - chord.dot(*n) * (*n);
   const Vec3<T> u = projected / projected.norm();
@@ -188,12 +188,19 @@ void FrameAtStart(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const T*
   *t2 = n->cross(*t1);
 }
 
+// The frame at P_0 of the angles λ, θ, ψ.
+template <typename T>
+void FrameAtStart(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const T* angles,
+                  Vec3<T>* t1, Vec3<T>* t2, Vec3<T>* n) {
+  FrameAtStart<T>(p0, p1, NormalOfAngles<T>(angles[0], angles[1]), angles[2], t1, t2, n);
+}
+
 // F of 000 eq. 5 over the strip's edges, and the edge count.
 template <typename T>
 T StripEnergy(const std::vector<Eigen::Vector3d>& p, const std::vector<Vec3<T>>& q,
-              const T* angles) {
+              const Vec3<T>& normal, const T& psi) {
   Vec3<T> t1, t2, n;
-  FrameAtStart<T>(p[0], p[1], angles, &t1, &t2, &n);
+  FrameAtStart<T>(p[0], p[1], normal, psi, &t1, &t2, &n);
   T energy(0);
   const int last = static_cast<int>(p.size()) - 1;
   for (int k = 0; k <= last; ++k) {
@@ -213,7 +220,18 @@ T StripEnergy(const std::vector<Eigen::Vector3d>& p, const std::vector<Vec3<T>>&
   return energy;
 }
 
-// Parameters: [lengths (if optimised)] [λ, θ, ψ (if optimised)].
+template <typename T>
+T StripEnergy(const std::vector<Eigen::Vector3d>& p, const std::vector<Vec3<T>>& q,
+              const T* angles) {
+  return StripEnergy<T>(p, q, NormalOfAngles<T>(angles[0], angles[1]), angles[2]);
+}
+
+// The frame's parameters: λ, θ, ψ; on a cone (options.cone) its turn φ and ψ.
+int FrameParameters(const CanalSmoothingOptions& options) {
+  return !options.optimize_frame ? 0 : options.cone.enabled ? 2 : 3;
+}
+
+// Parameters: [lengths (if optimised)] [the frame's (if optimised)].
 class CanalObjective final : public ceres::FirstOrderFunction {
  public:
   CanalObjective(const CircularStripInput& input, const FrameAngles& angles,
@@ -223,7 +241,8 @@ class CanalObjective final : public ceres::FirstOrderFunction {
     angles_[1] = angles.theta;
     angles_[2] = angles.psi;
     num_parameters_ = (options.optimize_lengths ? static_cast<int>(input.lengths.size()) : 0) +
-                      (options.optimize_frame ? 3 : 0);
+                      FrameParameters(options);
+    options.cone.Basis(&e1_, &e2_);
   }
 
   template <typename T>
@@ -233,12 +252,27 @@ class CanalObjective final : public ceres::FirstOrderFunction {
     int k = 0;
     for (int i = 0; i < n; ++i)
       lengths[i] = options_.optimize_lengths ? x[k++] : T(input_.lengths[i]);
-    T angles[3];
-    for (int i = 0; i < 3; ++i) angles[i] = options_.optimize_frame ? x[k++] : T(angles_[i]);
+    Vec3<T> normal;
+    T psi;
+    if (options_.optimize_frame && options_.cone.enabled) {
+      // n = sin α a + cos α (cos φ e1 + sin φ e2): on the cone whatever φ.
+      const double alpha = options_.cone.angle_deg * M_PI / 180.0;
+      using std::cos;
+      using std::sin;
+      const T phi = x[k++];
+      normal = Cast<T>(std::sin(alpha) * options_.cone.axis.normalized()) +
+               T(std::cos(alpha)) * (cos(phi) * Cast<T>(e1_) + sin(phi) * Cast<T>(e2_));
+      psi = x[k++];
+    } else {
+      T angles[3];
+      for (int i = 0; i < 3; ++i) angles[i] = options_.optimize_frame ? x[k++] : T(angles_[i]);
+      normal = NormalOfAngles<T>(angles[0], angles[1]);
+      psi = angles[2];
+    }
     std::vector<Vec3<T>> q;
     std::string error;
     if (!BuildStripT<T>(input_.curve, input_.first_point, lengths.data(), &q, &error)) return false;
-    const T energy = StripEnergy<T>(input_.curve, q, angles);
+    const T energy = StripEnergy<T>(input_.curve, q, normal, psi);
     const int edges = 3 * (n - 1) + 1;
     T regulariser(0);
     for (int i = 0; i < n; ++i) {
@@ -277,15 +311,20 @@ class CanalObjective final : public ceres::FirstOrderFunction {
   CanalSmoothingOptions options_;
   double edge_scale_;
   double angles_[3];
+  Eigen::Vector3d e1_, e2_;  // the cone's basis
   int num_parameters_ = 0;
 };
 
-// The parameters of the objective: [lengths (if optimised)] [λ, θ, ψ (if optimised)].
+// The parameters of the objective: [lengths (if optimised)] [λ, θ, ψ, or φ, ψ on a cone (if
+// optimised)].
 std::vector<double> Pack(const CircularStripInput& input, const FrameAngles& angles,
                          const CanalSmoothingOptions& options) {
   std::vector<double> x;
   if (options.optimize_lengths) x = input.lengths;
-  if (options.optimize_frame) x.insert(x.end(), {angles.lambda, angles.theta, angles.psi});
+  if (options.optimize_frame && options.cone.enabled)
+    x.insert(x.end(), {options.cone.Turn(NormalOf(angles)), angles.psi});
+  else if (options.optimize_frame)
+    x.insert(x.end(), {angles.lambda, angles.theta, angles.psi});
   return x;
 }
 
@@ -295,7 +334,12 @@ void Unpack(const double* x, const CanalSmoothingOptions& options, CircularStrip
   int k = 0;
   if (options.optimize_lengths)
     for (auto& l : input->lengths) l = x[k++];
-  if (options.optimize_frame) *angles = {x[k], x[k + 1], x[k + 2]};
+  if (options.optimize_frame && options.cone.enabled) {
+    *angles = AnglesFromNormal(options.cone.NormalAt(x[k]));
+    angles->psi = x[k + 1];
+  } else if (options.optimize_frame) {
+    *angles = {x[k], x[k + 1], x[k + 2]};
+  }
 }
 
 // F of 000 eq. 5 for parameters x.
@@ -556,14 +600,66 @@ bool CanalSmoothingOptions::IsValid(std::string* why) const {
     *why = "nothing to optimise: free the lengths, the frame or both";
     return false;
   }
+  return !cone.enabled || cone.IsValid(why);
+}
+
+bool NormalCone::IsValid(std::string* why) const {
+  if (!axis.allFinite() || !(axis.norm() > 0.0)) {
+    *why = "the reference plane's normal must be finite and not zero";
+    return false;
+  }
+  if (!(std::abs(angle_deg) <= 89.0)) {
+    *why =
+        "the normal's angle to the reference plane must be within [-89, 89] deg (at 90 the "
+        "normal is the plane's normal: give it as the normal)";
+    return false;
+  }
   return true;
 }
 
-CanalSmoothingSummary SmoothCanalStrip(const CircularStripInput& input, const FrameAngles& angles,
+void NormalCone::Basis(Eigen::Vector3d* e1, Eigen::Vector3d* e2) const {
+  const Eigen::Vector3d a = axis.normalized();
+  // Across the axis: from the coordinate axis least along it.
+  Eigen::Index least = 0;
+  a.cwiseAbs().minCoeff(&least);
+  *e1 = a.cross(Eigen::Vector3d::Unit(least)).normalized();
+  *e2 = a.cross(*e1);
+}
+
+Eigen::Vector3d NormalCone::NormalAt(double phi) const {
+  Eigen::Vector3d e1, e2;
+  Basis(&e1, &e2);
+  const double alpha = angle_deg * M_PI / 180.0;
+  return std::sin(alpha) * axis.normalized() +
+         std::cos(alpha) * (std::cos(phi) * e1 + std::sin(phi) * e2);
+}
+
+double NormalCone::Turn(const Eigen::Vector3d& n) const {
+  Eigen::Vector3d e1, e2;
+  Basis(&e1, &e2);
+  const double x = n.dot(e1), y = n.dot(e2);
+  return x == 0.0 && y == 0.0 ? 0.0 : std::atan2(y, x);
+}
+
+double NormalCone::AngleOf(const Eigen::Vector3d& n) const {
+  return std::asin(std::clamp(n.normalized().dot(axis.normalized()), -1.0, 1.0)) * 180.0 / M_PI;
+}
+
+FrameAngles OnCone(const FrameAngles& angles, const NormalCone& cone) {
+  FrameAngles out = AnglesFromNormal(cone.NormalAt(cone.Turn(NormalOf(angles))));
+  out.psi = angles.psi;
+  return out;
+}
+
+CanalSmoothingSummary SmoothCanalStrip(const CircularStripInput& input,
+                                       const FrameAngles& given_angles,
                                        const CanalSmoothingOptions& options,
                                        const RunCallback& callback) {
   std::string why;
   if (!options.IsValid(&why)) throw InputError("canal smoothing: " + why);
+  // On a cone the start normal is the cone's nearest to the given one.
+  const FrameAngles angles =
+      options.cone.enabled ? OnCone(given_angles, options.cone) : given_angles;
   const CircularStrip strip = BuildCircularStrip(input);  // validates the input
   // BFGS runs on the strip moved to P_0 and divided by its mean edge length ℓ, where lengths
   // and angles are both of order 1 whatever the input's units (on a curve of size 1e-20 the
@@ -655,11 +751,15 @@ bool CanalSurfaceOptions::IsValid(std::string* why) const {
 
 CanalSurface::CanalSurface(const CircularStripInput& input, const FrameAngles& angles,
                            const CanalSurfaceOptions& options)
-    : options_(options), input_(input), angles_(angles) {
+    : options_(options),
+      input_(input),
+      angles_(options.smoothing.cone.enabled ? OnCone(angles, options.smoothing.cone) : angles) {
   std::string why;
   if (!options.IsValid(&why)) throw InputError("invalid option: " + why);
+  if (options.smoothing.cone.enabled && !options.smoothing.cone.IsValid(&why))
+    throw InputError("invalid option: " + why);
   strip_ = BuildCircularStrip(input);
-  CheckFrameNormal(angles, input.curve[0], input.curve[1]);
+  CheckFrameNormal(angles_, input.curve[0], input.curve[1]);
 }
 
 NamedValues CanalSurface::Measure() const {

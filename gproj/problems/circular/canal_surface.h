@@ -102,6 +102,30 @@ std::vector<std::vector<Eigen::Vector3d>> CanalRows(const CyclidicStrip& net, in
 // with `ring` also from the last row to the first.
 PolyMesh RowsMesh(const std::vector<std::vector<Eigen::Vector3d>>& rows, bool ring);
 
+// The normal at P_0 at a fixed angle to a reference plane (000 §3.3: "the user can specify
+// additional constraints, like the angle made by the normal and a reference plane. In the
+// latter case, the degrees of freedom λ and θ become coupled, and the normal rotates along a
+// cone"): the normals n with asin(n · axis) = angle, a cone about the plane's normal `axis`.
+struct NormalCone {
+  bool enabled = false;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  // the reference plane's normal
+  double angle_deg = 0.0;                           // the normal's angle to the plane
+  // Finite, non-zero axis; |angle| ≤ 89° (at 90° the cone is one normal: give it as `normal`).
+  bool IsValid(std::string* why) const;
+  // An orthonormal basis (e1, e2) of the plane, and the cone's normal at turn φ about the axis
+  // (φ = 0 along e1).
+  void Basis(Eigen::Vector3d* e1, Eigen::Vector3d* e2) const;
+  Eigen::Vector3d NormalAt(double phi) const;
+  // The turn φ of n's projection onto the plane (0 when n is along the axis): NormalAt(Turn(n))
+  // is the normal on the cone nearest to n.
+  double Turn(const Eigen::Vector3d& n) const;
+  // The angle of n to the plane, degrees.
+  double AngleOf(const Eigen::Vector3d& n) const;
+};
+
+// `angles` with the normal moved to the nearest normal on `cone` (ψ kept).
+FrameAngles OnCone(const FrameAngles& angles, const NormalCone& cone);
+
 struct CanalSmoothingOptions {
   int max_iterations = 200;
   // Weight of Σ (L_k / L_k⁰ − 1)², which keeps the lengths near the input; the energy term is
@@ -109,6 +133,9 @@ struct CanalSmoothingOptions {
   double length_weight = 0.1;
   bool optimize_lengths = true;
   bool optimize_frame = true;
+  // With cone.enabled the frame's normal stays on the cone: the frame's free parameters are its
+  // turn about the cone's axis and ψ (the start normal is moved onto the cone first).
+  NormalCone cone;
   // The smoothing's tolerance: BFGS stops, converged, when an iteration lowers the objective by
   // less than this fraction (Ceres' function tolerance; its gradient and parameter tolerances
   // keep Ceres' defaults and also count as converged).

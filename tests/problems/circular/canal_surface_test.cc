@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "canal_test_util.h"
 #include "gproj/geometry/mesh/circle.h"
@@ -94,6 +96,51 @@ TEST(CanalSurfaceTest, SmoothingLowersTheEnergyWithBfgs) {
   CircularStripInput out = in;
   out.lengths = s.lengths;
   EXPECT_LT(MeasureCircularity(StripMesh(BuildCircularStrip(out))).max_concyclicity, 1e-10);
+}
+
+// 000 §3.3: the normal at a fixed angle to a reference plane turns along a cone. The smoothing
+// keeps it there (to rounding), still lowers F, and cannot beat the free smoothing.
+TEST(CanalSurfaceTest, NormalOnAConeStaysOnItWhileSmoothing) {
+  const CircularStripInput in = Input();
+  const FrameAngles start = AnglesFromNormal(Eigen::Vector3d(0.2, -0.5, 1.0));
+  CanalSmoothingOptions free_options;
+  const CanalSmoothingSummary free = SmoothCanalStrip(in, start, free_options);
+  for (const double angle : {30.0, -10.0, 75.0}) {
+    CanalSmoothingOptions options;
+    options.cone.enabled = true;
+    options.cone.axis = Eigen::Vector3d(0.3, 0.1, 1.0);
+    options.cone.angle_deg = angle;
+    const FrameAngles on_cone = OnCone(start, options.cone);
+    EXPECT_NEAR(options.cone.AngleOf(NormalOf(on_cone)), angle, 1e-9);
+    // The nearest normal on the cone: in the plane of the axis and the given normal.
+    EXPECT_NEAR(options.cone.axis.cross(NormalOf(start)).dot(NormalOf(on_cone)), 0.0, 1e-12);
+    const CanalSmoothingSummary s = SmoothCanalStrip(in, start, options);
+    const Eigen::Vector3d n = NormalOf(s.angles);
+    std::printf(
+        "cone at %g deg: F %.6g -> %.6g (free: %.6g), normal at %.12g deg, turned %.3g "
+        "deg about the axis, %d iterations\n",
+        angle, s.initial_energy, s.final_energy, free.final_energy, options.cone.AngleOf(n),
+        std::acos(std::clamp(n.dot(NormalOf(on_cone)), -1.0, 1.0)) * 180 / M_PI, s.iterations);
+    EXPECT_TRUE(s.converged) << s.termination;
+    EXPECT_NEAR(options.cone.AngleOf(n), angle, 1e-9);
+    EXPECT_NEAR(s.initial_energy, MakeCyclidicStrip(BuildCircularStrip(in), on_cone).energy,
+                1e-9 * s.initial_energy);
+    EXPECT_LT(s.final_energy, s.initial_energy);
+    EXPECT_GE(s.final_energy, free.final_energy * (1.0 - 1e-6));
+    EXPECT_GT((n - NormalOf(on_cone)).norm(), 1e-4);  // the normal turned along the cone
+  }
+  // Without smoothing the frame's normal is moved onto the cone.
+  CanalSurfaceOptions plain;
+  plain.smoothing.cone.enabled = true;
+  plain.smoothing.cone.angle_deg = 20.0;
+  const CanalSurface canal(in, start, plain);
+  EXPECT_NEAR(plain.smoothing.cone.AngleOf(NormalOf(canal.angles())), 20.0, 1e-9);
+  // A cone that is one normal, and a zero axis, are refused.
+  plain.smoothing.cone.angle_deg = 90.0;
+  EXPECT_THROW(CanalSurface(in, start, plain), InputError);
+  plain.smoothing.cone.angle_deg = 20.0;
+  plain.smoothing.cone.axis = Eigen::Vector3d::Zero();
+  EXPECT_THROW(CanalSurface(in, start, plain), InputError);
 }
 
 TEST(CanalSurfaceTest, RunReportsTheSmoothingWithNamedMeasures) {
