@@ -153,7 +153,16 @@ std::vector<std::string> WriteResult(const ProblemSpec& spec, const ProblemArgs&
   for (const OutputSpec& output : spec.outputs) {
     const std::string& path = args.paths.at(output.name);
     if (path.empty()) continue;
-    if (!result.meshes.count(output.name) && !result.texts.count(output.name)) continue;
+    if (!result.meshes.count(output.name) && !result.texts.count(output.name)) {
+      // Asked for, but this run does not make it (e.g. planarize's diagonal_mesh without net
+      // diagonal): said, not silently dropped.
+      std::string flag = output.name;
+      std::replace(flag.begin(), flag.end(), '_', '-');
+      std::fprintf(stderr,
+                   "gproj %s: warning: --%s %s was not written: this run does not make it\n",
+                   spec.name.c_str(), flag.c_str(), path.c_str());
+      continue;
+    }
     if (output.kind == OutputKind::kMesh)
       files.AddMesh(result.meshes.at(output.name), path);
     else

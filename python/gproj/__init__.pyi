@@ -755,7 +755,7 @@ def remesh(
     outputs: Sequence[str] = (),
     callback: Optional[Callable[[Dict[str, Any]], Optional[bool]]] = None,
 ) -> RemeshResult:
-    """Quad remeshing of a triangulated disk, or of a surface with holes, along its asymptotic (K < 0) or principal directions (004 §3.1): jet-fitted, smoothed direction field, seamless integer-grid map cut through the holes and from its singularities to the boundary (mixed-integer quadrangulation, integer transitions across every cut), quads extracted along the integer iso-lines. Converged (exit 0) when the quads are a valid net (inner valences above 2, quads convex, map unfolded, and for asymptotic directions even valences, 2-coloured vertices and K < 0 on 99% of the area); otherwise the quads are returned and the reasons named.
+    """Quad remeshing of a triangulated disk, or of a surface with holes, along its asymptotic (K < 0) or principal directions (004 §3.1): jet-fitted, smoothed direction field, seamless integer-grid map cut through the holes and from its singularities to the boundary (mixed-integer quadrangulation, integer transitions across every cut), quads extracted along the integer iso-lines. Converged (exit 0) when the quads are a valid net (inner valences above 2, quads convex, map unfolded, one piece with the surface's Euler characteristic and no pinched vertex, and for asymptotic directions even valences, 2-coloured vertices and K < 0 on 99% of the area); otherwise the quads are returned and the reasons named.
 
 Arguments:
     V: the mesh: (n, 3) float vertex positions. Triangle mesh of a disk or of a surface with holes (no handles).

@@ -197,16 +197,40 @@ TEST_F(NetsCommandTest, PlanarDiagonalMeshes) {
   std::printf("rings of a turned paraboloid grid: planarity %.2e -> %.2e, moved %.2e\n", start, end,
               report["final"]["max_displacement"].get<double>());
   EXPECT_LE(end, 2e-6);
-  // One diagonal mesh: the vertices of the other colour keep their place.
+  // One diagonal mesh: the vertices of the other colour keep their place, bit for bit.
   const CommandRun one = Gproj("planarize " + Path("grid.obj") +
                                " --net diagonal --diagonal-colour 1 -o " + Path("one.obj"));
   ASSERT_EQ(one.exit_code, 0) << one.err << one.out;
   const PolyMesh moved = ReadMesh(Path("one.obj"));
   int still = 0;
-  for (auto v : moved.vertices()) still += (moved.point(v) - input.point(v)).norm() < 1e-12;
+  for (auto v : moved.vertices()) still += moved.point(v) == input.point(v);
   EXPECT_GE(still, static_cast<int>(input.n_vertices()) / 2 - 1);
   EXPECT_LT(still, static_cast<int>(input.n_vertices()));
-  // Refused: a diagonal colour without net diagonal, circular with it.
+  // No quad of the result folds across a diagonal (the triangles of both splits face the same
+  // way), and the report says so.
+  EXPECT_EQ(report["quads"]["folded"], 0);
+  for (auto f : result.faces()) {
+    std::vector<Eigen::Vector3d> p;
+    for (auto v : result.fv_range(f)) p.emplace_back(result.point(v).data());
+    for (int k = 0; k < 2; ++k) {
+      const Eigen::Vector3d n1 = (p[k + 1] - p[k]).cross(p[k + 2] - p[k]);
+      const Eigen::Vector3d n2 = (p[k + 2] - p[k]).cross(p[(k + 3) % 4] - p[k]);
+      EXPECT_GT(n1.dot(n2), 0.0) << "quad " << f.idx();
+    }
+  }
+  // A grid whose diagonals are asymptotic (the turned hypar): its rings become planar only by
+  // folding quads across their diagonals, which is no valid result (exit 3, named, written).
+  ASSERT_EQ(
+      Gproj("grid --surface hypar --diagonal --nu 15 --nv 15 -o " + Path("hypar.obj")).exit_code,
+      0);
+  const CommandRun hypar = Gproj("planarize " + Path("hypar.obj") + " --net diagonal -o " +
+                                 Path("hp.obj") + " --report " + Path("hp.json"));
+  EXPECT_EQ(hypar.exit_code, 3) << hypar.err << hypar.out;
+  EXPECT_NE((hypar.out + hypar.err).find("fold across a diagonal"), std::string::npos)
+      << hypar.out << hypar.err;
+  EXPECT_GT(Json("hp.json")["quads"]["folded"].get<int>(), 0);
+  // Refused: a diagonal colour without net diagonal, circular with it, the rings' output
+  // without it.
   ExpectOneLineError(
       Gproj("planarize " + Path("grid.obj") + " --diagonal-colour 0 -o " + Path("x.obj")),
       "--diagonal-colour");
@@ -214,6 +238,14 @@ TEST_F(NetsCommandTest, PlanarDiagonalMeshes) {
       Gproj("planarize " + Path("grid.obj") + " --net diagonal --circular -o " + Path("x.obj")),
       "--circular");
   EXPECT_FALSE(Exists("x.obj"));
+  // The rings' output without net diagonal: a warning, nothing written for it.
+  const CommandRun edges = Gproj("planarize " + Path("grid.obj") + " --diagonal-mesh " +
+                                 Path("r.obj") + " -o " + Path("e.obj"));
+  EXPECT_EQ(edges.exit_code, 0) << edges.err;
+  EXPECT_NE(edges.err.find("--diagonal-mesh " + Path("r.obj") + " was not written"),
+            std::string::npos)
+      << edges.err;
+  EXPECT_FALSE(Exists("r.obj"));
 }
 
 }  // namespace

@@ -121,6 +121,25 @@ TEST_F(RemeshCommandTest, TrianglesWithHolesToHNet) {
   EXPECT_LT(report["final"]["max_reference_distance"].get<double>(), 0.005);
 }
 
+// The shipped two-hole saddle: at its default edge length (3 mean triangle edges) the quads
+// around one hole meet the outer ones at a single corner, which is no valid net (exit 3, named);
+// at 0.1 they close up around both holes.
+TEST_F(RemeshCommandTest, QuadsOfAnotherTopologyAreNamed) {
+  const std::string base = "remesh " + Data("saddle_two_holes_tri.obj") + " -o " + Path("q.obj") +
+                           " --report " + Path("r.json");
+  const CommandRun coarse = Gproj(base);
+  EXPECT_EQ(coarse.exit_code, 3) << coarse.err << coarse.out;
+  EXPECT_NE((coarse.out + coarse.err).find("meet at a corner only (pinched)"), std::string::npos)
+      << coarse.out << coarse.err;
+  EXPECT_GT(Json("r.json")["final"]["pinched_vertices"].get<double>(), 0.0);
+  const CommandRun fine = Gproj(base + " --edge-length 0.1");
+  ASSERT_EQ(fine.exit_code, 0) << fine.err << fine.out;
+  const nlohmann::json r = Json("r.json");
+  EXPECT_EQ(r["final"]["pieces"].get<double>(), 1.0);
+  EXPECT_EQ(r["final"]["pinched_vertices"].get<double>(), 0.0);
+  EXPECT_EQ(r["final"]["euler_characteristic"].get<double>(), -1.0);
+}
+
 // Quads that are not a valid net are written with exit 3 and the reasons: here asymptotic
 // directions on a surface with K > 0 on half of it.
 TEST_F(RemeshCommandTest, InvalidNetExitsThreeWithTheReasons) {

@@ -181,6 +181,28 @@ TEST_F(SuperCanalCommandTest, CanalNormalAtAFixedAngleToAPlane) {
   EXPECT_LT(report["final"]["smoothness_energy"].get<double>(),
             report["initial"]["smoothness_energy"].get<double>());
   EXPECT_LT(report["final"]["max_concyclicity"].get<double>(), 1e-10);
+  // With no normal given, the run on the cone starts from the free smoothing's normal moved onto
+  // it: at the free optimum's own angle it ends where the free run does (the default normal's
+  // nearest on the cone ended at F = 4.1, exit 3).
+  ASSERT_EQ(Gproj(base).exit_code, 0);
+  const nlohmann::json free = Json("r.json");
+  const auto& f = free["frame"]["normal"];
+  const double free_angle = std::asin(f[2].get<double>()) * 180 / M_PI;
+  const CommandRun same = Gproj(base + " --normal-angle " + std::to_string(free_angle));
+  ASSERT_EQ(same.exit_code, 0) << same.err << same.out;
+  EXPECT_LE(Json("r.json")["final"]["smoothness_energy"].get<double>(),
+            free["final"]["smoothness_energy"].get<double>() * 1.001);
+  // A reference plane's normal of any size (not overflowing at 1e300).
+  ASSERT_EQ(
+      Gproj(base + " --normal-angle 30 --reference-plane 1e300,1e300,1e300 --max-iterations 2000")
+          .exit_code,
+      0);
+  EXPECT_NEAR(Json("r.json")["frame"]["normal_angle_deg"].get<double>(), 30.0, 1e-9);
+  const nlohmann::json n1 = Json("r.json")["frame"]["normal"];
+  EXPECT_NEAR(std::asin((n1[0].get<double>() + n1[1].get<double>() + n1[2].get<double>()) /
+                        std::sqrt(3.0)) *
+                  180 / M_PI,
+              30.0, 1e-9);
   ExpectOneLineError(Gproj(base + " --reference-plane 0,0,1"), "--normal-angle");
   ExpectOneLineError(Gproj(base + " --normal-angle 90"), "--normal-angle");
   ExpectOneLineError(Gproj(base + " --normal-angle 10 --reference-plane 0,0,0"),

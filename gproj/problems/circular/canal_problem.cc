@@ -380,7 +380,19 @@ RunResult RunStrip(const RunInputs& inputs, const CanalSettings& s, const RunCon
   NormalCone& cone = options.smoothing.cone;
   if (!s.reference_plane.empty()) {
     cone.axis = Point(s.reference_plane);
-    if (!(cone.axis.norm() > 0.0)) throw InputError("`reference_plane` must not be zero");
+    const double largest = cone.axis.cwiseAbs().maxCoeff();
+    if (!(largest > 0.0)) throw InputError("`reference_plane` must not be zero");
+    cone.axis = (cone.axis / largest).normalized();
+  }
+  // No normal asked for: the smoothing on the cone starts from the free smoothing's normal
+  // moved onto the cone (the default normal's nearest one on it may lie in a poor basin).
+  const FrameAngles asked = angles;
+  const bool scanned = cone.enabled && options.smooth && s.normal.empty();
+  if (scanned) {
+    CanalSmoothingOptions free = options.smoothing;
+    free.cone.enabled = false;
+    const CanalSmoothingSummary unconstrained = SmoothCanalStrip(input, angles, free);
+    if (unconstrained.converged) angles = unconstrained.angles;
   }
   CanalSurface canal(input, angles, options);
   char line[512];
@@ -394,9 +406,12 @@ RunResult RunStrip(const RunInputs& inputs, const CanalSettings& s, const RunCon
                   "the normal at P_0 at %g deg to the plane of normal (%g, %g, %g) (000 §3.3): "
                   "turned %.3g deg onto that cone%s",
                   cone.angle_deg, cone.axis.x(), cone.axis.y(), cone.axis.z(),
-                  std::acos(std::clamp(NormalOf(angles).dot(NormalOf(canal.angles())), -1.0, 1.0)) *
+                  std::acos(std::clamp(NormalOf(asked).dot(NormalOf(canal.angles())), -1.0, 1.0)) *
                       180.0 / M_PI,
-                  options.smooth ? "; the smoothing turns it about the plane's normal only" : "");
+                  scanned ? "; the smoothing starts from the free smoothing's normal moved onto "
+                            "the cone and turns it about the plane's normal only"
+                  : options.smooth ? "; the smoothing turns it about the plane's normal only"
+                                   : "");
     context.Info(line);
   }
   if (options.smooth) context.Info("shape smoothing (000 eq. 5), Ceres line-search BFGS");

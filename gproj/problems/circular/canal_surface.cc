@@ -226,6 +226,12 @@ T StripEnergy(const std::vector<Eigen::Vector3d>& p, const std::vector<Vec3<T>>&
   return StripEnergy<T>(p, q, NormalOfAngles<T>(angles[0], angles[1]), angles[2]);
 }
 
+// The unit vector along a (divided by its largest component first: no overflow or underflow).
+Eigen::Vector3d UnitAxis(const Eigen::Vector3d& a) {
+  const double largest = a.cwiseAbs().maxCoeff();
+  return largest > 0.0 ? Eigen::Vector3d(a / largest).normalized() : a;
+}
+
 // The frame's parameters: λ, θ, ψ; on a cone (options.cone) its turn φ and ψ.
 int FrameParameters(const CanalSmoothingOptions& options) {
   return !options.optimize_frame ? 0 : options.cone.enabled ? 2 : 3;
@@ -260,7 +266,7 @@ class CanalObjective final : public ceres::FirstOrderFunction {
       using std::cos;
       using std::sin;
       const T phi = x[k++];
-      normal = Cast<T>(std::sin(alpha) * options_.cone.axis.normalized()) +
+      normal = Cast<T>(std::sin(alpha) * UnitAxis(options_.cone.axis)) +
                T(std::cos(alpha)) * (cos(phi) * Cast<T>(e1_) + sin(phi) * Cast<T>(e2_));
       psi = x[k++];
     } else {
@@ -604,7 +610,7 @@ bool CanalSmoothingOptions::IsValid(std::string* why) const {
 }
 
 bool NormalCone::IsValid(std::string* why) const {
-  if (!axis.allFinite() || !(axis.norm() > 0.0)) {
+  if (!axis.allFinite() || !(axis.cwiseAbs().maxCoeff() > 0.0)) {
     *why = "the reference plane's normal must be finite and not zero";
     return false;
   }
@@ -618,7 +624,7 @@ bool NormalCone::IsValid(std::string* why) const {
 }
 
 void NormalCone::Basis(Eigen::Vector3d* e1, Eigen::Vector3d* e2) const {
-  const Eigen::Vector3d a = axis.normalized();
+  const Eigen::Vector3d a = UnitAxis(axis);
   // Across the axis: from the coordinate axis least along it.
   Eigen::Index least = 0;
   a.cwiseAbs().minCoeff(&least);
@@ -630,7 +636,7 @@ Eigen::Vector3d NormalCone::NormalAt(double phi) const {
   Eigen::Vector3d e1, e2;
   Basis(&e1, &e2);
   const double alpha = angle_deg * M_PI / 180.0;
-  return std::sin(alpha) * axis.normalized() +
+  return std::sin(alpha) * UnitAxis(axis) +
          std::cos(alpha) * (std::cos(phi) * e1 + std::sin(phi) * e2);
 }
 
@@ -642,7 +648,7 @@ double NormalCone::Turn(const Eigen::Vector3d& n) const {
 }
 
 double NormalCone::AngleOf(const Eigen::Vector3d& n) const {
-  return std::asin(std::clamp(n.normalized().dot(axis.normalized()), -1.0, 1.0)) * 180.0 / M_PI;
+  return std::asin(std::clamp(n.normalized().dot(UnitAxis(axis)), -1.0, 1.0)) * 180.0 / M_PI;
 }
 
 FrameAngles OnCone(const FrameAngles& angles, const NormalCone& cone) {

@@ -45,8 +45,8 @@ std::array<double, 4> CornerSinesAt(const Eigen::VectorXd& x, const VariableLayo
 // Corner rows on the polygons of N corners (faces: face index, corner vertex ids).
 template <int N, size_t... I>
 void AddPolygonCorners(const std::vector<std::pair<int, std::vector<int>>>& faces, double min_sine,
-                       int vertex_block, Problem* problem, PanelBounds* out,
-                       std::index_sequence<I...>) {
+                       int vertex_block, const std::string& prefix, Problem* problem,
+                       PanelBounds* out, std::index_sequence<I...>) {
   const VariableLayout& layout = problem->layout();
   const BlockItems vertex(layout, vertex_block);
   std::vector<std::pair<std::array<int, N>, PolygonCornerBounds<N>>> elements;
@@ -64,15 +64,15 @@ void AddPolygonCorners(const std::vector<std::pair<int, std::vector<int>>>& face
   }
   if (elements.empty()) return;
   AddInequalities<PolygonCornerBounds<N>, N, (static_cast<int>(I) * 0 + 3)...>(
-      problem, "corner_angles_" + std::to_string(N), PolygonCornerResidual<N>{}, elements,
+      problem, prefix + "corner_angles_" + std::to_string(N), PolygonCornerResidual<N>{}, elements,
       [](const auto& e) { return e; });
 }
 
 template <size_t... N>
 void AddAllPolygonCorners(const std::vector<std::pair<int, std::vector<int>>>& faces,
-                          double min_sine, int vertex_block, Problem* problem, PanelBounds* out,
-                          std::index_sequence<N...>) {
-  (AddPolygonCorners<static_cast<int>(N) + 5>(faces, min_sine, vertex_block, problem, out,
+                          double min_sine, int vertex_block, const std::string& prefix,
+                          Problem* problem, PanelBounds* out, std::index_sequence<N...>) {
+  (AddPolygonCorners<static_cast<int>(N) + 5>(faces, min_sine, vertex_block, prefix, problem, out,
                                               std::make_index_sequence<N + 5>()),
    ...);
 }
@@ -80,7 +80,8 @@ void AddAllPolygonCorners(const std::vector<std::pair<int, std::vector<int>>>& f
 }  // namespace
 
 PanelBounds AddPanelBounds(const PolyMesh& mesh, const MeshNormalization& norm, int vertex_block,
-                           const PanelBoundsOptions& options, Problem* problem) {
+                           const PanelBoundsOptions& options, Problem* problem,
+                           const std::string& prefix) {
   PanelBounds out;
   const VariableLayout& layout = problem->layout();
   const BlockItems vertex(layout, vertex_block);
@@ -97,7 +98,8 @@ PanelBounds AddPanelBounds(const PolyMesh& mesh, const MeshNormalization& norm, 
       out.corner_bounds.push_back(bounds);
     }
     out.corners = AddInequalities<QuadCornerBounds, 4, 3, 3, 3, 3>(
-        problem, "corner_angles", QuadCornerResidual{}, quads, [](const auto& q) { return q; });
+        problem, prefix + "corner_angles", QuadCornerResidual{}, quads,
+        [](const auto& q) { return q; });
     std::vector<std::pair<int, std::vector<int>>> polygons;
     for (auto f : mesh.faces()) {
       const int n = static_cast<int>(mesh.valence(f));
@@ -110,7 +112,7 @@ PanelBounds AddPanelBounds(const PolyMesh& mesh, const MeshNormalization& norm, 
       for (auto fv : mesh.fv_range(f)) v.push_back(fv.idx());
       polygons.push_back({f.idx(), v});
     }
-    AddAllPolygonCorners(polygons, min_sine, vertex_block, problem, &out,
+    AddAllPolygonCorners(polygons, min_sine, vertex_block, prefix, problem, &out,
                          std::make_index_sequence<kMaxBoundedCorners - 4>());
   }
   auto add_edges = [&](const std::string& name, bool lower, auto bound_of) {
@@ -131,8 +133,8 @@ PanelBounds AddPanelBounds(const PolyMesh& mesh, const MeshNormalization& norm, 
       }
       edges.push_back({{vertex[a], vertex[b]}, bound});
     }
-    return AddInequalities<EdgeLengthBound, 1, 3, 3>(problem, name, EdgeLengthResidual{}, edges,
-                                                     [](const auto& e) { return e; });
+    return AddInequalities<EdgeLengthBound, 1, 3, 3>(problem, prefix + name, EdgeLengthResidual{},
+                                                     edges, [](const auto& e) { return e; });
   };
   // Lengths in x are in problem units: input units × norm.scale.
   if (options.min_edge_length > 0.0)

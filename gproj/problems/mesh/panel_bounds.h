@@ -58,9 +58,11 @@ struct PanelBounds {
 
 // Adds the bounds over the quads (and polygons of 5 to kMaxBoundedCorners corners) and edges of
 // `mesh`, whose vertices are the items of
-// `vertex_block` in the normalisation `norm`; problem->x() must hold the start.
+// `vertex_block` in the normalisation `norm`; problem->x() must hold the start. The families'
+// names begin with `prefix` (a second set of faces on the same vertices needs its own).
 PanelBounds AddPanelBounds(const PolyMesh& mesh, const MeshNormalization& norm, int vertex_block,
-                           const PanelBoundsOptions& options, Problem* problem);
+                           const PanelBoundsOptions& options, Problem* problem,
+                           const std::string& prefix = "");
 
 // The faces of `mesh` whose corners sit on their bound (within `margin` of the sine).
 std::vector<int> FacesAtCornerBound(const PolyMesh& mesh, const PanelBounds& bounds,

@@ -1,11 +1,13 @@
 // `planarize` in the registry: PQ (or circular) planarisation of a quad mesh, and of polygon
 // meshes (a plane per face of 4 or more vertices).
+#include <algorithm>
 #include <cstdio>
 
 #include "gproj/geometry/mesh/polygon_shape.h"
 #include "gproj/problems/mesh/mesh_options.h"
 #include "gproj/problems/mesh/mesh_outputs.h"
 #include "gproj/problems/nets/diagonal_mesh.h"
+#include "gproj/problems/nets/hnet.h"
 #include "gproj/problems/pq/pq_planarization.h"
 #include "gproj/problems/run/builtin_problems.h"
 #include "gproj/problems/run/shared_options.h"
@@ -111,6 +113,41 @@ void AddShortfalls(const PQPlanarization& pq, const std::string& panels,
         "): " + EdgeList(edges));
 }
 
+// Quads folded across a diagonal: the normals of the two triangles of a split more than 90°
+// apart (a skew quad can fold so while its corners, measured in the diagonals' plane, all turn
+// the same way).
+int FoldedQuads(const std::vector<QuadShape>& shapes) {
+  return static_cast<int>(std::count_if(shapes.begin(), shapes.end(),
+                                        [](const QuadShape& q) { return q.kink_deg > 90.0; }));
+}
+
+// With net diagonal: the written quads' shapes against the input's (the report's measures are
+// the rings'), and not converged when more quads fold than in the input.
+void DescribeKeptQuads(const PolyMesh& input, const PolyMesh& written, RunResult* result) {
+  const std::vector<QuadShape> before = MeasureQuadShapes(input),
+                               after = MeasureQuadShapes(written);
+  const QuadShapeSummary a = Summarize(before), b = Summarize(after);
+  const int folded_before = FoldedQuads(before), folded_after = FoldedQuads(after);
+  char line[320];
+  std::snprintf(line, sizeof(line),
+                "quads kept: non-convex %d -> %d, folded across a diagonal (triangles more than 90 "
+                "deg apart) %d -> %d, smallest corner angle %.1f -> %.1f deg, max kink %.3g -> "
+                "%.3g deg",
+                a.non_convex, b.non_convex, folded_before, folded_after, a.min_angle_deg,
+                b.min_angle_deg, a.max_kink_deg, b.max_kink_deg);
+  result->Info(line);
+  result->facts["quads"] = {{"non_convex", b.non_convex},
+                            {"folded", folded_after},
+                            {"min_corner_angle_deg", b.min_angle_deg},
+                            {"max_kink_deg", b.max_kink_deg}};
+  if (folded_after > folded_before && !result->report.failed) {
+    result->report.converged = false;
+    result->report.termination = std::to_string(folded_after - folded_before) +
+                                 " more quads fold across a diagonal than in the input (the rings "
+                                 "cannot all be planar near this mesh without folding it)";
+  }
+}
+
 RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunContext& context) {
   PlanarizeSettings settings = Schema().Apply(values);
   PQPlanarizationOptions& options = settings.problem;
@@ -137,6 +174,15 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
       throw InputError(inputs.Source("mesh") + ": `net` diagonal: " + e.what());
     }
   }
+  // One diagonal mesh: the other colour's vertices are held where they are.
+  if (diagonal && settings.diagonal_colour >= 0) {
+    const std::vector<int> colours = nets::TwoColourVertices(given);
+    std::vector<int>& fixed = options.vertices.fixed;
+    for (int v = 0; v < static_cast<int>(colours.size()); ++v)
+      if (colours[v] != settings.diagonal_colour) fixed.push_back(v);
+    std::sort(fixed.begin(), fixed.end());
+    fixed.erase(std::unique(fixed.begin(), fixed.end()), fixed.end());
+  }
   const PolyMesh& input = diagonal ? diagonal_faces.mesh : given;
   const PolygonMeshSummary panels = SummarizePolygons(input);
   for (auto f : input.faces())
@@ -148,7 +194,8 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
     throw InputError(inputs.Source("mesh") +
                      ": every face is a triangle; planarisation needs faces of 4 or more "
                      "vertices (gproj dual makes a polygon mesh of a triangle mesh)");
-  PQPlanarization pq(input, options, inputs.OptionalMesh("reference"));
+  // With net diagonal the input's quads keep their panel bounds too (they are what is written).
+  PQPlanarization pq(input, options, inputs.OptionalMesh("reference"), diagonal ? &given : nullptr);
   const bool all_quads = panels.faces_by_corners.size() == 5 &&
                          panels.faces_by_corners[4] == static_cast<int>(input.n_faces());
   const std::string face_name = diagonal ? "diagonal faces" : all_quads ? "quads" : "faces";
@@ -217,14 +264,12 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   if (result.report.failed) return result;
 
   const PlanarityMeasures final_measures = pq.Measures();
+  PolyMesh written = diagonal ? given : mesh;  // with net diagonal: the input's quads, moved
   if (diagonal) {
-    PolyMesh moved = given;  // the input's faces at the new positions
-    for (auto v : moved.vertices()) moved.set_point(v, mesh.point(v));
-    result.meshes["output"] = moved;
+    for (auto v : written.vertices()) written.set_point(v, mesh.point(v));
     if (context.Wants("diagonal_mesh")) result.meshes["diagonal_mesh"] = mesh;
-  } else {
-    result.meshes["output"] = mesh;
   }
+  result.meshes["output"] = written;
   std::snprintf(line, sizeof(line), "%zu %s, max planarity %.2e", input.n_faces(),
                 face_name.c_str(), final_measures.max_planarity);
   AddFaceOutputTexts(mesh, RelativeFacePlanarity(mesh, options.circular),
@@ -245,9 +290,16 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
                    : diagonal       ? "planar diagonal meshes"
                    : all_quads      ? "a PQ (conjugate) mesh"
                                     : "a planar polygon mesh",
-                   input, mesh, 10.0, final_measures.max_displacement, &result);
-  if (!result.report.converged)
+                   diagonal ? given : input, written, 10.0, final_measures.max_displacement,
+                   &result);
+  if (diagonal) DescribeKeptQuads(given, written, &result);
+  if (!result.report.converged) {
     AddShortfalls(pq, face_name, diagonal ? &diagonal_faces : nullptr, &result);
+    const std::vector<int> held = pq.KeptFacesAtAngleBound();
+    if (!held.empty())
+      result.shortfalls.push_back(std::to_string(held.size()) +
+                                  " quads sit on their corner-angle bound: " + FaceList(held));
+  }
   return result;
 }
 

@@ -96,8 +96,10 @@ bool PQPlanarizationOptions::IsValid(std::string* why) const {
 }
 
 PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOptions& options,
-                                 const PolyMesh* reference)
-    : MeshProblem(mesh), options_(options) {
+                                 const PolyMesh* reference, const PolyMesh* kept)
+    : MeshProblem(mesh), options_(options), kept_(kept) {
+  if (kept && kept->n_vertices() != mesh.n_vertices())
+    throw InputError("the faces kept valid are not on the mesh's vertices");
   std::string why;
   if (!options.IsValid(&why)) throw InputError("invalid planarisation options: " + why);
   if (mesh.n_faces() == 0) throw InputError("the mesh has no faces");
@@ -176,6 +178,9 @@ PQPlanarization::PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOpti
   if (options.solver.fairness_weight > 0.0)
     AddMeshFairness(mesh, options.fairness_order, vertex_block_, &problem_);
   AddBoundsAndControl(options.panels, options.vertices);
+  if (kept)
+    kept_bounds_ =
+        AddPanelBounds(*kept, norm_, vertex_block_, options.panels, &problem_, "kept_faces_");
   start_planarity_ = MeasurePlanarity(mesh, mesh).max_planarity;
   if (options.circular)
     start_planarity_ = std::max(start_planarity_, MeasureCircularity(mesh).max_concyclicity);
@@ -216,6 +221,13 @@ CeresOptions PQPlanarization::ceres_options(int max_iterations) const {
                          options_.ceres_soft_scale > 0.0
                              ? options_.ceres_soft_scale
                              : std::min(1.0, options_.tolerance * 1e-2));
+}
+
+std::vector<int> PQPlanarization::KeptFacesAtAngleBound() const {
+  if (!kept_) return {};
+  PolyMesh kept = *kept_;
+  for (auto v : kept.vertices()) kept.set_point(v, Result().point(v));
+  return FacesAtCornerBound(kept, kept_bounds_);
 }
 
 }  // namespace gproj::pq

@@ -79,8 +79,14 @@ class PQPlanarization : public MeshProblem {
   // `mesh` must be a valid quad mesh (ReadMesh with quads_only). Throws InputError otherwise.
   // With `reference` (a triangle or polygon mesh), vertices keep close to that surface through
   // its tangent planes instead of to their start.
+  // With `kept` (faces on the same vertices, e.g. the quads whose diagonal meshes `mesh` holds),
+  // those faces get the panel bounds too, so they stay valid while `mesh`'s faces are made
+  // planar.
   PQPlanarization(const PolyMesh& mesh, const PQPlanarizationOptions& options,
-                  const PolyMesh* reference = nullptr);
+                  const PolyMesh* reference = nullptr, const PolyMesh* kept = nullptr);
+
+  // The faces of `kept` whose corners sit on their bound (empty without `kept`).
+  std::vector<int> KeptFacesAtAngleBound() const;
 
   // The options with ω_f² scaled by StartSoftScale of the start's planarity.
   SolverOptions solver_options() const override;
@@ -103,6 +109,8 @@ class PQPlanarization : public MeshProblem {
 
   PQPlanarizationOptions options_;
   int normal_block_ = -1;
+  const PolyMesh* kept_ = nullptr;
+  PanelBounds kept_bounds_;
   double start_planarity_ = 0.0;
 };
 

@@ -722,6 +722,17 @@ std::vector<std::string> QuadRemeshResult::Problems() const {
   // asymptotic net, whose two families alternate around every vertex.
   if (field.kind == DirectionKind::kAsymptotic)
     add(odd_inner_vertices, "inner vertices of odd valence");
+  if (components > 1)
+    out.push_back("quads in " + std::to_string(components) +
+                  " pieces (a smaller `edge_length` joins them)");
+  add(pinched_vertices, "vertices where quads meet at a corner only (pinched)");
+  if (euler_characteristic != surface_euler_characteristic)
+    out.push_back("Euler characteristic " + std::to_string(euler_characteristic) +
+                  " where the "
+                  "surface's is " +
+                  std::to_string(surface_euler_characteristic) +
+                  " (a hole lost, or merged with the boundary or another hole: a smaller "
+                  "`edge_length`)");
   if (field.kind == DirectionKind::kAsymptotic && !odd_cycle.empty())
     out.push_back("quad vertices that cannot be 2-coloured (" + odd_cycle + ")");
   add(inner_valence_count.size() > 2 ? inner_valence_count[2] : 0,
@@ -738,6 +749,40 @@ std::vector<std::string> QuadRemeshResult::Problems() const {
   return out;
 }
 
+namespace {
+
+// The quads' pieces, pinched vertices and Euler characteristic (QuadRemeshResult).
+void MeasureTopology(const PolyMesh& q, QuadRemeshResult* out) {
+  std::vector<int> boundary_out(q.n_vertices(), 0);
+  for (auto h : q.halfedges())
+    if (q.is_boundary(h)) ++boundary_out[q.from_vertex_handle(h).idx()];
+  int used = 0;
+  for (auto v : q.vertices()) {
+    used += !q.is_isolated(v);
+    out->pinched_vertices += boundary_out[v.idx()] > 1;
+  }
+  out->euler_characteristic =
+      static_cast<long>(used) - static_cast<long>(q.n_edges()) + static_cast<long>(q.n_faces());
+  std::vector<char> seen(q.n_faces(), 0);
+  out->components = 0;
+  for (auto start : q.faces()) {
+    if (seen[start.idx()]) continue;
+    ++out->components;
+    std::vector<int> stack = {start.idx()};
+    seen[start.idx()] = 1;
+    while (!stack.empty()) {
+      const auto f = q.face_handle(stack.back());
+      stack.pop_back();
+      for (auto h : q.fh_range(f)) {
+        const auto g = q.opposite_face_handle(h);
+        if (g.is_valid() && !seen[g.idx()]) seen[g.idx()] = 1, stack.push_back(g.idx());
+      }
+    }
+  }
+}
+
+}  // namespace
+
 QuadRemeshResult RemeshAlongField(const PolyMesh& triangles, const QuadRemeshOptions& options) {
   std::string why;
   if (!options.IsValid(&why)) throw InputError(why);
@@ -749,7 +794,8 @@ QuadRemeshResult RemeshAlongField(const PolyMesh& triangles, const QuadRemeshOpt
     clock = now;
     return seconds;
   };
-  CheckTriangulatedSurface(triangles);
+  const int loops = CheckTriangulatedSurface(triangles);
+  out.surface_euler_characteristic = 2 - loops;
   out.field = EstimateDirectionField(triangles, options.directions, options.fit, options.smoothing);
   out.seconds_field = lap();
   PollStop(options.fit.stop, "the integer-grid map");
@@ -787,6 +833,7 @@ QuadRemeshResult RemeshAlongField(const PolyMesh& triangles, const QuadRemeshOpt
     ++out.inner_valence_count[valence];
     if (valence % 2) ++out.odd_inner_vertices;
   }
+  MeasureTopology(q, &out);
   try {
     nets::TwoColourVertices(q);
   } catch (const InputError& e) {

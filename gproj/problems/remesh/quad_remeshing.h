@@ -97,11 +97,18 @@ struct QuadRemeshResult {
   // Why the quad vertices cannot be 2-coloured (an odd cycle of edges, as around a hole whose
   // grid closes with an odd shift); empty when they can.
   std::string odd_cycle;
+  // The quads' topology against the surface's: pieces (faces joined by edges), vertices where
+  // the quads meet at a corner only (more than one boundary fan), and the Euler characteristic
+  // (the surface's is 2 − its boundary loops; the quads' differs where a hole was lost, or
+  // merged with the boundary or another hole).
+  int components = 0;
+  int pinched_vertices = 0;
+  long euler_characteristic = 0, surface_euler_characteristic = 0;
   double seconds_field = 0.0, seconds_map = 0.0, seconds_extraction = 0.0;
   // Why the quads are not a valid net, one entry per kind (empty: valid): inner vertices of
   // valence 2, non-convex quads, triangles folded by the map, and, for asymptotic directions,
   // inner vertices of odd valence, vertices that cannot be 2-coloured and K >= 0 on more than 1%
-  // of the area.
+  // of the area; and quads in several pieces, pinched, or of another topology than the surface.
   std::vector<std::string> Problems() const;
 };
 

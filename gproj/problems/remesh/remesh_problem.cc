@@ -168,6 +168,9 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
       {"quads", static_cast<double>(x.quads.n_faces())},
       {"quad_vertices", static_cast<double>(x.quads.n_vertices())},
       {"frame_singularities", static_cast<double>(p.singularities.size())},
+      {"pieces", static_cast<double>(r.components)},
+      {"pinched_vertices", static_cast<double>(r.pinched_vertices)},
+      {"euler_characteristic", static_cast<double>(r.euler_characteristic)},
       {"irregular_inner_vertices", static_cast<double>(irregular)},
       {"odd_inner_vertices", static_cast<double>(r.odd_inner_vertices)},
       {"mean_alignment_deg", r.mean_alignment_deg},
@@ -221,8 +224,9 @@ ProblemSpec RemeshSpec() {
       "seamless integer-grid map cut through the holes and from its singularities to the "
       "boundary (mixed-integer quadrangulation, integer transitions across every cut), quads "
       "extracted along the integer iso-lines. Converged (exit 0) when the quads are a valid net "
-      "(inner valences above 2, quads convex, map unfolded, and for asymptotic directions even "
-      "valences, 2-coloured vertices and K < 0 on 99% of the area); otherwise the quads are "
+      "(inner valences above 2, quads convex, map unfolded, one piece with the surface's Euler "
+      "characteristic and no pinched vertex, and for asymptotic directions even valences, "
+      "2-coloured vertices and K < 0 on 99% of the area); otherwise the quads are "
       "returned and the reasons named.";
   spec.inputs = {{"mesh", InputKind::kMesh,
                   "Triangle mesh of a disk or of a surface with holes (no handles)", true}};

@@ -431,6 +431,9 @@ TEST(QuadRemeshingTest, SurfacesWithHolesAreCutThroughTheirHoles) {
     EXPECT_EQ(r.parametrization.boundary_loops, 3);
     EXPECT_TRUE(r.Problems().empty()) << r.Problems()[0];
     EXPECT_TRUE(r.odd_cycle.empty()) << r.odd_cycle;
+    EXPECT_EQ(r.components, 1);
+    EXPECT_EQ(r.pinched_vertices, 0);
+    EXPECT_EQ(r.euler_characteristic, -1);
     EXPECT_EQ(t.euler, -1);  // two holes, both closed up
     EXPECT_EQ(t.loops, 3);
     EXPECT_EQ(t.components, 1);
