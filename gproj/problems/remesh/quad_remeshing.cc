@@ -783,6 +783,14 @@ void MeasureTopology(const PolyMesh& q, QuadRemeshResult* out) {
 
 }  // namespace
 
+double EdgeAgainstFrameDeg(const Eigen::Vector3d& d, const Eigen::Vector3d& a,
+                           const Eigen::Vector3d& b) {
+  const Eigen::Vector3d n = a.cross(b).normalized();
+  const Eigen::Vector3d in_plane = d - d.dot(n) * n;
+  const Eigen::Vector3d e = in_plane.norm() > 1e-9 * d.norm() ? in_plane : d;
+  return std::min(LineAngleDeg(e, a), LineAngleDeg(e, b));
+}
+
 QuadRemeshResult RemeshAlongField(const PolyMesh& triangles, const QuadRemeshOptions& options) {
   std::string why;
   if (!options.IsValid(&why)) throw InputError(why);
@@ -861,8 +869,8 @@ QuadRemeshResult RemeshAlongField(const PolyMesh& triangles, const QuadRemeshOpt
     const auto& a = q.point(q.vertex_handle(e.from));
     const auto& b = q.point(q.vertex_handle(e.to));
     const Eigen::Vector3d d(b[0] - a[0], b[1] - a[1], b[2] - a[2]);
-    const double angle = std::min(LineAngleDeg(d, out.parametrization.frame_a[e.triangle]),
-                                  LineAngleDeg(d, out.parametrization.frame_b[e.triangle]));
+    const double angle = EdgeAgainstFrameDeg(d, out.parametrization.frame_a[e.triangle],
+                                             out.parametrization.frame_b[e.triangle]);
     sum += angle;
     out.max_alignment_deg = std::max(out.max_alignment_deg, angle);
   }

@@ -112,6 +112,12 @@ struct QuadRemeshResult {
   std::vector<std::string> Problems() const;
 };
 
+// The angle (degrees) between a quad edge d and the nearer of its triangle's frame lines a, b,
+// with d projected onto the triangle's plane first (an edge crossing a curved surface leaves the
+// plane of the triangle it starts in; that tilt is no deviation from the field).
+double EdgeAgainstFrameDeg(const Eigen::Vector3d& d, const Eigen::Vector3d& a,
+                           const Eigen::Vector3d& b);
+
 // EstimateDirectionField → ParametrizeAlongField → ExtractQuads, with the measures. Throws
 // InputError as those do, and when no quad could be extracted (the edge length is too large
 // for the surface).

@@ -71,8 +71,7 @@ std::string RemeshSvg(const PolyMesh& mesh, const QuadRemeshResult& r,
     const auto a = x.quads.vertex_handle(e.from), b = x.quads.vertex_handle(e.to);
     const Eigen::Vector3d d(Eigen::Vector3d(x.quads.point(b).data()) -
                             Eigen::Vector3d(x.quads.point(a).data()));
-    const double angle =
-        std::min(LineAngleDeg(d, p.frame_a[e.triangle]), LineAngleDeg(d, p.frame_b[e.triangle]));
+    const double angle = EdgeAgainstFrameDeg(d, p.frame_a[e.triangle], p.frame_b[e.triangle]);
     for (auto h : x.quads.voh_range(a))
       if (x.quads.to_vertex_handle(h) == b)
         for (auto f : {x.quads.face_handle(h), x.quads.opposite_face_handle(h)})
