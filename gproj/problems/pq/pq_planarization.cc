@@ -226,7 +226,8 @@ CeresOptions PQPlanarization::ceres_options(int max_iterations) const {
 std::vector<int> PQPlanarization::KeptFacesAtAngleBound() const {
   if (!kept_) return {};
   PolyMesh kept = *kept_;
-  for (auto v : kept.vertices()) kept.set_point(v, Result().point(v));
+  const PolyMesh result = Result();  // once: it copies the mesh
+  for (auto v : kept.vertices()) kept.set_point(v, result.point(v));
   return FacesAtCornerBound(kept, kept_bounds_);
 }
 

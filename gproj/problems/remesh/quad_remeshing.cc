@@ -278,9 +278,38 @@ PolyMesh::HalfedgeHandle HalfedgeBetween(const PolyMesh& m, int a, int b) {
   return m.find_halfedge(m.vertex_handle(a), m.vertex_handle(b));
 }
 
+// Faces joined by edges: the number of pieces.
+int FaceComponents(const PolyMesh& m) {
+  std::vector<char> seen(m.n_faces(), 0);
+  int components = 0;
+  for (auto start : m.faces()) {
+    if (seen[start.idx()]) continue;
+    ++components;
+    std::vector<int> stack = {start.idx()};
+    seen[start.idx()] = 1;
+    while (!stack.empty()) {
+      const auto f = m.face_handle(stack.back());
+      stack.pop_back();
+      for (auto h : m.fh_range(f)) {
+        const auto g = m.opposite_face_handle(h);
+        if (g.is_valid() && !seen[g.idx()]) seen[g.idx()] = 1, stack.push_back(g.idx());
+      }
+    }
+  }
+  return components;
+}
+
+// V − E + F over the vertices faces use.
+long EulerCharacteristic(const PolyMesh& m) {
+  long used = 0;
+  for (auto v : m.vertices()) used += !m.is_isolated(v);
+  return used - static_cast<long>(m.n_edges()) + static_cast<long>(m.n_faces());
+}
+
 }  // namespace
 
 int CheckTriangulatedSurface(const PolyMesh& m) {
+  if (m.n_faces() == 0) throw InputError("the mesh has no faces");
   for (auto f : m.faces())
     if (m.valence(f) != 3)
       throw InputError("face " + std::to_string(f.idx()) + " has " + std::to_string(m.valence(f)) +
@@ -294,24 +323,10 @@ int CheckTriangulatedSurface(const PolyMesh& m) {
                        "needs a manifold surface");
   }
   const int loops = static_cast<int>(BoundaryLoops(m).size());
-  int used = 0;
-  for (auto v : m.vertices()) used += !m.is_isolated(v);
-  const long euler =
-      static_cast<long>(used) - static_cast<long>(m.n_edges()) + static_cast<long>(m.n_faces());
-  // Connected faces: one component.
-  std::vector<char> reached(m.n_faces(), 0);
-  std::vector<int> stack = {0};
-  reached[0] = 1;
-  size_t count = 1;
-  while (!stack.empty()) {
-    const auto f = m.face_handle(stack.back());
-    stack.pop_back();
-    for (auto g : m.ff_range(f))
-      if (!reached[g.idx()]) reached[g.idx()] = 1, ++count, stack.push_back(g.idx());
-  }
+  const long euler = EulerCharacteristic(m);
   const std::string shape = "Euler characteristic " + std::to_string(euler) + ", " +
                             std::to_string(loops) + " boundary loop" + (loops == 1 ? "" : "s");
-  if (count != m.n_faces())
+  if (FaceComponents(m) != 1)
     throw InputError("the surface has several components (" + shape +
                      "): the remeshing needs one connected surface; remesh each on its own");
   if (loops == 0)
@@ -756,29 +771,9 @@ void MeasureTopology(const PolyMesh& q, QuadRemeshResult* out) {
   std::vector<int> boundary_out(q.n_vertices(), 0);
   for (auto h : q.halfedges())
     if (q.is_boundary(h)) ++boundary_out[q.from_vertex_handle(h).idx()];
-  int used = 0;
-  for (auto v : q.vertices()) {
-    used += !q.is_isolated(v);
-    out->pinched_vertices += boundary_out[v.idx()] > 1;
-  }
-  out->euler_characteristic =
-      static_cast<long>(used) - static_cast<long>(q.n_edges()) + static_cast<long>(q.n_faces());
-  std::vector<char> seen(q.n_faces(), 0);
-  out->components = 0;
-  for (auto start : q.faces()) {
-    if (seen[start.idx()]) continue;
-    ++out->components;
-    std::vector<int> stack = {start.idx()};
-    seen[start.idx()] = 1;
-    while (!stack.empty()) {
-      const auto f = q.face_handle(stack.back());
-      stack.pop_back();
-      for (auto h : q.fh_range(f)) {
-        const auto g = q.opposite_face_handle(h);
-        if (g.is_valid() && !seen[g.idx()]) seen[g.idx()] = 1, stack.push_back(g.idx());
-      }
-    }
-  }
+  for (auto v : q.vertices()) out->pinched_vertices += boundary_out[v.idx()] > 1;
+  out->euler_characteristic = EulerCharacteristic(q);
+  out->components = FaceComponents(q);
 }
 
 }  // namespace
