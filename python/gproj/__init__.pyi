@@ -755,10 +755,10 @@ def remesh(
     outputs: Sequence[str] = (),
     callback: Optional[Callable[[Dict[str, Any]], Optional[bool]]] = None,
 ) -> RemeshResult:
-    """Quad remeshing of a triangulated disk, or of a surface with holes, along its asymptotic (K < 0) or principal directions (004 §3.1): jet-fitted, smoothed direction field, seamless integer-grid map cut through the holes and from its singularities to the boundary (mixed-integer quadrangulation, integer transitions across every cut), quads extracted along the integer iso-lines. Converged (exit 0) when the quads are a valid net (inner valences above 2, quads convex, map unfolded, one piece with the surface's Euler characteristic and no pinched vertex, and for asymptotic directions even valences, 2-coloured vertices and K < 0 on 99% of the area); otherwise the quads are returned and the reasons named.
+    """Quad remeshing of a triangulated disk, or of a surface with holes and handles, along its asymptotic (K < 0) or principal directions (004 §3.1): jet-fitted, smoothed direction field, seamless integer-grid map cut through the holes, around the handles and from its singularities to the boundary (mixed-integer quadrangulation, integer transitions across every cut), quads extracted along the integer iso-lines. Converged (exit 0) when the quads are a valid net (inner valences above 2, quads convex, map unfolded, one piece with the surface's Euler characteristic and no pinched vertex, and for asymptotic directions even valences, 2-coloured vertices and K < 0 on 99% of the area); otherwise the quads are returned and the reasons named.
 
 Arguments:
-    V: the mesh: (n, 3) float vertex positions. Triangle mesh of a disk or of a surface with holes (no handles).
+    V: the mesh: (n, 3) float vertex positions. Triangle mesh of a surface with a boundary: a disk, or with holes and handles.
     F: (m, k) integer faces, 0-based (a list of faces for mixed sizes).
     options: a RemeshOptions; keyword arguments override its fields.
     weld: merge the input meshes' coincident vertices (within 1e-9 of the bounding-box diagonal) first, as unwelded exports need; without it such a mesh is refused. Vertex ids (fixed, ...) then number the welded mesh; result.weld_map maps each input vertex to it.

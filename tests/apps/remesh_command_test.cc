@@ -159,6 +159,53 @@ TEST_F(RemeshCommandTest, InvalidNetExitsThreeWithTheReasons) {
   EXPECT_EQ(Json("r.json")["converged"], false);
 }
 
+// A torus with a hole (one handle): `remesh --directions principal` cuts it open around both of
+// its cycles and the quads close up (Euler characteristic −1, one boundary loop); its principal
+// net is conjugate, so `planarize` makes it a PQ mesh at once, every quad convex.
+TEST_F(RemeshCommandTest, TorusWithAHoleToAPQMesh) {
+  const PolyMesh torus = TriangulatePeriodic(
+      [](double a, double b) {
+        return Eigen::Vector3d((2 + std::cos(b)) * std::cos(a), (2 + std::cos(b)) * std::sin(a),
+                               std::sin(b));
+      },
+      90, 36, 0, 2 * M_PI, 4, /*periodic_v=*/true);
+  PolyMesh holed;
+  std::vector<int> index(torus.n_vertices(), -1);
+  for (auto f : torus.faces()) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (auto v : torus.fv_range(f)) c += Eigen::Vector3d(torus.point(v).data()) / 3.0;
+    if ((c - Eigen::Vector3d(3 * std::cos(2.0), 3 * std::sin(2.0), 0)).norm() < 0.45) continue;
+    std::vector<PolyMesh::VertexHandle> corners;
+    for (auto v : torus.fv_range(f)) {
+      if (index[v.idx()] < 0) index[v.idx()] = holed.add_vertex(torus.point(v)).idx();
+      corners.push_back(holed.vertex_handle(index[v.idx()]));
+    }
+    holed.add_face(corners);
+  }
+  WriteMeshAtomically(holed, Path("torus.obj"));
+  const CommandRun remesh =
+      Gproj("remesh " + Path("torus.obj") + " --directions principal --edge-length 0.2 -o " +
+            Path("quads.obj") + " --report " + Path("r.json"));
+  ASSERT_EQ(remesh.exit_code, 0) << remesh.err << remesh.out;
+  EXPECT_NE(remesh.out.find("1 boundary loop, 1 handle cut open"), std::string::npos) << remesh.out;
+  const nlohmann::json report = Json("r.json");
+  EXPECT_EQ(report["handles"], 1);
+  EXPECT_EQ(report["boundary_loops"], 1);
+  EXPECT_EQ(report["inner_valences"].size(), 1u) << report["inner_valences"].dump();
+  const PolyMesh quads = ReadMesh(Path("quads.obj"));
+  int used = 0;
+  for (auto v : quads.vertices()) used += !quads.is_isolated(v);
+  EXPECT_EQ(used - static_cast<long>(quads.n_edges()) + static_cast<long>(quads.n_faces()), -1);
+  EXPECT_GT(quads.n_faces(), 1500u);
+  const CommandRun planarize = Gproj("planarize " + Path("quads.obj") + " -o " + Path("pq.obj") +
+                                     " --report " + Path("p.json"));
+  ASSERT_EQ(planarize.exit_code, 0) << planarize.err << planarize.out;
+  const nlohmann::json p = Json("p.json");
+  EXPECT_LT(p["final"]["max_planarity"].get<double>(), 1e-6);
+  EXPECT_EQ(p["final"]["non_convex_quads"].get<double>(), 0.0);
+  EXPECT_LT(p["final"]["max_displacement"].get<double>(), 0.01);
+}
+
 // Quads, a missing file and a bad option value are refused in one line, nothing written.
 TEST_F(RemeshCommandTest, RefusesWhatItCannotRemesh) {
   ExpectOneLineError(Gproj("remesh " + Data("enneper_41x41.obj") + " -o " + Path("q.obj")),

@@ -9,6 +9,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <numeric>
 #include <queue>
 #include <string>
 
@@ -249,6 +250,190 @@ std::vector<std::vector<int>> HolePaths(const PolyMesh& m,
   return paths;
 }
 
+PolyMesh::HalfedgeHandle HalfedgeBetween(const PolyMesh& m, int a, int b) {
+  return m.find_halfedge(m.vertex_handle(a), m.vertex_handle(b));
+}
+
+// Whether the faces stay one piece across the edges not `cut` (nor boundary).
+bool FacesConnected(const PolyMesh& m, const std::vector<char>& cut) {
+  std::vector<char> seen(m.n_faces(), 0);
+  std::vector<int> stack = {0};
+  seen[0] = 1;
+  size_t reached = 1;
+  while (!stack.empty()) {
+    const auto f = m.face_handle(stack.back());
+    stack.pop_back();
+    for (auto h : m.fh_range(f)) {
+      const auto g = m.opposite_face_handle(h);
+      if (g.is_valid() && !seen[g.idx()] && !cut[m.edge_handle(h).idx()])
+        seen[g.idx()] = 1, ++reached, stack.push_back(g.idx());
+    }
+  }
+  return reached == m.n_faces();
+}
+
+// Faces in a union–find forest, for the dual spanning tree.
+struct FaceSets {
+  std::vector<int> parent;
+  explicit FaceSets(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int Find(int f) {
+    while (parent[f] != f) f = parent[f] = parent[parent[f]];
+    return f;
+  }
+  bool Join(int a, int b) {
+    a = Find(a), b = Find(b);
+    if (a == b) return false;
+    parent[a] = b;
+    return true;
+  }
+};
+
+// The arcs around a handle of the surface cut along `cut`, shortest first: each between two
+// boundary vertices not `blocked`, through vertices not blocked, keeping the faces connected.
+// Tree–cotree (Erickson and Whittlesey 2005) with the boundary as the root: a shortest-path
+// forest T from the free boundary vertices and a spanning tree of the faces across edges not in
+// T; an edge in neither closes a loop around a handle, and T's paths from its ends to the
+// boundary make it an arc. The second path is tried first as the shortest around the first to a
+// boundary vertex not next to the first's root along the boundary, then as T's own path (from
+// another root), then to any boundary vertex.
+std::vector<std::vector<int>> HandleArcs(const PolyMesh& m, const std::vector<char>& blocked,
+                                         std::vector<char>* cut) {
+  const size_t n = m.n_vertices();
+  std::vector<double> distance(n, std::numeric_limits<double>::infinity());
+  std::vector<int> previous(n, -1), root(n, -1);
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  for (auto v : m.vertices())
+    if (m.is_boundary(v) && !blocked[v.idx()])
+      distance[v.idx()] = 0.0, root[v.idx()] = v.idx(), queue.push({0.0, v.idx()});
+  while (!queue.empty()) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (d > distance[v]) continue;
+    for (auto h : m.voh_range(m.vertex_handle(v))) {
+      const int w = m.to_vertex_handle(h).idx();
+      const double step = m.calc_edge_length(h);
+      if (!blocked[w] && d + step < distance[w])
+        distance[w] = d + step, previous[w] = v, root[w] = root[v], queue.push({d + step, w});
+    }
+  }
+  std::vector<char> in_tree(m.n_edges(), 0);
+  for (size_t w = 0; w < n; ++w)
+    if (previous[w] >= 0)
+      in_tree[m.edge_handle(HalfedgeBetween(m, previous[w], static_cast<int>(w))).idx()] = 1;
+  // The faces' tree takes the edges no arc can use (at a blocked vertex) first.
+  FaceSets faces(m.n_faces());
+  std::vector<int> loop_edges;
+  for (const bool usable : {false, true})
+    for (auto e : m.edges()) {
+      if (m.is_boundary(e) || (*cut)[e.idx()] || in_tree[e.idx()]) continue;
+      const auto h = m.halfedge_handle(e, 0);
+      const int a = m.from_vertex_handle(h).idx(), b = m.to_vertex_handle(h).idx();
+      const bool free = !blocked[a] && !blocked[b] && root[a] >= 0 && root[b] >= 0;
+      if (free != usable) continue;
+      if (!faces.Join(m.face_handle(h).idx(), m.opposite_face_handle(h).idx()) && usable)
+        loop_edges.push_back(e.idx());
+    }
+  const auto arc_length = [&](int e) {
+    const auto h = m.halfedge_handle(m.edge_handle(e), 0);
+    return distance[m.from_vertex_handle(h).idx()] + distance[m.to_vertex_handle(h).idx()] +
+           m.calc_edge_length(h);
+  };
+  std::sort(loop_edges.begin(), loop_edges.end(),
+            [&](int a, int b) { return arc_length(a) < arc_length(b); });
+  const auto tree_path = [&](int v) {  // from its root to v
+    std::vector<int> path;
+    for (int w = v; w >= 0; w = previous[w]) path.push_back(w);
+    std::reverse(path.begin(), path.end());
+    return path;
+  };
+  const auto next_on_boundary = [&](int r, int v) {
+    const auto h = m.find_halfedge(m.vertex_handle(r), m.vertex_handle(v));
+    return h.is_valid() && m.is_boundary(m.edge_handle(h));
+  };
+  std::vector<std::vector<int>> arcs;
+  const auto try_arc = [&](std::vector<int> arc) {
+    std::vector<int> arc_edges;
+    for (size_t i = 0; i + 1 < arc.size(); ++i)
+      arc_edges.push_back(m.edge_handle(HalfedgeBetween(m, arc[i], arc[i + 1])).idx());
+    for (int c : arc_edges) (*cut)[c] = 1;
+    if (FacesConnected(m, *cut)) arcs.push_back(std::move(arc));
+    for (int c : arc_edges) (*cut)[c] = 0;
+  };
+  for (int e : loop_edges) {
+    const auto h = m.halfedge_handle(m.edge_handle(e), 0);
+    const int a = m.from_vertex_handle(h).idx(), b = m.to_vertex_handle(h).idx();
+    const std::vector<int> first = tree_path(a);
+    if (std::find(first.begin(), first.end(), b) != first.end()) continue;
+    std::vector<char> around = blocked;
+    for (int v : first) around[v] = 1;
+    // The way back from b to a boundary vertex not next to a's root (so that the arc leaves
+    // free boundary vertices on both of its sides), then T's own path, then any.
+    for (int kind = 0; kind < 3; ++kind) {
+      std::vector<int> rest;
+      if (kind == 1 && root[b] == root[a]) continue;
+      if (kind == 1) {
+        rest = tree_path(b);
+        std::reverse(rest.begin(), rest.end());
+      } else {
+        rest = ShortestPath(
+            m, {b},
+            [&](int v) {
+              return m.is_boundary(m.vertex_handle(v)) &&
+                     !(kind == 0 && next_on_boundary(root[a], v));
+            },
+            around);
+      }
+      if (rest.empty() || !m.is_boundary(m.vertex_handle(rest.back()))) continue;
+      std::vector<int> arc = first;
+      arc.insert(arc.end(), rest.begin(), rest.end());
+      try_arc(std::move(arc));
+    }
+  }
+  return arcs;
+}
+
+// Cuts `arcs` more arcs around the handles (HandleArcs), each keeping the next ones possible:
+// an arc after which the rest cannot be cut is taken back and the next one tried, up to
+// *attempts arcs in all. Whether it succeeded; the arcs are added to *paths, their vertices
+// to `blocked` and their edges to `cut`.
+bool CutAroundHandles(const PolyMesh& m, int arcs, int* attempts, std::vector<char>* blocked,
+                      std::vector<char>* cut, std::vector<std::vector<int>>* paths) {
+  if (arcs == 0) return true;
+  for (const std::vector<int>& arc : HandleArcs(m, *blocked, cut)) {
+    if (--*attempts < 0) return false;
+    std::vector<int> arc_edges;
+    for (size_t i = 0; i + 1 < arc.size(); ++i)
+      arc_edges.push_back(m.edge_handle(HalfedgeBetween(m, arc[i], arc[i + 1])).idx());
+    for (int v : arc) (*blocked)[v] = 1;
+    for (int c : arc_edges) (*cut)[c] = 1;
+    paths->push_back(arc);
+    if (CutAroundHandles(m, arcs - 1, attempts, blocked, cut, paths)) return true;
+    paths->pop_back();
+    for (int v : arc) (*blocked)[v] = 0;
+    for (int c : arc_edges) (*cut)[c] = 0;
+  }
+  return false;
+}
+
+// Two arcs around every handle (each between boundary vertices, avoiding the `blocked` vertices
+// and each other, the faces still connected across the edges not `cut`): cut along them and the
+// holes' paths a surface of genus g is a disk. The arcs' vertices are added to `blocked` and
+// their edges to `cut`.
+std::vector<std::vector<int>> HandlePaths(const PolyMesh& m, int handles,
+                                          std::vector<char>* blocked, std::vector<char>* cut) {
+  std::vector<std::vector<int>> paths;
+  int attempts = 64 * std::max(handles, 1);
+  if (!CutAroundHandles(m, 2 * handles, &attempts, blocked, cut, &paths))
+    throw InputError("the surface's " + std::to_string(handles) + " handle" +
+                     (handles == 1 ? "" : "s") +
+                     " cannot be cut open without crossing a frame singularity or another cut "
+                     "(two arcs from the boundary around each handle, disjoint; a larger hole "
+                     "leaves more room for them): cut the surface open along a closed curve "
+                     "around each handle first");
+  return paths;
+}
+
 // Shortest paths from every singularity to the boundary, each avoiding the other singularities,
 // the `blocked` vertices and the paths already cut. Per path its vertices from the singularity
 // on; the paths' vertices are added to `blocked`.
@@ -272,10 +457,6 @@ std::vector<std::vector<int>> SingularityPaths(const PolyMesh& m,
     paths.push_back(path);
   }
   return paths;
-}
-
-PolyMesh::HalfedgeHandle HalfedgeBetween(const PolyMesh& m, int a, int b) {
-  return m.find_halfedge(m.vertex_handle(a), m.vertex_handle(b));
 }
 
 // Faces joined by edges: the number of pieces.
@@ -332,14 +513,6 @@ int CheckTriangulatedSurface(const PolyMesh& m) {
   if (loops == 0)
     throw InputError("the surface is closed (" + shape +
                      "): the quad remeshing cuts it from its holes, so cut it open first");
-  // Genus g: χ = 2 − 2g − b.
-  if (euler != 2 - loops) {
-    const long twice_genus = 2 - loops - euler;
-    throw InputError("the surface has " + std::to_string(twice_genus / 2) + " handle" +
-                     (twice_genus == 2 ? "" : "s") + " (" + shape +
-                     "): the quad remeshing cuts through holes, not handles; cut each handle open "
-                     "along a closed curve first");
-  }
   return loops;
 }
 
@@ -400,14 +573,15 @@ void RefuseSingularitiesNoQuadCanFollow(const std::vector<FrameSingularity>& sin
 // The cut of the mesh into a disk along paths from the singularities, and how the map jumps
 // across it.
 struct Cuts {
-  // Vertex paths: first those through the holes (each from a boundary loop to another), then one
-  // from each singularity to the boundary.
+  // Vertex paths: first the arcs between boundary vertices (those through the holes, each from a
+  // boundary loop to another, then two around each handle), then one from each singularity to
+  // the boundary.
   std::vector<std::vector<int>> paths;
   // Per path: −1 for a singularity's, whose translation is (I − R) u(s) (s its first vertex, a
-  // fixed point); k ≥ 0 for a hole's, whose translation t_k is unknown (map unknowns
+  // fixed point); k ≥ 0 for an arc, whose translation t_k is unknown (map unknowns
   // 2 n + 2k, 2 n + 2k + 1, n the vertices).
   std::vector<int> translation;
-  int holes = 0;                    // paths through the holes
+  int arcs = 0;                     // paths between boundary vertices
   std::vector<char> cut;            // per edge: on a path
   std::vector<int> path_of_vertex;  // the path a vertex is on (not a singularity), or −1
   std::vector<int> path_turns;      // per path: the quarter turns of the frames across it
@@ -419,18 +593,22 @@ struct Cuts {
 };
 
 Cuts CutAlongPaths(const PolyMesh& m, const std::vector<FrameSingularity>& singularities,
-                   std::vector<int>* cut_edges) {
+                   int handles, std::vector<int>* cut_edges) {
   Cuts c;
   std::vector<char> blocked(m.n_vertices(), 0);
   for (const FrameSingularity& s : singularities) blocked[s.vertex] = 1;
   c.paths = HolePaths(m, BoundaryLoops(m), &blocked);
-  c.holes = static_cast<int>(c.paths.size());
-  for (int k = 0; k < c.holes; ++k) c.translation.push_back(k);
+  c.cut.assign(m.n_edges(), 0);
+  for (const auto& path : c.paths)
+    for (size_t i = 0; i + 1 < path.size(); ++i)
+      c.cut[m.edge_handle(HalfedgeBetween(m, path[i], path[i + 1])).idx()] = 1;
+  for (auto& arc : HandlePaths(m, handles, &blocked, &c.cut)) c.paths.push_back(std::move(arc));
+  c.arcs = static_cast<int>(c.paths.size());
+  for (int k = 0; k < c.arcs; ++k) c.translation.push_back(k);
   for (auto& path : SingularityPaths(m, singularities, &blocked)) {
     c.paths.push_back(std::move(path));
     c.translation.push_back(-1);
   }
-  c.cut.assign(m.n_edges(), 0);
   c.path_of_vertex.assign(m.n_vertices(), -1);
   for (size_t p = 0; p < c.paths.size(); ++p) {
     for (size_t i = c.FirstSplit(p); i < c.paths[p].size(); ++i)
@@ -528,7 +706,7 @@ class MapSystem {
         cuts_(cuts),
         h_(h),
         options_(options),
-        n_(2 * static_cast<int>(m.n_vertices()) + 2 * cuts.holes),
+        n_(2 * static_cast<int>(m.n_vertices()) + 2 * cuts.arcs),
         fixed_(n_, std::numeric_limits<double>::quiet_NaN()),
         x_(Eigen::VectorXd::Zero(n_)),
         solver_(CreateSparseCholesky(options.linear_solver, 0)) {}
@@ -702,20 +880,21 @@ FieldParametrization ParametrizeAlongField(const PolyMesh& triangles, const Dire
   out.edge_length = h * unit.length;
   out.singularities = FrameSingularities(s);
   RefuseSingularitiesNoQuadCanFollow(out.singularities);
-  Cuts cuts = CutAlongPaths(m, out.singularities, &out.cut_edges);
+  out.handles = static_cast<int>((2 - out.boundary_loops - EulerCharacteristic(m)) / 2);
+  Cuts cuts = CutAlongPaths(m, out.singularities, out.handles, &out.cut_edges);
   CombFrames(m, cuts, &s);
   FindPathTurns(m, s, &cuts);
   FindRightSides(m, s, &cuts);
   PollStop(options.fit.stop, "the integer-grid map");
   MapSystem system(m, s, cuts, h, options);
   system.Solve();
-  // Every transition a grid automorphism: the singularities' map and the holes' translations
+  // Every transition a grid automorphism: the singularities' map and the arcs' translations
   // rounded to integers, and the map solved again.
-  if (!out.singularities.empty() || cuts.holes > 0) {
+  if (!out.singularities.empty() || cuts.arcs > 0) {
     for (const FrameSingularity& sg : out.singularities)
       for (int j = 0; j < 2; ++j)
         system.Fix(2 * sg.vertex + j, std::round(system.x()[2 * sg.vertex + j]));
-    for (int k = 0; k < cuts.holes; ++k) {
+    for (int k = 0; k < cuts.arcs; ++k) {
       const int var[2] = {system.TranslationUnknown(k, 0), system.TranslationUnknown(k, 1)};
       const Eigen::Vector2d t = RoundTranslation({system.x()[var[0]], system.x()[var[1]]},
                                                  /*even_sum=*/s.step == 2);
@@ -746,8 +925,8 @@ std::vector<std::string> QuadRemeshResult::Problems() const {
                   " where the "
                   "surface's is " +
                   std::to_string(surface_euler_characteristic) +
-                  " (a hole lost, or merged with the boundary or another hole: a smaller "
-                  "`edge_length`)");
+                  " (a hole or a handle lost, or a hole merged with the boundary or another "
+                  "hole: a smaller `edge_length`)");
   if (field.kind == DirectionKind::kAsymptotic && !odd_cycle.empty())
     out.push_back("quad vertices that cannot be 2-coloured (" + odd_cycle + ")");
   add(inner_valence_count.size() > 2 ? inner_valence_count[2] : 0,
@@ -797,8 +976,8 @@ QuadRemeshResult RemeshAlongField(const PolyMesh& triangles, const QuadRemeshOpt
     clock = now;
     return seconds;
   };
-  const int loops = CheckTriangulatedSurface(triangles);
-  out.surface_euler_characteristic = 2 - loops;
+  CheckTriangulatedSurface(triangles);
+  out.surface_euler_characteristic = EulerCharacteristic(triangles);
   out.field = EstimateDirectionField(triangles, options.directions, options.fit, options.smoothing);
   out.seconds_field = lap();
   PollStop(options.fit.stop, "the integer-grid map");

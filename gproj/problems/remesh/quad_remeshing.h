@@ -9,14 +9,15 @@
 //      asymptotic pair, whose families never trade places, by half turns);
 //   3. a seamless integer-grid map after Bommes, Zimmer, Kobbelt, "Mixed-integer
 //      quadrangulation", ACM TOG 28 (3), 2009: the surface is cut into a disk through its holes
-//      (shortest paths joining every boundary loop to the longest one) and from every
+//      (shortest paths joining every boundary loop to the longest one), around its handles (two
+//      arcs between boundary vertices per handle, by tree–cotree) and from every
 //      singularity to the boundary, the frames combed across the remaining edges, and the map
 //      u: S → R² whose gradient best fits the frame (∇u a = (1, 0) / h, ∇u b = (0, 1) / h, in
 //      the least-squares sense over the area) is found by one sparse Cholesky solve
 //      (CHOLMOD); across a cut the map jumps by the cut's quarter turn R and a translation:
-//      (I − R) u(s) across a singularity's cut (s a fixed point), an unknown t across a hole's;
-//      the singularities' map and the holes' t are rounded to integers and the map solved
-//      again, so every transition is a grid automorphism;
+//      (I − R) u(s) across a singularity's cut (s a fixed point), an unknown t across a hole's
+//      or a handle's; the singularities' map and the other cuts' t are rounded to integers and the
+//      map solved again, so every transition is a grid automorphism;
 //   4. quad extraction along the integer iso-lines (geometry/quad_extraction, after QEx).
 // A singularity of index i becomes a quad vertex of valence 4 − 4i (004 Theorem 6: an ordinary
 // flat point, index −½, a vertex of valence 6).
@@ -65,14 +66,14 @@ struct FieldParametrization {
   std::vector<FrameSingularity> singularities;
   std::vector<int> cut_edges;  // the edges the surface was cut along
   int boundary_loops = 0;      // 1: a disk; more: a surface with holes, cut through them
+  int handles = 0;             // the surface's genus, each handle cut open by two arcs
   int folded_faces = 0;        // faces whose image is folded (negative area)
   double edge_length = 0.0;    // the quads' edge length, input units
 };
 
 // The number of boundary loops of `mesh`; throws InputError unless it is a triangulated surface
 // the remeshing can cut into a disk: triangles only, connected, manifold vertices, at least one
-// boundary loop and no handles (Euler characteristic 2 − loops). The message names the rule
-// broken.
+// boundary loop (handles are cut open from the boundary). The message names the rule broken.
 int CheckTriangulatedSurface(const PolyMesh& mesh);
 
 // The field-aligned integer-grid map of `triangles` for `field` (EstimateDirectionField on the
@@ -99,8 +100,8 @@ struct QuadRemeshResult {
   std::string odd_cycle;
   // The quads' topology against the surface's: pieces (faces joined by edges), vertices where
   // the quads meet at a corner only (more than one boundary fan), and the Euler characteristic
-  // (the surface's is 2 − its boundary loops; the quads' differs where a hole was lost, or
-  // merged with the boundary or another hole).
+  // (the surface's is 2 − 2 handles − its boundary loops; the quads' differs where a hole was lost,
+  // or merged with the boundary or another hole).
   int components = 0;
   int pinched_vertices = 0;
   long euler_characteristic = 0, surface_euler_characteristic = 0;

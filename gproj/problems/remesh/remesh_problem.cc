@@ -111,10 +111,11 @@ void Describe(const QuadRemeshResult& r, double smoothing, RunResult* result) {
   }
   result->Info(text);
   std::snprintf(line, sizeof(line),
-                "integer-grid map: %zu cut edges (%d boundary loop%s%s), %d folded triangles, in "
-                "%.3f s",
+                "integer-grid map: %zu cut edges (%d boundary loop%s%s, %d handle%s%s), %d folded "
+                "triangles, in %.3f s",
                 p.cut_edges.size(), p.boundary_loops, p.boundary_loops == 1 ? "" : "s",
-                p.boundary_loops > 1 ? ", cut through the holes" : "", p.folded_faces,
+                p.boundary_loops > 1 ? ", cut through the holes" : "", p.handles,
+                p.handles == 1 ? "" : "s", p.handles > 0 ? " cut open" : "", p.folded_faces,
                 r.seconds_map);
   result->Info(line);
   std::snprintf(line, sizeof(line), "quads: %zu faces, %zu vertices from %d grid points in %.3f s",
@@ -190,10 +191,13 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
   }
   if (result.report.failed) return result;
   Describe(r, options.smoothing, &result);
-  result.facts = {
-      {"directions", settings.directions},        {"edge_length", p.edge_length},
-      {"smoothing", options.smoothing},           {"boundary_loops", p.boundary_loops},
-      {"singularities", nlohmann::json::array()}, {"inner_valences", nlohmann::json::object()}};
+  result.facts = {{"directions", settings.directions},
+                  {"edge_length", p.edge_length},
+                  {"smoothing", options.smoothing},
+                  {"boundary_loops", p.boundary_loops},
+                  {"handles", p.handles},
+                  {"singularities", nlohmann::json::array()},
+                  {"inner_valences", nlohmann::json::object()}};
   for (const FrameSingularity& s : p.singularities) {
     const auto& q = mesh.point(mesh.vertex_handle(s.vertex));
     result.facts["singularities"].push_back(
@@ -218,9 +222,11 @@ ProblemSpec RemeshSpec() {
   ProblemSpec spec;
   spec.name = "remesh";
   spec.summary =
-      "Quad remeshing of a triangulated disk, or of a surface with holes, along its asymptotic "
+      "Quad remeshing of a triangulated disk, or of a surface with holes and handles, along its "
+      "asymptotic "
       "(K < 0) or principal directions (004 §3.1): jet-fitted, smoothed direction field, "
-      "seamless integer-grid map cut through the holes and from its singularities to the "
+      "seamless integer-grid map cut through the holes, around the handles and from its "
+      "singularities to the "
       "boundary (mixed-integer quadrangulation, integer transitions across every cut), quads "
       "extracted along the integer iso-lines. Converged (exit 0) when the quads are a valid net "
       "(inner valences above 2, quads convex, map unfolded, one piece with the surface's Euler "
@@ -228,7 +234,8 @@ ProblemSpec RemeshSpec() {
       "2-coloured vertices and K < 0 on 99% of the area); otherwise the quads are "
       "returned and the reasons named.";
   spec.inputs = {{"mesh", InputKind::kMesh,
-                  "Triangle mesh of a disk or of a surface with holes (no handles)", true}};
+                  "Triangle mesh of a surface with a boundary: a disk, or with holes and handles",
+                  true}};
   spec.outputs = {
       {"output", OutputKind::kMesh, "the quad mesh", true},
       {"field", OutputKind::kSegments,

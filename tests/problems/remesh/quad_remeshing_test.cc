@@ -72,16 +72,15 @@ struct Alignment {
   double mean = 0.0, max = 0.0, p95 = 0.0;
 };
 // Each quad edge against the nearer of the two exact directions at its midpoint (degrees).
-Alignment EdgeAlignment(
+Alignment EdgeAlignmentAt(
     const PolyMesh& quads,
-    const std::function<std::array<Eigen::Vector3d, 2>(double, double)>& directions) {
+    const std::function<std::array<Eigen::Vector3d, 2>(const Eigen::Vector3d&)>& directions) {
   std::vector<double> angles;
   for (auto e : quads.edges()) {
     const auto h = quads.halfedge_handle(e, 0);
     const Eigen::Vector3d a(quads.point(quads.from_vertex_handle(h)).data());
     const Eigen::Vector3d b(quads.point(quads.to_vertex_handle(h)).data());
-    const Eigen::Vector3d mid = 0.5 * (a + b);
-    const auto d = directions(mid.x(), mid.y());
+    const auto d = directions(0.5 * (a + b));
     angles.push_back(std::min(LineAngleDeg(b - a, d[0]), LineAngleDeg(b - a, d[1])));
   }
   Alignment out;
@@ -89,6 +88,12 @@ Alignment EdgeAlignment(
   std::sort(angles.begin(), angles.end());
   out.p95 = angles[static_cast<size_t>(0.95 * (angles.size() - 1))];
   return out;
+}
+// The same with the directions of a height field's plan point (x, y).
+Alignment EdgeAlignment(
+    const PolyMesh& quads,
+    const std::function<std::array<Eigen::Vector3d, 2>(double, double)>& directions) {
+  return EdgeAlignmentAt(quads, [&](const Eigen::Vector3d& p) { return directions(p.x(), p.y()); });
 }
 
 int SmallestCornerAngleDeg(const PolyMesh& quads, int* nonconvex) {
@@ -377,24 +382,16 @@ TEST(QuadRemeshingTest, SurfacesWithHolesAreCutThroughTheirHoles) {
     if (principal) options.directions = DirectionKind::kPrincipal;
     const QuadRemeshResult r = RemeshAlongField(catenoid, options);
     // Each edge against the nearer exact direction at its midpoint, (u, v) read from the point.
-    std::vector<double> angles;
     const PolyMesh& q = r.extraction.quads;
-    for (auto e : q.edges()) {
-      const auto h = q.halfedge_handle(e, 0);
-      const Eigen::Vector3d a(q.point(q.from_vertex_handle(h)).data());
-      const Eigen::Vector3d b(q.point(q.to_vertex_handle(h)).data());
-      const auto d = CatenoidDirections(0.5 * (a + b), principal);
-      angles.push_back(std::min(LineAngleDeg(b - a, d[0]), LineAngleDeg(b - a, d[1])));
-    }
-    double mean = 0.0;
-    for (double angle : angles) mean += angle / angles.size();
-    std::sort(angles.begin(), angles.end());
+    const Alignment exact = EdgeAlignmentAt(
+        q, [&](const Eigen::Vector3d& p) { return CatenoidDirections(p, principal); });
+    const double mean = exact.mean;
     const Topology t = TopologyOf(q);
     std::printf(
         "catenoid annulus, %s: %zu quads, Euler %ld, %d loops, edges against the exact "
         "directions mean %.2f deg, 95%% %.2f deg; area covered %.1f%%\n",
-        principal ? "principal" : "asymptotic", q.n_faces(), t.euler, t.loops, mean,
-        angles[static_cast<size_t>(0.95 * (angles.size() - 1))], 100.0 * r.area_covered);
+        principal ? "principal" : "asymptotic", q.n_faces(), t.euler, t.loops, mean, exact.p95,
+        100.0 * r.area_covered);
     EXPECT_EQ(r.parametrization.boundary_loops, 2);
     EXPECT_TRUE(r.Problems().empty()) << r.Problems()[0];
     EXPECT_EQ(t.euler, 0);  // an annulus: closed around the neck, no gap along the cut
@@ -447,6 +444,72 @@ TEST(QuadRemeshingTest, SurfacesWithHolesAreCutThroughTheirHoles) {
     EXPECT_LT(exact.mean, monkey ? 3.0 : 2.0);
     EXPECT_GT(r.area_covered, 0.75);
     ExpectHNetWithHoles(name, r, triangles);
+  }
+}
+
+// The torus ((2 + cos b) cos a, (2 + cos b) sin a, sin b): its principal directions are its
+// parallels and meridians, with no umbilic, and it is negatively curved inside (cos b < 0).
+Eigen::Vector3d Torus(double a, double b) {
+  return {(2 + std::cos(b)) * std::cos(a), (2 + std::cos(b)) * std::sin(a), std::sin(b)};
+}
+std::array<Eigen::Vector3d, 2> TorusPrincipal(const Eigen::Vector3d& p) {
+  const double a = std::atan2(p.y(), p.x()), b = std::atan2(p.z(), std::hypot(p.x(), p.y()) - 2);
+  return {Eigen::Vector3d(-std::sin(a), std::cos(a), 0.0),
+          Eigen::Vector3d(-std::sin(b) * std::cos(a), -std::sin(b) * std::sin(a), std::cos(b))};
+}
+
+size_t BoundaryVertices(const PolyMesh& m) {
+  size_t count = 0;
+  for (auto v : m.vertices()) count += m.is_boundary(v);
+  return count;
+}
+
+// Handles are cut open by two arcs from the boundary each (tree–cotree): a torus with one hole
+// and a torus with two holes remesh along their parallels and meridians into quads of the
+// surface's topology, closed around both of the torus' cycles.
+TEST(QuadRemeshingTest, SurfacesWithHandlesAreCutAroundThem) {
+  const PolyMesh fine = TriangulatePeriodic(Torus, 90, 36, 0, 2 * M_PI, 9, /*periodic_v=*/true);
+  const PolyMesh coarse = TriangulatePeriodic(Torus, 60, 24, 0, 2 * M_PI, 3, /*periodic_v=*/true);
+  // One hole on the outer equator, a second on the top circle half way round, and one small
+  // hole of a few boundary vertices, where the first arc must leave free vertices on both of
+  // its sides for the second.
+  for (const int holes : {1, 2, 0}) {
+    const PolyMesh triangles = WithoutFaces(holes ? fine : coarse, [&](const Eigen::Vector3d& c) {
+      if (holes == 0) return (c - Torus(2.0, 1.0)).norm() < 0.3;
+      return (c - Torus(0.3, 0.0)).norm() < 0.45 ||
+             (holes == 2 && (c - Torus(0.3 + M_PI, M_PI / 2)).norm() < 0.45);
+    });
+    const int loops = std::max(holes, 1);
+    ASSERT_EQ(CheckTriangulatedSurface(triangles), loops);
+    QuadRemeshOptions options;
+    options.directions = DirectionKind::kPrincipal;
+    options.edge_length = holes ? 0.2 : 0.25;
+    const QuadRemeshResult r = RemeshAlongField(triangles, options);
+    const PolyMesh& q = r.extraction.quads;
+    const Alignment exact = EdgeAlignmentAt(q, TorusPrincipal);
+    const Topology t = TopologyOf(q);
+    std::printf(
+        "torus with %s: %zu boundary vertices, %zu quads, Euler %ld, %d loops, %zu cut edges, "
+        "edges against the parallels and meridians mean %.2f deg, 95%% %.2f deg; area covered "
+        "%.1f%%\n",
+        holes == 0   ? "a small hole"
+        : holes == 1 ? "1 hole"
+                     : "2 holes",
+        BoundaryVertices(triangles), q.n_faces(), t.euler, t.loops,
+        r.parametrization.cut_edges.size(), exact.mean, exact.p95, 100.0 * r.area_covered);
+    EXPECT_EQ(r.parametrization.handles, 1);
+    EXPECT_EQ(r.parametrization.boundary_loops, loops);
+    EXPECT_TRUE(r.parametrization.singularities.empty());
+    EXPECT_TRUE(r.Problems().empty()) << r.Problems()[0];
+    EXPECT_EQ(t.euler, -loops);  // 2 − 2 · 1 handle − loops: closed around both cycles
+    EXPECT_EQ(t.loops, loops);
+    EXPECT_EQ(t.components, 1);
+    for (size_t k = 0; k < r.inner_valence_count.size(); ++k)
+      if (k != 4) {
+        EXPECT_EQ(r.inner_valence_count[k], 0) << k;
+      }
+    EXPECT_LT(exact.mean, 2.0);
+    EXPECT_GT(r.area_covered, 0.85);
   }
 }
 
@@ -576,22 +639,8 @@ TEST(QuadRemeshingTest, RefusesWhatItCannotRemesh) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("K >= 0"), std::string::npos) << e.what();
   }
-  // A closed surface (a torus), a torus with a hole (a handle) and two pieces are refused.
-  const PolyMesh torus = TriangulatePeriodic(
-      [](double a, double b) {
-        return Eigen::Vector3d((2 + std::cos(b)) * std::cos(a), (2 + std::cos(b)) * std::sin(a),
-                               std::sin(b));
-      },
-      24, 12, 0, 2 * M_PI, 3, /*periodic_v=*/true);
-  // The torus without the faces around vertex 0.
-  PolyMesh punctured;
-  for (auto v : torus.vertices()) punctured.add_vertex(torus.point(v));
-  for (auto f : torus.faces()) {
-    std::vector<PolyMesh::VertexHandle> corners;
-    for (auto v : torus.fv_range(f)) corners.push_back(punctured.vertex_handle(v.idx()));
-    if (std::none_of(corners.begin(), corners.end(), [](auto v) { return v.idx() == 0; }))
-      punctured.add_face(corners);
-  }
+  // A closed surface (a torus) and two pieces are refused.
+  const PolyMesh torus = TriangulatePeriodic(Torus, 24, 12, 0, 2 * M_PI, 3, /*periodic_v=*/true);
   PolyMesh two_pieces = Triangulate(Hyperbolic().AsSurface(), -1, 1, -1, 1, 8, &uv);
   {
     const auto a = two_pieces.add_vertex({5, 5, 0}), b = two_pieces.add_vertex({6, 5, 0}),
@@ -599,7 +648,6 @@ TEST(QuadRemeshingTest, RefusesWhatItCannotRemesh) {
     two_pieces.add_face(a, b, c);
   }
   for (const auto& [mesh, expected] : {std::pair<const PolyMesh*, const char*>{&torus, "closed"},
-                                       {&punctured, "1 handle"},
                                        {&two_pieces, "several components"}}) {
     try {
       CheckTriangulatedSurface(*mesh);
