@@ -143,6 +143,28 @@ def test_remesh_cuts_through_holes(cli):
     assert np.mean(np.abs(np.degrees(np.arccos(np.clip(cosine, 0, 1))) - 45)) < 3
 
 
+def test_remesh_cuts_a_handle_open(cli):
+    """A torus with a hole built in numpy (a handle): principal quads of Euler characteristic -1."""
+    nu, nv = 90, 36
+    a, b = np.meshgrid(2 * np.pi * np.arange(nu) / nu, 2 * np.pi * np.arange(nv) / nv,
+                       indexing="ij")
+    V = np.stack([(2 + np.cos(b)) * np.cos(a), (2 + np.cos(b)) * np.sin(a), np.sin(b)],
+                 axis=-1).reshape(-1, 3)
+    at = lambda i, j: (i % nu) * nv + j % nv  # noqa: E731
+    F = [[at(i, j), at(i + 1, j), at(i + 1, j + 1)] for i in range(nu) for j in range(nv)]
+    F += [[at(i, j), at(i + 1, j + 1), at(i, j + 1)] for i in range(nu) for j in range(nv)]
+    F = np.array(F)
+    hole = np.array([3 * np.cos(1.0), 3 * np.sin(1.0), 0.0])
+    F = F[np.linalg.norm(V[F].mean(axis=1) - hole, axis=1) > 0.45]
+    result = gproj.remesh(V, F, directions="principal", edge_length=0.2)
+    assert result.report["converged"], result.report["termination"]
+    assert result.report["handles"] == 1 and result.report["boundary_loops"] == 1
+    Vq, Fq = result.output
+    Fq = np.asarray(Fq)
+    edges = {tuple(sorted((f[k], f[(k + 1) % 4]))) for f in Fq for k in range(4)}
+    assert len(np.unique(Fq)) - len(edges) + len(Fq) == -1  # closed around both cycles
+
+
 DATA = pathlib.Path(__file__).resolve().parents[2] / "examples" / "data"
 
 
