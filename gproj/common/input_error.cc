@@ -30,4 +30,10 @@ void CheckMemory(const std::string& what, double bytes) {
   }
 }
 
+void RefuseNulByte(const std::string& text, const std::string& pre) {
+  const std::size_t at = text.find('\0');
+  if (at != std::string::npos)
+    throw InputError(pre + "a NUL byte at byte " + std::to_string(at) + ": not a JSON text");
+}
+
 }  // namespace gproj

@@ -20,4 +20,8 @@ class InputError : public std::runtime_error {
 // that cannot be queried.
 void CheckMemory(const std::string& what, double bytes);
 
+// Throws InputError "<pre>a NUL byte at byte N: not a JSON text" when `text` holds one (JSON
+// readers take a NUL for the end of the input, so whatever follows it would go unread).
+void RefuseNulByte(const std::string& text, const std::string& pre);
+
 }  // namespace gproj

@@ -177,6 +177,10 @@ nlohmann::json ParseRequestJson(const std::string& text) {
                          " levels");
     return true;
   };
+  const std::size_t nul = text.find('\0');
+  if (nul != std::string::npos)
+    throw RequestError("request: the body is not JSON (a NUL byte at byte " + std::to_string(nul) +
+                       ")");
   try {
     return nlohmann::json::parse(text, depth_check);
   } catch (const nlohmann::json::parse_error& e) {

@@ -108,6 +108,13 @@ TEST(RunRequestTest, DeepJsonAndInvalidUtf8AreRefusedNotFatal) {
   } catch (const RequestError& e) {
     EXPECT_NE(std::string(e.what()).find("ill-formed UTF-8"), std::string::npos) << e.what();
   }
+  // A NUL byte ends the JSON reader's input: refused, not read as the end of the body.
+  try {
+    ParseRequestJson(std::string("{\"problem\": \"planarize\"}\0{\"x\": 1}", 33));
+    ADD_FAILURE() << "accepted";
+  } catch (const RequestError& e) {
+    EXPECT_NE(std::string(e.what()).find("a NUL byte at byte 24"), std::string::npos) << e.what();
+  }
   // A number beyond double's range is JSON, but not a number any field can take.
   try {
     ParseRequestJson("{\"problem\": \"planarize\", \"options\": {\"tolerance\": 1e400}}");

@@ -224,6 +224,7 @@ Json ParseBoundedJson(const std::string& text, const std::string& pre) {
                        std::to_string(kMaxBSplineControlPoints) + " control points has fewer");
     return true;
   };
+  RefuseNulByte(text, pre);
   try {
     return Json::parse(text, bound);
   } catch (const Json::exception& e) {  // parse_error, or out_of_range for number overflow

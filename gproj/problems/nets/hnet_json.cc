@@ -42,6 +42,7 @@ std::vector<double> Numbers(const Json& row, std::size_t count, const std::strin
 
 HNetPatchwork ParseHNetJson(const std::string& text, const std::string& name) {
   const std::string pre = name.empty() ? "" : name + ": ";
+  RefuseNulByte(text, pre);
   Json root;
   try {
     root = Json::parse(text);

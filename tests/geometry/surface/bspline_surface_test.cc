@@ -382,6 +382,9 @@ TEST(BSplineSurfaceTest, JsonErrorsNameTheField) {
   const std::string broken = MessageOf([] { ParseBSplineJson("{\"degree\": [3, 3],", "s.json"); });
   EXPECT_EQ(broken.rfind("s.json: ", 0), 0u) << broken;
   EXPECT_MESSAGE_HAS(broken, "invalid JSON");
+  EXPECT_MESSAGE_HAS(
+      MessageOf([&] { ParseBSplineJson(good.dump() + std::string(1, '\0'), "s.json"); }),
+      "s.json: a NUL byte at byte");
   EXPECT_MESSAGE_HAS(MessageOf([] { ParseBSplineJson("[1, 2]", "s.json"); }), "JSON object");
   EXPECT_MESSAGE_HAS(refused([](auto& j) { j.erase("knots_v"); }), "missing field \"knots_v\"");
   EXPECT_MESSAGE_HAS(refused([](auto& j) { j["degree"] = nlohmann::json::array({3}); }),

@@ -211,6 +211,11 @@ TEST(DarbouxTest, HNetJsonErrorsNameTheKeyAndIndex) {
   EXPECT_NE(
       InputErrorOf([] { ParseHNetJson("{\"vertices\": [", "h.json"); }).find("not valid JSON"),
       std::string::npos);
+  // A NUL byte after a valid H-net (a JSON reader stops there) is refused.
+  EXPECT_NE(InputErrorOf([&] {
+              ParseHNetJson(good.dump() + std::string(1, '\0') + "x", "h.json");
+            }).find("h.json: a NUL byte at byte " + std::to_string(good.dump().size())),
+            std::string::npos);
 }
 
 // The measures are taken in the H-net's unit frame: the same at every scale and position.
