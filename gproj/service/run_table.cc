@@ -393,12 +393,8 @@ void RunTable::EvictFinished() {
 // its result; soft-free (RunContext::soft_free_start) unless soft_terms is true.
 RunRequest ResolveRequest(const FinishedRun& run, const nlohmann::json& body) {
   const ProblemSpec& spec = *run.request.spec;
-  const InputSpec* mesh_input = spec.FindInput("mesh");
-  const InputSpec* fixed_input = spec.FindInput("fixed");
-  const OutputSpec* output = nullptr;
-  for (const OutputSpec& o : spec.outputs)
-    if (o.kind == OutputKind::kMesh && o.same_connectivity) output = &o;
-  if (!mesh_input || !fixed_input || fixed_input->kind != InputKind::kVertexIds || !output)
+  const OutputSpec* output = spec.WarmResolveOutput();
+  if (!output)
     throw RequestError("run: " + spec.name +
                        " has no warm re-solve (it needs a mesh input, fixed vertices and a result "
                        "mesh of the input's connectivity)");
@@ -414,10 +410,7 @@ RunRequest ResolveRequest(const FinishedRun& run, const nlohmann::json& body) {
   if (body.contains("soft_terms") && !body.at("soft_terms").is_boolean())
     throw RequestError("soft_terms: expected true or false");
   RunRequest request = run.request;
-  PolyMesh mesh = run.result.meshes.at(output->name);
-  const int n = static_cast<int>(mesh.n_vertices());
-  std::set<int> fixed;
-  for (int v : request.inputs.VertexIds("fixed")) fixed.insert(v);
+  const int n = static_cast<int>(run.result.meshes.at(output->name).n_vertices());
   auto vertex = [n](const nlohmann::json& value, const std::string& where) {
     if (!value.is_number_integer()) throw RequestError(where + ": expected a vertex id");
     const long long v = value.get<long long>();
@@ -428,31 +421,32 @@ RunRequest ResolveRequest(const FinishedRun& run, const nlohmann::json& body) {
   };
   const nlohmann::json moved = body.value("moved", nlohmann::json::array());
   if (!moved.is_array()) throw RequestError("moved: expected a list of {\"vertex\", \"to\"}");
-  std::set<int> moved_ids;
+  std::vector<int> moved_ids, fixed;
+  std::vector<Eigen::Vector3d> to;
   for (std::size_t i = 0; i < moved.size(); ++i) {
     const std::string where = "moved[" + std::to_string(i) + "]";
     const nlohmann::json& edit = moved[i];
     if (!edit.is_object() || !edit.contains("vertex") || !edit.contains("to") || edit.size() != 2)
       throw RequestError(where + ": expected {\"vertex\": id, \"to\": [x, y, z]}");
     const int v = vertex(edit.at("vertex"), where + ".vertex");
-    if (!moved_ids.insert(v).second)
+    if (std::find(moved_ids.begin(), moved_ids.end(), v) != moved_ids.end())
       throw RequestError(where + ".vertex: vertex " + std::to_string(v) + " is moved twice");
-    const nlohmann::json& to = edit.at("to");
-    if (!to.is_array() || to.size() != 3)
+    const nlohmann::json& point = edit.at("to");
+    if (!point.is_array() || point.size() != 3)
       throw RequestError(where + ".to: expected a point [x, y, z]");
-    OpenMesh::Vec3d p;
+    Eigen::Vector3d p;
     for (int c = 0; c < 3; ++c) {
-      if (!to[c].is_number() || !std::isfinite(to[c].get<double>()))
+      if (!point[c].is_number() || !std::isfinite(point[c].get<double>()))
         throw RequestError(where + ".to[" + std::to_string(c) + "]: expected a finite number");
-      p[c] = to[c].get<double>();
+      p[c] = point[c].get<double>();
     }
-    mesh.set_point(mesh.vertex_handle(v), p);
-    fixed.insert(v);
+    moved_ids.push_back(v);
+    to.push_back(p);
   }
   const nlohmann::json more = body.value("fixed", nlohmann::json::array());
   if (!more.is_array()) throw RequestError("fixed: expected a list of vertex ids");
   for (std::size_t i = 0; i < more.size(); ++i)
-    fixed.insert(vertex(more[i], "fixed[" + std::to_string(i) + "]"));
+    fixed.push_back(vertex(more[i], "fixed[" + std::to_string(i) + "]"));
   if (body.contains("options")) {
     const nlohmann::json& options = body.at("options");
     if (!options.is_object()) throw RequestError("options: expected an object");
@@ -464,11 +458,7 @@ RunRequest ResolveRequest(const FinishedRun& run, const nlohmann::json& body) {
     }
     request.options = CompleteOptions(spec.options, request.options);
   }
-  request.inputs.meshes[mesh_input->name] = std::move(mesh);
-  request.inputs.vertex_ids[fixed_input->name].assign(fixed.begin(), fixed.end());
-  request.inputs.sources[fixed_input->name] = "fixed";
-  request.inputs.weld_maps.clear();  // the result is numbered as the welded mesh already
-  request.inputs.files.clear();
+  ApplyWarmEdit(spec, run.result.meshes.at(output->name), moved_ids, to, fixed, &request.inputs);
   request.weld = false;
   request.soft_free_start = !body.value("soft_terms", false);
   return request;

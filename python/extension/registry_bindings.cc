@@ -301,24 +301,25 @@ const ProblemSpec& SpecNamed(const std::string& name) {
   return *spec;
 }
 
-// _run(problem, positional, options, keywords, outputs, callback, weld) -> (outputs, arrays,
-// report, warnings, weld maps): the one entry of the package's functions (gproj/_problems.py).
-py::tuple Run(const std::string& name, const py::tuple& positional, const py::dict& options,
-              const py::dict& keywords, const py::object& outputs, const py::object& callback,
-              bool weld) {
-  const ProblemSpec& spec = SpecNamed(name);
-  CallArguments call;
-  const int num_vertices = ReadPositional(spec, positional, weld, &call.inputs);
-  for (const OutputSpec& output : spec.outputs)
-    if (output.required) call.outputs.insert(output.name);
-  ReadOutputNames(spec, outputs, &call.outputs);
-  ReadKeywords(spec, keywords, options, num_vertices, weld, &call);
-  call.callback = callback;
+// What Result.resolve starts from: a run's problem, inputs, options and outputs asked, and its
+// result mesh (the output spec.WarmResolveOutput() names), for the problems that have a warm
+// re-solve.
+struct WarmStart {
+  std::string problem;
+  RunInputs inputs;
+  nlohmann::json options;
+  std::set<std::string> outputs;
+  PolyMesh result;
+};
+
+// Runs the call; returns (outputs, arrays, report, warnings, weld maps, warm start or None).
+py::tuple RunCall(const ProblemSpec& spec, CallArguments call, bool soft_free_start) {
   RunBridge bridge(call.callback);
   RunContext context;
   context.on_record = bridge.callback();
   context.stop_requested = bridge.stop_poll();
   context.outputs = call.outputs;
+  context.soft_free_start = soft_free_start;
   RunResult result =
       bridge.Call([&] { return RunProblem(spec, call.inputs, call.options, context); });
   result.report.termination = SpellOptions(result.report.termination, false);
@@ -330,9 +331,68 @@ py::tuple Run(const std::string& name, const py::tuple& positional, const py::di
   py::dict weld_maps;
   for (const auto& [input, map] : call.inputs.weld_maps)
     weld_maps[input.c_str()] = py::array_t<int>(static_cast<py::ssize_t>(map.size()), map.data());
-  return py::make_tuple(
-      values, arrays, JsonToPython(RunResultJson(spec, result, call.options, call.inputs, nullptr)),
-      messages, weld_maps);
+  const py::object report =
+      JsonToPython(RunResultJson(spec, result, call.options, call.inputs, nullptr));
+  py::object warm = py::none();
+  const OutputSpec* output = spec.WarmResolveOutput();
+  if (output && !result.report.failed && result.meshes.count(output->name))
+    warm = py::capsule(
+        new WarmStart{spec.name, std::move(call.inputs), std::move(call.options), call.outputs,
+                      result.meshes.at(output->name)},
+        "gproj.WarmStart", [](PyObject* capsule) {
+          delete static_cast<WarmStart*>(PyCapsule_GetPointer(capsule, "gproj.WarmStart"));
+        });
+  return py::make_tuple(values, arrays, report, messages, weld_maps, warm);
+}
+
+// _run(problem, positional, options, keywords, outputs, callback, weld): the one entry of the
+// package's functions (gproj/_problems.py); see RunCall.
+py::tuple Run(const std::string& name, const py::tuple& positional, const py::dict& options,
+              const py::dict& keywords, const py::object& outputs, const py::object& callback,
+              bool weld) {
+  const ProblemSpec& spec = SpecNamed(name);
+  CallArguments call;
+  const int num_vertices = ReadPositional(spec, positional, weld, &call.inputs);
+  for (const OutputSpec& output : spec.outputs)
+    if (output.required) call.outputs.insert(output.name);
+  ReadOutputNames(spec, outputs, &call.outputs);
+  ReadKeywords(spec, keywords, options, num_vertices, weld, &call);
+  call.callback = callback;
+  return RunCall(spec, std::move(call), false);
+}
+
+// _resolve(warm, moved, to, fixed, options, soft_terms, callback): Result.resolve, a warm
+// re-solve from a run's result after an edit (ApplyWarmEdit); `options` override the run's
+// (None restores a default).
+py::tuple Resolve(const py::object& state, const std::vector<int>& moved,
+                  const std::vector<std::vector<double>>& to, const std::vector<int>& fixed,
+                  const py::dict& options, bool soft_terms, const py::object& callback) {
+  void* pointer = PyCapsule_IsValid(state.ptr(), "gproj.WarmStart")
+                      ? PyCapsule_GetPointer(state.ptr(), "gproj.WarmStart")
+                      : nullptr;
+  if (!pointer) throw py::type_error("warm: expected what _run gave back");
+  const WarmStart& warm = *static_cast<const WarmStart*>(pointer);
+  const ProblemSpec& spec = SpecNamed(warm.problem);
+  CallArguments call;
+  call.inputs = warm.inputs;
+  call.outputs = warm.outputs;
+  call.callback = callback;
+  std::vector<Eigen::Vector3d> points;
+  for (const auto& p : to) {
+    if (p.size() != 3) throw InputError("moved: expected points (x, y, z)");
+    points.emplace_back(p[0], p[1], p[2]);
+  }
+  ApplyWarmEdit(spec, warm.result, moved, points, fixed, &call.inputs);
+  nlohmann::json given = warm.options;
+  for (const auto& [key, value] : options) {
+    const std::string option = py::str(key);
+    if (value.is_none())
+      given.erase(option);
+    else
+      given[option] = PythonToJson(value);
+  }
+  call.options = given;
+  return RunCall(spec, std::move(call), !soft_terms);
 }
 
 }  // namespace
@@ -341,6 +401,9 @@ void BindRegistry(py::module_& m) {
   m.def("_run", &Run, py::arg("problem"), py::arg("positional"), py::arg("options"),
         py::arg("keywords"), py::arg("outputs"), py::arg("callback"), py::arg("weld"),
         "The run of a registry problem behind gproj's functions (gproj/_problems.py).");
+  m.def("_resolve", &Resolve, py::arg("warm"), py::arg("moved"), py::arg("to"), py::arg("fixed"),
+        py::arg("options"), py::arg("soft_terms"), py::arg("callback"),
+        "A warm re-solve from a run's result after an edit (Result.resolve).");
   m.def(
       "_check_options",
       [](const std::string& name, const py::dict& options) {

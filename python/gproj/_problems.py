@@ -16,6 +16,8 @@ import os
 import warnings
 from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 
+import numpy as np
+
 from gproj import _core
 from gproj._results import Mesh, Report, Result
 
@@ -366,9 +368,14 @@ class _Problem:
             raise TypeError("outputs: expected a sequence of output names, not str")
         raw = _core._run(name, tuple(positional), options, keywords, list(outputs),
                          given.get("callback"), weld)
-        meshes_and_texts, arrays, report, messages, weld_maps = raw
+        return self.wrap(raw)
+
+    def wrap(self, raw: Tuple[Any, ...]) -> Any:
+        """The result of a run from what _core._run or _core._resolve gives back."""
+        name = self.spec["name"]
+        meshes_and_texts, arrays, report, messages, weld_maps, warm = raw
         for message in messages:
-            warnings.warn(f"{name}: {message}", GprojWarning, stacklevel=3)
+            warnings.warn(f"{name}: {message}", GprojWarning, stacklevel=4)
         if self.spec["generator"]:
             return Mesh(*meshes_and_texts[main_output(self.spec)["name"]])
         values = {k: Mesh(*v) if isinstance(v, tuple) else v for k, v in meshes_and_texts.items()}
@@ -378,7 +385,49 @@ class _Problem:
         result.weld_maps = dict(weld_maps)
         first = next((i["name"] for i in self.spec["inputs"] if is_mesh_kind(i["kind"])), None)
         result.weld_map = result.weld_maps.get(first) if first else None
+        result._warm = (self, warm) if warm is not None else None
         return result
+
+    def resolve(self, warm: Any, moved: Any, fixed: Any, soft_terms: bool, callback: Any,
+                options: Dict[str, Any]) -> Any:
+        """Result.resolve's run (see there)."""
+        name = self.spec["name"]
+        ids: List[int] = []
+        to: List[List[float]] = []
+        if moved is not None:
+            if isinstance(moved, Mapping):
+                pairs = list(moved.items())
+            elif isinstance(moved, tuple) and len(moved) == 2:
+                pairs = list(zip(np.asarray(moved[0]).reshape(-1).tolist(),
+                                 np.asarray(moved[1], dtype=float).reshape(-1, 3).tolist()))
+                if len(pairs) != len(np.asarray(moved[0]).reshape(-1)):
+                    raise ValueError("moved: as (ids, positions), one position (x, y, z) per id")
+            else:
+                raise TypeError("moved: expected {vertex: (x, y, z)} or (ids, positions), not "
+                                f"{type(moved).__name__}")
+            for vertex, point in pairs:
+                if isinstance(vertex, bool) or not isinstance(vertex, (int, np.integer)):
+                    raise TypeError(f"moved: vertex ids are integers, not {vertex!r}")
+                p = np.asarray(point, dtype=float)
+                if p.shape != (3,):
+                    raise ValueError(f"moved: vertex {vertex}: expected a point (x, y, z), "
+                                     f"got shape {p.shape}")
+                ids.append(int(vertex))
+                to.append(p.tolist())
+        held: List[int] = []
+        if fixed is not None:
+            for vertex in np.asarray(fixed).reshape(-1).tolist():
+                if isinstance(vertex, bool) or not isinstance(vertex, int):
+                    raise TypeError(f"fixed: vertex ids are integers, not {vertex!r}")
+                held.append(vertex)
+        if not isinstance(soft_terms, bool):
+            raise TypeError(f"soft_terms: expected a bool, not {type(soft_terms).__name__}")
+        for key in options:
+            if key not in self.option_names:
+                close = difflib.get_close_matches(key, sorted(self.option_names), n=3)
+                hint = f"; did you mean {' or '.join(repr(c) for c in close)}?" if close else ""
+                raise TypeError(f"{name}: resolve() has no option '{key}'{hint}")
+        return self.wrap(_core._resolve(warm, ids, to, held, options, soft_terms, callback))
 
 
 def make_problems() -> Tuple[Dict[str, Callable[..., Any]], Dict[str, type], Dict[str, type]]:

@@ -78,6 +78,7 @@ class Result:
         # first mesh input, and per mesh input by name.
         self.weld_map: Optional[npt.NDArray[np.int32]] = None
         self.weld_maps: Dict[str, npt.NDArray[np.int32]] = {}
+        self._warm: Any = None  # (the problem's function object, _core._WarmStart) or None
         for name, value in list(self.outputs.items()) + list(self.arrays.items()):
             setattr(self, name, value)
 
@@ -91,6 +92,25 @@ class Result:
         """CONVERGENCE, DIRECT, COMPLETED (converged) or NO_CONVERGENCE, STALLED, USER_ABORT,
         FAILURE."""
         return str(self.report.status)
+
+    def resolve(self, moved: Any = None, fixed: Any = None, *, soft_terms: bool = False,
+                callback: Any = None, **options: Any) -> "Result":
+        """A warm re-solve after an edit, for the problems whose result is a mesh of the
+        input's connectivity (planarize, anet): starts from this result's vertices, puts the
+        vertices in `moved` ({vertex: (x, y, z)}, or (ids, positions) arrays) where asked and
+        holds them, holds the `fixed` ones (ids) too, beside those this run held, and re-runs
+        with this run's inputs and options (`options` override them; None restores a default).
+        Vertex ids are this result's (after any weld). The soft terms (closeness, fairness)
+        start off unless soft_terms=True, so the re-solve pulls back to the tolerance only what
+        the edit broke: one or two iterations after a small edit. Returns a new result; raises
+        ValueError for a vertex out of range, moved twice or a non-finite position, and
+        TypeError when the problem has no warm re-solve."""
+        warm = getattr(self, "_warm", None)
+        if warm is None:
+            raise TypeError(f"{self.problem}(): this result has no warm re-solve (planarize and "
+                            "anet results have one, when their run ended with a result)")
+        problem, state = warm
+        return problem.resolve(state, moved, fixed, soft_terms, callback, options)  # type: ignore[no-any-return]
 
     @property
     def mesh(self) -> Optional[Mesh]:

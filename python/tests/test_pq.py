@@ -1,9 +1,13 @@
 """planarize (gproj::pq): results and reports equal to the command line's, vertex control."""
+import pathlib
+
 import numpy as np
 import pytest
 
 import gproj
 from conftest import assert_close, compare_with_command_line
+
+DATA = pathlib.Path(__file__).resolve().parents[2] / "examples" / "data"
 
 
 @pytest.mark.parametrize("variant", ["gp", "ceres", "circular", "options", "control", "schedule",
@@ -82,3 +86,44 @@ def test_planarize_diagonal_keeps_the_quads():
         p = Vd[ring]
         n = np.cross(p[2] - p[0], p[3] - p[1])
         assert abs(np.dot(p[1] - p[0], n)) / np.linalg.norm(n) < 1e-8
+
+
+def test_a_result_resolves_warm_after_an_edit():
+    """Result.resolve: one vertex of a planarised 41 x 41 grid moved by 5% of an edge is held
+    exactly where it was put, and the quads are planar again within a few iterations, none
+    folded; a second edit holds the first vertex too; bad edits raise naming the vertex."""
+    V, F = gproj.grid(nu=41, nv=41, noise=0.05, seed=3)
+    first = gproj.planarize(V, F, fixed=[0])
+    assert first.converged
+    edge = np.linalg.norm(first.vertices[F[0][0]] - first.vertices[F[0][1]])
+    v = 20 * 41 + 20
+    target = first.vertices[v] + [0.0, 0.0, 0.05 * edge]
+    second = first.resolve({v: target})
+    assert second.converged, second.report.termination
+    assert second.report.iterations <= 3
+    assert second.report.soft_free_start is True
+    np.testing.assert_array_equal(second.vertices[v], target)
+    np.testing.assert_array_equal(second.vertices[0], first.vertices[0])  # still held
+    assert second.report.final["max_planarity"] <= 1e-6
+    assert second.report.final["non_convex_quads"] == 0
+    # Local: vertices more than 5 rows or columns away move by well under the edit.
+    moved = np.linalg.norm(second.vertices - first.vertices, axis=1) / (0.05 * edge)
+    i, j = np.divmod(np.arange(len(moved)), 41)
+    far = (np.abs(i - 20) > 5) | (np.abs(j - 20) > 5)
+    print(f"resolve: {second.report.iterations} iterations, nearby vertices up to "
+          f"{moved[~far].max():.2f}, far ones up to {moved[far].max():.2f} (95%: "
+          f"{np.percentile(moved[far], 95):.3f}) of the edit")
+    assert moved[far].max() < 0.75 and np.percentile(moved[far], 95) < 0.2
+    third = second.resolve(([v + 1], [first.vertices[v + 1] + [0.0, 0.0, 0.03 * edge]]),
+                           tolerance=1e-3)
+    assert third.converged and third.report.options["tolerance"] == 1e-3
+    np.testing.assert_array_equal(third.vertices[v], target)
+    with pytest.raises(ValueError, match="moved: vertex 99999 is out of range"):
+        first.resolve({99999: [0.0, 0.0, 0.0]})
+    with pytest.raises(ValueError, match="moved: the position of vertex 1 is not finite"):
+        first.resolve({1: [0.0, 0.0, np.inf]})
+    with pytest.raises(TypeError, match="did you mean 'tolerance'"):
+        first.resolve(tolerence=1e-3)
+    remeshed = gproj.remesh(*gproj.read_mesh(DATA / "monkey_saddle_tri.obj"), edge_length=0.15)
+    with pytest.raises(TypeError, match="no warm re-solve"):
+        remeshed.resolve({1: [0.0, 0.0, 0.0]})

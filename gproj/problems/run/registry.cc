@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <set>
 #include <stdexcept>
 
 #include "gproj/problems/run/report_json.h"
@@ -140,6 +141,14 @@ const InputSpec* ProblemSpec::FindInput(const std::string& input) const {
   return nullptr;
 }
 
+const OutputSpec* ProblemSpec::WarmResolveOutput() const {
+  const InputSpec* fixed = FindInput("fixed");
+  if (!FindInput("mesh") || !fixed || fixed->kind != InputKind::kVertexIds) return nullptr;
+  for (const OutputSpec& o : outputs)
+    if (o.kind == OutputKind::kMesh && o.same_connectivity) return &o;
+  return nullptr;
+}
+
 void Registry::Add(ProblemSpec spec) {
   const auto bad = [&spec](const std::string& why) {
     throw std::invalid_argument("registry: problem '" + spec.name + "': " + why);
@@ -216,9 +225,50 @@ nlohmann::json Registry::SchemaJson() const {
                         {"options", options},
                         {"arrays", arrays},
                         {"log_measures", spec.log_measures},
-                        {"generator", spec.generator}});
+                        {"generator", spec.generator},
+                        {"warm_resolve", spec.WarmResolveOutput() != nullptr}});
   }
   return {{"version", GprojVersion()}, {"problems", problems}};
+}
+
+void ApplyWarmEdit(const ProblemSpec& spec, PolyMesh result, const std::vector<int>& moved,
+                   const std::vector<Eigen::Vector3d>& to, const std::vector<int>& fixed,
+                   RunInputs* inputs) {
+  if (!spec.WarmResolveOutput())
+    throw InputError(spec.name +
+                     " has no warm re-solve (it needs a mesh input, fixed vertices and a result "
+                     "mesh of the input's connectivity)");
+  if (moved.size() != to.size())
+    throw InputError("moved: " + std::to_string(moved.size()) + " vertices but " +
+                     std::to_string(to.size()) + " positions");
+  const int n = static_cast<int>(result.n_vertices());
+  const auto check = [n](int v, const std::string& what) {
+    if (v < 0 || v >= n)
+      throw InputError(what + ": vertex " + std::to_string(v) + " is out of range (the mesh has " +
+                       std::to_string(n) + " vertices)");
+  };
+  std::set<int> held;
+  for (int v : inputs->VertexIds("fixed")) held.insert(v);
+  std::set<int> moved_once;
+  for (size_t i = 0; i < moved.size(); ++i) {
+    check(moved[i], "moved");
+    if (!moved_once.insert(moved[i]).second)
+      throw InputError("moved: vertex " + std::to_string(moved[i]) + " is moved twice");
+    if (!to[i].allFinite())
+      throw InputError("moved: the position of vertex " + std::to_string(moved[i]) +
+                       " is not finite");
+    result.set_point(result.vertex_handle(moved[i]), {to[i].x(), to[i].y(), to[i].z()});
+    held.insert(moved[i]);
+  }
+  for (int v : fixed) {
+    check(v, "fixed");
+    held.insert(v);
+  }
+  inputs->meshes["mesh"] = std::move(result);
+  inputs->vertex_ids["fixed"].assign(held.begin(), held.end());
+  inputs->sources["fixed"] = "fixed";
+  inputs->weld_maps.clear();
+  inputs->files.clear();
 }
 
 RunResult RunProblem(const ProblemSpec& spec, const RunInputs& inputs,

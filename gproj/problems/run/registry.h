@@ -195,6 +195,10 @@ struct ProblemSpec {
 
   const OptionSpec* FindOption(const std::string& name) const;
   const InputSpec* FindInput(const std::string& name) const;
+  // The output a warm re-solve starts from (RunContext::soft_free_start): a mesh of the input's
+  // connectivity, when the problem also has a "mesh" input and "fixed" vertex ids; null when it
+  // has no warm re-solve.
+  const OutputSpec* WarmResolveOutput() const;
 };
 
 class Registry {
@@ -215,6 +219,17 @@ class Registry {
  private:
   std::vector<ProblemSpec> problems_;
 };
+
+// A warm re-solve's inputs after an edit (a designer dragging or pinning vertices), from a run's
+// `inputs` and its `result` (the output spec.WarmResolveOutput() names, numbered as the mesh
+// input after any weld): the mesh input becomes `result` with the vertices `moved` put at `to`
+// and held, the vertices `fixed` held too, beside those the run held already; the weld maps
+// and file names are dropped (the result is numbered as the welded mesh). Run it with
+// RunContext::soft_free_start. Throws InputError naming the vertex (out of range, moved twice,
+// a non-finite position), or when the problem has no warm re-solve.
+void ApplyWarmEdit(const ProblemSpec& spec, PolyMesh result, const std::vector<int>& moved,
+                   const std::vector<Eigen::Vector3d>& to, const std::vector<int>& fixed,
+                   RunInputs* inputs);
 
 // The one run protocol: options checked and completed against the schema, then spec.run.
 // Throws InputError (OptionError for a bad option).
