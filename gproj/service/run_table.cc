@@ -422,6 +422,7 @@ RunRequest ResolveRequest(const FinishedRun& run, const nlohmann::json& body) {
   const nlohmann::json moved = body.value("moved", nlohmann::json::array());
   if (!moved.is_array()) throw RequestError("moved: expected a list of {\"vertex\", \"to\"}");
   std::vector<int> moved_ids, fixed;
+  std::set<int> moved_once;
   std::vector<Eigen::Vector3d> to;
   for (std::size_t i = 0; i < moved.size(); ++i) {
     const std::string where = "moved[" + std::to_string(i) + "]";
@@ -429,7 +430,7 @@ RunRequest ResolveRequest(const FinishedRun& run, const nlohmann::json& body) {
     if (!edit.is_object() || !edit.contains("vertex") || !edit.contains("to") || edit.size() != 2)
       throw RequestError(where + ": expected {\"vertex\": id, \"to\": [x, y, z]}");
     const int v = vertex(edit.at("vertex"), where + ".vertex");
-    if (std::find(moved_ids.begin(), moved_ids.end(), v) != moved_ids.end())
+    if (!moved_once.insert(v).second)
       throw RequestError(where + ".vertex: vertex " + std::to_string(v) + " is moved twice");
     const nlohmann::json& point = edit.at("to");
     if (!point.is_array() || point.size() != 3)

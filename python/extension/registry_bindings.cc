@@ -386,10 +386,14 @@ py::tuple Resolve(const py::object& state, const std::vector<int>& moved,
   nlohmann::json given = warm.options;
   for (const auto& [key, value] : options) {
     const std::string option = py::str(key);
-    if (value.is_none())
-      given.erase(option);
-    else
-      given[option] = PythonToJson(value);
+    try {
+      if (value.is_none())
+        given.erase(option);
+      else
+        given[option] = PythonToJson(value);
+    } catch (const InputError& e) {
+      TypeError(option + ": " + e.what());
+    }
   }
   call.options = given;
   return RunCall(spec, std::move(call), !soft_terms);

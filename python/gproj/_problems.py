@@ -388,38 +388,62 @@ class _Problem:
         result._warm = (self, warm) if warm is not None else None
         return result
 
-    def resolve(self, warm: Any, moved: Any, fixed: Any, soft_terms: bool, callback: Any,
-                options: Dict[str, Any]) -> Any:
+    def resolve(self, warm: Any, num_vertices: int, moved: Any, fixed: Any, soft_terms: bool,
+                callback: Any, options: Dict[str, Any]) -> Any:
         """Result.resolve's run (see there)."""
         name = self.spec["name"]
+
+        def vertex_id(value: Any, what: str) -> int:
+            if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+                raise TypeError(f"{what}: vertex ids are integers, not {value!r}")
+            if not 0 <= int(value) < num_vertices:
+                raise ValueError(f"{what}: vertex {int(value)} is out of range (the mesh has "
+                                 f"{num_vertices} vertices)")
+            return int(value)
+
+        def point(value: Any, vertex: int) -> List[float]:
+            try:
+                p = np.asarray(value, dtype=float)
+            except (TypeError, ValueError):
+                raise TypeError(f"moved: vertex {vertex}: expected a point (x, y, z) of numbers"
+                                ) from None
+            if p.shape != (3,):
+                raise ValueError(f"moved: vertex {vertex}: expected a point (x, y, z), "
+                                 f"got shape {p.shape}")
+            return [float(c) for c in p]
+
         ids: List[int] = []
         to: List[List[float]] = []
         if moved is not None:
             if isinstance(moved, Mapping):
                 pairs = list(moved.items())
             elif isinstance(moved, tuple) and len(moved) == 2:
-                pairs = list(zip(np.asarray(moved[0]).reshape(-1).tolist(),
-                                 np.asarray(moved[1], dtype=float).reshape(-1, 3).tolist()))
-                if len(pairs) != len(np.asarray(moved[0]).reshape(-1)):
-                    raise ValueError("moved: as (ids, positions), one position (x, y, z) per id")
+                given_ids = np.asarray(moved[0]).reshape(-1).tolist()
+                try:
+                    positions = np.asarray(moved[1], dtype=float)
+                except (TypeError, ValueError):
+                    raise TypeError("moved: the positions are not numbers") from None
+                if positions.shape != (len(given_ids), 3):
+                    raise ValueError(f"moved: {len(given_ids)} ids but positions of shape "
+                                     f"{positions.shape} (expected ({len(given_ids)}, 3))")
+                pairs = list(zip(given_ids, positions))
             else:
                 raise TypeError("moved: expected {vertex: (x, y, z)} or (ids, positions), not "
                                 f"{type(moved).__name__}")
-            for vertex, point in pairs:
-                if isinstance(vertex, bool) or not isinstance(vertex, (int, np.integer)):
-                    raise TypeError(f"moved: vertex ids are integers, not {vertex!r}")
-                p = np.asarray(point, dtype=float)
-                if p.shape != (3,):
-                    raise ValueError(f"moved: vertex {vertex}: expected a point (x, y, z), "
-                                     f"got shape {p.shape}")
-                ids.append(int(vertex))
-                to.append(p.tolist())
+            for vertex, position in pairs:
+                v = vertex_id(vertex, "moved")
+                ids.append(v)
+                to.append(point(position, v))
         held: List[int] = []
         if fixed is not None:
-            for vertex in np.asarray(fixed).reshape(-1).tolist():
-                if isinstance(vertex, bool) or not isinstance(vertex, int):
-                    raise TypeError(f"fixed: vertex ids are integers, not {vertex!r}")
-                held.append(vertex)
+            array = np.asarray(fixed)
+            if array.dtype == bool:
+                if array.shape != (num_vertices,):
+                    raise ValueError(f"fixed: a mask has one entry per vertex ({num_vertices}), "
+                                     f"not shape {array.shape}")
+                held = [int(v) for v in np.flatnonzero(array)]
+            else:
+                held = [vertex_id(v, "fixed") for v in array.reshape(-1).tolist()]
         if not isinstance(soft_terms, bool):
             raise TypeError(f"soft_terms: expected a bool, not {type(soft_terms).__name__}")
         for key in options:

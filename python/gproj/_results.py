@@ -104,13 +104,23 @@ class Result:
         start off unless soft_terms=True, so the re-solve pulls back to the tolerance only what
         the edit broke: one or two iterations after a small edit. Returns a new result; raises
         ValueError for a vertex out of range, moved twice or a non-finite position, and
-        TypeError when the problem has no warm re-solve."""
+        TypeError when the problem has no warm re-solve (or the result was pickled or copied,
+        which drops what the re-solve starts from)."""
         warm = getattr(self, "_warm", None)
         if warm is None:
             raise TypeError(f"{self.problem}(): this result has no warm re-solve (planarize and "
                             "anet results have one, when their run ended with a result)")
         problem, state = warm
-        return problem.resolve(state, moved, fixed, soft_terms, callback, options)  # type: ignore[no-any-return]
+        assert self.vertices is not None
+        return problem.resolve(state, len(self.vertices), moved, fixed,  # type: ignore[no-any-return]
+                               soft_terms, callback, options)
+
+    def __getstate__(self) -> Dict[str, Any]:
+        # Pickled and deep-copied results drop what resolve starts from (a handle to the
+        # library's copy of the run): they cannot re-solve.
+        state = dict(self.__dict__)
+        state["_warm"] = None
+        return state
 
     @property
     def mesh(self) -> Optional[Mesh]:

@@ -1,5 +1,6 @@
 """planarize (gproj::pq): results and reports equal to the command line's, vertex control."""
 import pathlib
+import pickle
 
 import numpy as np
 import pytest
@@ -124,6 +125,15 @@ def test_a_result_resolves_warm_after_an_edit():
         first.resolve({1: [0.0, 0.0, np.inf]})
     with pytest.raises(TypeError, match="did you mean 'tolerance'"):
         first.resolve(tolerence=1e-3)
+    with pytest.raises(ValueError, match=r"moved: 1 ids but positions of shape \(2, 3\)"):
+        first.resolve(([v], [target, target]))
+    with pytest.raises(ValueError, match="fixed: vertex -1 is out of range"):
+        first.resolve(fixed=[-1])
+    # A pickled result keeps everything but what the re-solve starts from.
+    copied = pickle.loads(pickle.dumps(first))
+    np.testing.assert_array_equal(copied.vertices, first.vertices)
+    with pytest.raises(TypeError, match="no warm re-solve"):
+        copied.resolve({v: target})
     remeshed = gproj.remesh(*gproj.read_mesh(DATA / "monkey_saddle_tri.obj"), edge_length=0.15)
     with pytest.raises(TypeError, match="no warm re-solve"):
         remeshed.resolve({1: [0.0, 0.0, 0.0]})

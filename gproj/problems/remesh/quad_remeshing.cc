@@ -353,6 +353,15 @@ std::vector<std::vector<int>> HandleArcs(const PolyMesh& m, const std::vector<ch
   };
   std::vector<std::vector<int>> arcs;
   const auto try_arc = [&](std::vector<int> arc) {
+    // A simple arc between two boundary vertices, its inner vertices off the boundary (one that
+    // touched the boundary would be two arcs, or run along a boundary edge).
+    if (arc.size() < 2 || arc.front() == arc.back() ||
+        !m.is_boundary(m.vertex_handle(arc.front())) || !m.is_boundary(m.vertex_handle(arc.back())))
+      return;
+    for (size_t i = 1; i + 1 < arc.size(); ++i)
+      if (m.is_boundary(m.vertex_handle(arc[i]))) return;
+    for (size_t i = 0; i + 1 < arc.size(); ++i)
+      if (m.is_boundary(m.edge_handle(HalfedgeBetween(m, arc[i], arc[i + 1])))) return;
     std::vector<int> arc_edges;
     for (size_t i = 0; i + 1 < arc.size(); ++i)
       arc_edges.push_back(m.edge_handle(HalfedgeBetween(m, arc[i], arc[i + 1])).idx());
@@ -362,11 +371,17 @@ std::vector<std::vector<int>> HandleArcs(const PolyMesh& m, const std::vector<ch
   };
   for (int e : loop_edges) {
     const auto h = m.halfedge_handle(m.edge_handle(e), 0);
-    const int a = m.from_vertex_handle(h).idx(), b = m.to_vertex_handle(h).idx();
-    const std::vector<int> first = tree_path(a);
-    if (std::find(first.begin(), first.end(), b) != first.end()) continue;
+    int a = m.from_vertex_handle(h).idx(), b = m.to_vertex_handle(h).idx();
+    std::vector<int> first = tree_path(a);
+    if (std::find(first.begin(), first.end(), b) != first.end()) {  // b above a: start from b
+      std::swap(a, b);
+      first = tree_path(a);
+    }
     std::vector<char> around = blocked;
     for (int v : first) around[v] = 1;
+    std::vector<char> apart = around;  // also away from the boundary next to a's root
+    for (auto r : m.vv_range(m.vertex_handle(root[a])))
+      if (next_on_boundary(root[a], r.idx())) apart[r.idx()] = 1;
     // The way back from b to a boundary vertex not next to a's root (so that the arc leaves
     // free boundary vertices on both of its sides), then T's own path, then any.
     for (int kind = 0; kind < 3; ++kind) {
@@ -376,13 +391,10 @@ std::vector<std::vector<int>> HandleArcs(const PolyMesh& m, const std::vector<ch
         rest = tree_path(b);
         std::reverse(rest.begin(), rest.end());
       } else {
+        if (kind == 0 && apart[b]) continue;
         rest = ShortestPath(
-            m, {b},
-            [&](int v) {
-              return m.is_boundary(m.vertex_handle(v)) &&
-                     !(kind == 0 && next_on_boundary(root[a], v));
-            },
-            around);
+            m, {b}, [&](int v) { return m.is_boundary(m.vertex_handle(v)); },
+            kind == 0 ? apart : around);
       }
       if (rest.empty() || !m.is_boundary(m.vertex_handle(rest.back()))) continue;
       std::vector<int> arc = first;
@@ -395,11 +407,13 @@ std::vector<std::vector<int>> HandleArcs(const PolyMesh& m, const std::vector<ch
 
 // Cuts `arcs` more arcs around the handles (HandleArcs), each keeping the next ones possible:
 // an arc after which the rest cannot be cut is taken back and the next one tried, up to
-// *attempts arcs in all. Whether it succeeded; the arcs are added to *paths, their vertices
-// to `blocked` and their edges to `cut`.
-bool CutAroundHandles(const PolyMesh& m, int arcs, int* attempts, std::vector<char>* blocked,
-                      std::vector<char>* cut, std::vector<std::vector<int>>* paths) {
+// *attempts arcs in all (polling `stop` between them). Whether it succeeded; the arcs are added to
+// *paths, their vertices to `blocked` and their edges to `cut`.
+bool CutAroundHandles(const PolyMesh& m, int arcs, int* attempts, const StopPoll& stop,
+                      std::vector<char>* blocked, std::vector<char>* cut,
+                      std::vector<std::vector<int>>* paths) {
   if (arcs == 0) return true;
+  PollStop(stop, "the cut around the handles");
   for (const std::vector<int>& arc : HandleArcs(m, *blocked, cut)) {
     if (--*attempts < 0) return false;
     std::vector<int> arc_edges;
@@ -408,7 +422,7 @@ bool CutAroundHandles(const PolyMesh& m, int arcs, int* attempts, std::vector<ch
     for (int v : arc) (*blocked)[v] = 1;
     for (int c : arc_edges) (*cut)[c] = 1;
     paths->push_back(arc);
-    if (CutAroundHandles(m, arcs - 1, attempts, blocked, cut, paths)) return true;
+    if (CutAroundHandles(m, arcs - 1, attempts, stop, blocked, cut, paths)) return true;
     paths->pop_back();
     for (int v : arc) (*blocked)[v] = 0;
     for (int c : arc_edges) (*cut)[c] = 0;
@@ -420,11 +434,11 @@ bool CutAroundHandles(const PolyMesh& m, int arcs, int* attempts, std::vector<ch
 // and each other, the faces still connected across the edges not `cut`): cut along them and the
 // holes' paths a surface of genus g is a disk. The arcs' vertices are added to `blocked` and
 // their edges to `cut`.
-std::vector<std::vector<int>> HandlePaths(const PolyMesh& m, int handles,
+std::vector<std::vector<int>> HandlePaths(const PolyMesh& m, int handles, const StopPoll& stop,
                                           std::vector<char>* blocked, std::vector<char>* cut) {
   std::vector<std::vector<int>> paths;
-  int attempts = 64 * std::max(handles, 1);
-  if (!CutAroundHandles(m, 2 * handles, &attempts, blocked, cut, &paths))
+  int attempts = 16 * handles;
+  if (!CutAroundHandles(m, 2 * handles, &attempts, stop, blocked, cut, &paths))
     throw InputError("the surface's " + std::to_string(handles) + " handle" +
                      (handles == 1 ? "" : "s") +
                      " cannot be cut open without crossing a frame singularity or another cut "
@@ -593,7 +607,7 @@ struct Cuts {
 };
 
 Cuts CutAlongPaths(const PolyMesh& m, const std::vector<FrameSingularity>& singularities,
-                   int handles, std::vector<int>* cut_edges) {
+                   int handles, const StopPoll& stop, std::vector<int>* cut_edges) {
   Cuts c;
   std::vector<char> blocked(m.n_vertices(), 0);
   for (const FrameSingularity& s : singularities) blocked[s.vertex] = 1;
@@ -602,7 +616,8 @@ Cuts CutAlongPaths(const PolyMesh& m, const std::vector<FrameSingularity>& singu
   for (const auto& path : c.paths)
     for (size_t i = 0; i + 1 < path.size(); ++i)
       c.cut[m.edge_handle(HalfedgeBetween(m, path[i], path[i + 1])).idx()] = 1;
-  for (auto& arc : HandlePaths(m, handles, &blocked, &c.cut)) c.paths.push_back(std::move(arc));
+  for (auto& arc : HandlePaths(m, handles, stop, &blocked, &c.cut))
+    c.paths.push_back(std::move(arc));
   c.arcs = static_cast<int>(c.paths.size());
   for (int k = 0; k < c.arcs; ++k) c.translation.push_back(k);
   for (auto& path : SingularityPaths(m, singularities, &blocked)) {
@@ -881,7 +896,7 @@ FieldParametrization ParametrizeAlongField(const PolyMesh& triangles, const Dire
   out.singularities = FrameSingularities(s);
   RefuseSingularitiesNoQuadCanFollow(out.singularities);
   out.handles = static_cast<int>((2 - out.boundary_loops - EulerCharacteristic(m)) / 2);
-  Cuts cuts = CutAlongPaths(m, out.singularities, out.handles, &out.cut_edges);
+  Cuts cuts = CutAlongPaths(m, out.singularities, out.handles, options.fit.stop, &out.cut_edges);
   CombFrames(m, cuts, &s);
   FindPathTurns(m, s, &cuts);
   FindRightSides(m, s, &cuts);
