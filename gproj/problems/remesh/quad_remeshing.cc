@@ -254,22 +254,26 @@ PolyMesh::HalfedgeHandle HalfedgeBetween(const PolyMesh& m, int a, int b) {
   return m.find_halfedge(m.vertex_handle(a), m.vertex_handle(b));
 }
 
-// Whether the faces stay one piece across the edges not `cut` (nor boundary).
-bool FacesConnected(const PolyMesh& m, const std::vector<char>& cut) {
+// Faces joined by edges (not `cut` ones, when given): the number of pieces.
+int FaceComponents(const PolyMesh& m, const std::vector<char>* cut = nullptr) {
   std::vector<char> seen(m.n_faces(), 0);
-  std::vector<int> stack = {0};
-  seen[0] = 1;
-  size_t reached = 1;
-  while (!stack.empty()) {
-    const auto f = m.face_handle(stack.back());
-    stack.pop_back();
-    for (auto h : m.fh_range(f)) {
-      const auto g = m.opposite_face_handle(h);
-      if (g.is_valid() && !seen[g.idx()] && !cut[m.edge_handle(h).idx()])
-        seen[g.idx()] = 1, ++reached, stack.push_back(g.idx());
+  int components = 0;
+  for (auto start : m.faces()) {
+    if (seen[start.idx()]) continue;
+    ++components;
+    std::vector<int> stack = {start.idx()};
+    seen[start.idx()] = 1;
+    while (!stack.empty()) {
+      const auto f = m.face_handle(stack.back());
+      stack.pop_back();
+      for (auto h : m.fh_range(f)) {
+        const auto g = m.opposite_face_handle(h);
+        if (g.is_valid() && !seen[g.idx()] && !(cut && (*cut)[m.edge_handle(h).idx()]))
+          seen[g.idx()] = 1, stack.push_back(g.idx());
+      }
     }
   }
-  return reached == m.n_faces();
+  return components;
 }
 
 // Faces in a union–find forest, for the dual spanning tree.
@@ -366,7 +370,7 @@ std::vector<std::vector<int>> HandleArcs(const PolyMesh& m, const std::vector<ch
     for (size_t i = 0; i + 1 < arc.size(); ++i)
       arc_edges.push_back(m.edge_handle(HalfedgeBetween(m, arc[i], arc[i + 1])).idx());
     for (int c : arc_edges) (*cut)[c] = 1;
-    if (FacesConnected(m, *cut)) arcs.push_back(std::move(arc));
+    if (FaceComponents(m, cut) == 1) arcs.push_back(std::move(arc));
     for (int c : arc_edges) (*cut)[c] = 0;
   };
   for (int e : loop_edges) {
@@ -377,6 +381,7 @@ std::vector<std::vector<int>> HandleArcs(const PolyMesh& m, const std::vector<ch
       std::swap(a, b);
       first = tree_path(a);
     }
+    std::vector<std::vector<int>> tried;  // the kinds' arcs often coincide
     std::vector<char> around = blocked;
     for (int v : first) around[v] = 1;
     std::vector<char> apart = around;  // also away from the boundary next to a's root
@@ -399,6 +404,8 @@ std::vector<std::vector<int>> HandleArcs(const PolyMesh& m, const std::vector<ch
       if (rest.empty() || !m.is_boundary(m.vertex_handle(rest.back()))) continue;
       std::vector<int> arc = first;
       arc.insert(arc.end(), rest.begin(), rest.end());
+      if (std::find(tried.begin(), tried.end(), arc) != tried.end()) continue;
+      tried.push_back(arc);
       try_arc(std::move(arc));
     }
   }
@@ -471,27 +478,6 @@ std::vector<std::vector<int>> SingularityPaths(const PolyMesh& m,
     paths.push_back(path);
   }
   return paths;
-}
-
-// Faces joined by edges: the number of pieces.
-int FaceComponents(const PolyMesh& m) {
-  std::vector<char> seen(m.n_faces(), 0);
-  int components = 0;
-  for (auto start : m.faces()) {
-    if (seen[start.idx()]) continue;
-    ++components;
-    std::vector<int> stack = {start.idx()};
-    seen[start.idx()] = 1;
-    while (!stack.empty()) {
-      const auto f = m.face_handle(stack.back());
-      stack.pop_back();
-      for (auto h : m.fh_range(f)) {
-        const auto g = m.opposite_face_handle(h);
-        if (g.is_valid() && !seen[g.idx()]) seen[g.idx()] = 1, stack.push_back(g.idx());
-      }
-    }
-  }
-  return components;
 }
 
 // V − E + F over the vertices faces use.
