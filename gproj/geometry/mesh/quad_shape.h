@@ -4,7 +4,9 @@
 // Corner i of quad (v0, v1, v2, v3) is measured in the plane of the diagonals' normal
 // N = (v2 − v0) × (v3 − v1): its signed sine
 //   sin∠_i = ((v_{i+1} − v_i) × (v_{i−1} − v_i)) · N / (|v_{i+1} − v_i| |v_{i−1} − v_i| |N|)
-// is negative at a reflex or folded corner, so a quad is convex when all four are positive.
+// is negative at a reflex or folded corner. A quad is convex when all four are positive and it
+// also turns one way at every corner seen along its best-fit plane's normal (a thin skew quad
+// can pass the first test and still cross itself when laid flat).
 
 #include <Eigen/Core>
 #include <array>
@@ -42,7 +44,7 @@ void QuadCornerSines(const T* v0, const T* v1, const T* v2, const T* v3, T* sine
 }
 
 struct QuadShape {
-  bool convex = true;              // all four corner sines > 0
+  bool convex = true;              // all four corner sines > 0, and convex in the best-fit plane
   double min_angle_deg = 0.0;      // smallest corner angle in the diagonals' plane (a reflex
                                    // corner counts as 360° minus its turn, so > 180°)
   double kink_deg = 0.0;           // angle between the normals of the two triangles (larger of

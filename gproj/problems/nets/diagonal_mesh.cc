@@ -1,6 +1,7 @@
 #include "gproj/problems/nets/diagonal_mesh.h"
 
 #include "gproj/common/input_error.h"
+#include "gproj/problems/mesh/panel_bounds.h"
 #include "gproj/problems/nets/hnet.h"
 
 namespace gproj::nets {
@@ -80,6 +81,16 @@ DiagonalMesh MakeDiagonalMesh(const PolyMesh& quads, int colour, DiagonalRings w
                        std::to_string(out.face_centres[out.mesh.n_faces()]));
   }
   return out;
+}
+
+std::string FacesNamed(const std::vector<int>& faces, const DiagonalMesh* diagonal) {
+  if (!diagonal) return FaceList(faces);
+  constexpr size_t kShown = 10;
+  std::string text = faces.size() == 1 ? "the ring of vertex " : "the rings of vertices ";
+  for (size_t i = 0; i < faces.size() && i < kShown; ++i)
+    text += (i > 0 ? ", " : "") + std::to_string(diagonal->face_centres[faces[i]]);
+  if (faces.size() > kShown) text += " (and " + std::to_string(faces.size() - kShown) + " more)";
+  return text;
 }
 
 }  // namespace gproj::nets

@@ -39,4 +39,8 @@ DiagonalMesh MakeDiagonalMesh(const PolyMesh& quads, int colour, DiagonalRings r
 // both colours, when neither has a face).
 DiagonalMesh MakeDiagonalFaces(const PolyMesh& quads, int colour);
 
+// Faces for messages: by id ("faces 3, 17 (and 12 more)"), or, of a diagonal mesh, by the
+// quad-mesh vertex each is the ring of ("the rings of vertices 40, 52").
+std::string FacesNamed(const std::vector<int>& faces, const DiagonalMesh* diagonal);
+
 }  // namespace gproj::nets

@@ -13,6 +13,7 @@
 #include "gproj/constraints/frame_point_planarity.h"
 #include "gproj/geometry/mesh/closest_point.h"
 #include "gproj/geometry/mesh/scale_free.h"
+#include "gproj/problems/mesh/panel_bounds.h"
 #include "gproj/solver/inequality.h"
 
 namespace gproj::nets {
@@ -426,6 +427,7 @@ struct VertexUpdate {
   int shape_block = -1;                  // weights as unknowns: W per face
   std::vector<EdgeStencil> stencils;     // per inner edge
   VertexControl control;                 // held and gliding vertices, as in the A-net step
+  PanelBounds bounds;                    // the A-net step's corner and edge bounds
   PolyMesh start;                        // the mesh the update was built from (held positions)
 };
 
@@ -470,6 +472,7 @@ std::unique_ptr<VertexUpdate> BuildVertexUpdate(const PolyMesh& mesh,
   LoadVertices(mesh, u->norm, u->vertex_block, &problem);
   LoadANetNormals(mesh, u->vertex_block, anet, &problem);
   AddANetFamilies(mesh, options.anet, u->vertex_block, anet, &reference, u->norm, &problem);
+  u->bounds = AddPanelBounds(mesh, u->norm, u->vertex_block, options.anet.panels, &problem);
   u->control = ApplyVertexControl(mesh, u->norm, u->vertex_block, options.anet.vertices, &problem);
   u->start = mesh;
   for (auto e : inner_edges) u->stencils.push_back(EdgeStencilOf(mesh, colour, e));
@@ -726,6 +729,7 @@ bool HNet::SolveJointly(int round, double soft_scale, const PolyMesh& reference,
   const VariableLayout& layout = update->problem.layout();
   for (size_t f = 0; f < w_.size(); ++f)
     w_[f] = update->problem.x()[layout.Index(update->shape_block, static_cast<int>(f), 0)];
+  summary->faces_at_angle_bound = FacesAtCornerBound(mesh_, update->bounds);
   HNetRound joint = MeasureRound(round);
   joint.solver_iterations = s.steps;
   joint.vertex_update_converged = s.converged;
@@ -799,6 +803,7 @@ void HNet::RunRounds(const PolyMesh& reference, const RoundCallback& on_round, S
     summary->rounds.push_back(r);
     if (on_round) on_round(r);
     if (last) {
+      summary->faces_at_angle_bound = FacesAtCornerBound(mesh_, update->bounds);
       // Settled weights are not enough: the stars must be planar to the tolerance, which a
       // vertex update cut short by iterations_per_round can leave them not quite; a joint solve
       // of vertices and weights from the settled state (soft terms as in the rounds) finishes.
@@ -905,6 +910,7 @@ nlohmann::json HNet::ReportFacts(const HNetSummary& summary) {
   return {{"rounds", rounds},
           {"worst_edges", summary.worst_edges},
           {"simply_connected", summary.simply_connected},
+          {"faces_at_angle_bound", summary.faces_at_angle_bound},
           {"equitwist_violations", violations}};
 }
 

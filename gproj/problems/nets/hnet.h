@@ -147,6 +147,9 @@ struct HNetSummary {
   // {"vertices": [a, b], "tangent_angle_deg": angle}.
   nlohmann::json worst_edges = nlohmann::json::array();
   bool simply_connected = true;
+  // The faces whose corners sit on their corner-angle bound after the last vertex update (the
+  // updates keep the A-net step's panel bounds): where the bound blocks the frame rows.
+  std::vector<int> faces_at_angle_bound;
 };
 
 // A round as named values (the report's keys): round, max_tangent_angle_deg, weight_change,

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "gproj/geometry/mesh/quad_shape.h"
 #include "gproj/geometry/render/svg_render.h"
 #include "gproj/problems/nets/anet_options.h"
 #include "gproj/problems/nets/diagonal_mesh.h"
@@ -216,6 +217,26 @@ RunResult Run(const RunInputs& inputs, const nlohmann::json& values, const RunCo
         RenderMeshSvg(SampleHNetSurface(hnet->mesh(), hnet->weights(), 2), svg);
   }
   Describe(summary, options, reference != nullptr, &result);
+  std::vector<int> non_convex;
+  const std::vector<QuadShape> shapes = MeasureQuadShapes(hnet->mesh());
+  for (std::size_t f = 0; f < shapes.size(); ++f)
+    if (!shapes[f].convex) non_convex.push_back(static_cast<int>(f));
+  if (!non_convex.empty())
+    result.shortfalls.push_back(
+        std::to_string(non_convex.size()) +
+        " quads are not convex (a reflex corner, or, for a twisted thin quad whose corners keep "
+        "their bound in the plane of its diagonals, crossing itself when laid flat along its "
+        "best-fit plane): " +
+        FacesNamed(non_convex, diagonal ? &diagonal_mesh : nullptr));
+  if (!result.report.converged && !summary.faces_at_angle_bound.empty()) {
+    char bound[64];
+    std::snprintf(bound, sizeof(bound), "%g", options.anet.panels.min_angle_deg);
+    result.shortfalls.push_back(
+        std::to_string(summary.faces_at_angle_bound.size()) +
+        " quads sit on their corner-angle bound (`min_angle` " + bound +
+        "), which keeps them from folding where the frame rows pull: " +
+        FacesNamed(summary.faces_at_angle_bound, diagonal ? &diagonal_mesh : nullptr));
+  }
   if (!result.report.converged && !BoundaryControlNote(options.anet.vertices).empty())
     result.shortfalls.push_back(BoundaryControlNote(options.anet.vertices));
   return result;

@@ -73,17 +73,6 @@ const OptionSchema<PlanarizeSettings>& Schema() {
   return schema;
 }
 
-// Faces by id, or with net diagonal by the vertex each is the ring of.
-std::string FacesNamed(const std::vector<int>& faces, const nets::DiagonalMesh* diagonal) {
-  if (!diagonal) return FaceList(faces);
-  constexpr size_t kShown = 10;
-  std::string text = faces.size() == 1 ? "the ring of vertex " : "the rings of vertices ";
-  for (size_t i = 0; i < faces.size() && i < kShown; ++i)
-    text += (i > 0 ? ", " : "") + std::to_string(diagonal->face_centres[faces[i]]);
-  if (faces.size() > kShown) text += " (and " + std::to_string(faces.size() - kShown) + " more)";
-  return text;
-}
-
 void AddShortfalls(const PQPlanarization& pq, const std::string& panels,
                    const nets::DiagonalMesh* diagonal, RunResult* result) {
   const PQPlanarizationOptions& options = pq.options();
@@ -91,14 +80,14 @@ void AddShortfalls(const PQPlanarization& pq, const std::string& panels,
   if (!above.empty())
     result->shortfalls.push_back(
         std::to_string(above.size()) + " " + panels +
-        " above the tolerance, worst first: " + FacesNamed(above, diagonal));
+        " above the tolerance, worst first: " + nets::FacesNamed(above, diagonal));
   const std::vector<int> held = pq.FacesAtAngleBound();
   char bound[64];
   std::snprintf(bound, sizeof(bound), "%g", options.panels.min_angle_deg);
   if (!held.empty())
     result->shortfalls.push_back(std::to_string(held.size()) + " " + panels +
                                  " sit on their corner-angle bound (`min_angle` " + bound +
-                                 "): " + FacesNamed(held, diagonal));
+                                 "): " + nets::FacesNamed(held, diagonal));
   const double outside = ValueOf(pq.MeasureAt(pq.problem().x()), "out_of_range_edges");
   if (outside > 0.0)
     result->shortfalls.push_back(std::to_string(static_cast<int>(outside)) +

@@ -46,6 +46,23 @@ TEST(QuadShapeTest, KinkAndDiagonalDistanceOfASkewQuad) {
   EXPECT_LT(s.kink_deg, 20.0);
 }
 
+TEST(QuadShapeTest, ThinSkewQuadCrossingItselfInItsBestFitPlaneIsNotConvex) {
+  // Long and thin, twisted: every corner sine is positive in the diagonals' plane (0.46, 0.003,
+  // 0.095, 0.54), but seen along the best-fit plane's normal (3.9° from the diagonals') the
+  // corner at v1 turns the other way, so laid flat the quad crosses itself.
+  const V p[4] = {V(-1.3, 0.5, -0.6), V(4.5, 0.7, 0.3), V(4.9, 0.7, 0.4), V(-0.4, 1.0, -0.3)};
+  double sines[4];
+  QuadCornerSines(p[0].data(), p[1].data(), p[2].data(), p[3].data(), sines);
+  for (double sine : sines) EXPECT_GT(sine, 0.0);
+  EXPECT_FALSE(MeasureQuadShape(p[0], p[1], p[2], p[3]).convex);
+  // The same quad in the other orientation, and moved and scaled: the same answer.
+  EXPECT_FALSE(MeasureQuadShape(p[3], p[2], p[1], p[0]).convex);
+  const V shift(1e3, -2e3, 5e2);
+  EXPECT_FALSE(MeasureQuadShape(1e-4 * p[0] + shift, 1e-4 * p[1] + shift, 1e-4 * p[2] + shift,
+                                1e-4 * p[3] + shift)
+                   .convex);
+}
+
 TEST(QuadShapeTest, SummaryAndCornerChangeOfAGrid) {
   QuadGridOptions grid;
   grid.nu = grid.nv = 6;
