@@ -2,6 +2,8 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/SparseCore>
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -14,8 +16,11 @@ struct LocalGlobalPlanarizer::Factor {
   std::unique_ptr<SparseCholesky> cholesky;
 };
 
-LocalGlobalPlanarizer::LocalGlobalPlanarizer(const PolyMesh& mesh, double closeness_weight)
-    : closeness_weight_(closeness_weight), factor_(std::make_unique<Factor>()) {
+LocalGlobalPlanarizer::LocalGlobalPlanarizer(const PolyMesh& mesh, double closeness_weight,
+                                             int anderson_depth)
+    : closeness_weight_(closeness_weight),
+      factor_(std::make_unique<Factor>()),
+      depth_(anderson_depth) {
   const int n = static_cast<int>(mesh.n_vertices());
   v0_.resize(n, 3);
   for (const auto vh : mesh.vertices()) {
@@ -53,28 +58,85 @@ LocalGlobalPlanarizer::LocalGlobalPlanarizer(const PolyMesh& mesh, double closen
   if (!factor_->cholesky->Analyze(m, MatrixForm::kSymmetric, &message) ||
       !factor_->cholesky->Factorize(m, closeness_weight_, &message))
     throw std::runtime_error("LocalGlobalPlanarizer: " + message);
+  energy_ = LocalStep(v_);
+  if (depth_ > 0) {
+    image_changes_.resize(3 * n, depth_);
+    residual_changes_.resize(3 * n, depth_);
+  }
 }
 
 LocalGlobalPlanarizer::~LocalGlobalPlanarizer() = default;
 
-void LocalGlobalPlanarizer::Iterate() {
+double LocalGlobalPlanarizer::LocalStep(const Eigen::MatrixX3d& x) {
   rhs_ = closeness_weight_ * v0_;
+  double energy = closeness_weight_ * (x - v0_).squaredNorm();
   for (const auto& q : quads_) {
     Eigen::Matrix<double, 4, 3> p;
-    for (int k = 0; k < 4; ++k) p.row(k) = v_.row(q[k]);
+    for (int k = 0; k < 4; ++k) p.row(k) = x.row(q[k]);
     p.rowwise() -= p.colwise().mean();
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(p.transpose() * p);
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    eig.computeDirect(p.transpose() * p);
     const Eigen::Vector3d normal = eig.eigenvectors().col(0);  // smallest eigenvalue
+    energy += std::max(eig.eigenvalues()[0], 0.0);             // squared distances to the plane
     p -= (p * normal) * normal.transpose();
     for (int k = 0; k < 4; ++k) rhs_.row(q[k]) += p.row(k);
   }
+  return energy;
+}
+
+void LocalGlobalPlanarizer::GlobalStep(Eigen::MatrixX3d* x) {
   std::string message;
   for (int c = 0; c < 3; ++c) {
     column_ = rhs_.col(c);
     if (!factor_->cholesky->Solve(column_.data(), solved_.data(), &message))
       throw std::runtime_error("LocalGlobalPlanarizer: " + message);
-    v_.col(c) = solved_;
+    x->col(c) = solved_;
   }
+}
+
+void LocalGlobalPlanarizer::Iterate() {
+  if (depth_ > 0) return IterateAnderson();
+  GlobalStep(&v_);
+  energy_ = LocalStep(v_);
+}
+
+void LocalGlobalPlanarizer::IterateAnderson() {
+  Eigen::MatrixX3d image(v_.rows(), 3);
+  GlobalStep(&image);  // G(v_): rhs_ holds v_'s local step
+  const Eigen::Map<const Eigen::VectorXd> g(image.data(), image.size());
+  const Eigen::Map<const Eigen::VectorXd> x(v_.data(), v_.size());
+  const Eigen::VectorXd residual = g - x;
+  if (last_image_.size() == g.size()) {
+    image_changes_.col(next_column_) = g - last_image_;
+    residual_changes_.col(next_column_) = residual - last_residual_;
+    next_column_ = (next_column_ + 1) % depth_;
+    history_ = std::min(history_ + 1, depth_);
+  }
+  last_image_ = g;
+  last_residual_ = residual;
+  Eigen::MatrixX3d candidate = image;
+  if (history_ > 0) {
+    // θ = argmin ‖f − ΔF θ‖ by the normal equations (m ≤ a few columns), lightly regularised.
+    const auto df = residual_changes_.leftCols(history_);
+    Eigen::MatrixXd normal = df.transpose() * df;
+    normal.diagonal().array() += 1e-10 * normal.diagonal().maxCoeff() + 1e-300;
+    const Eigen::VectorXd theta = normal.ldlt().solve(df.transpose() * residual);
+    Eigen::Map<Eigen::VectorXd>(candidate.data(), candidate.size()) -=
+        image_changes_.leftCols(history_) * theta;
+  }
+  const double energy = candidate.allFinite() ? LocalStep(candidate) : HUGE_VAL;
+  if (history_ == 0 || energy < energy_) {
+    v_ = candidate;
+    energy_ = energy;
+    accepted_ += history_ > 0;
+    return;
+  }
+  ++rejected_;
+  v_ = image;  // the plain step: its energy is not above the last accepted one
+  energy_ = LocalStep(v_);
+  history_ = 0;
+  next_column_ = 0;
+  last_image_.resize(0);
 }
 
 double LocalGlobalPlanarizer::MaxPlanarity() const {
