@@ -77,8 +77,9 @@ double LocalGlobalPlanarizer::LocalStep(const Eigen::MatrixX3d& x) {
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
     eig.computeDirect(p.transpose() * p);
     const Eigen::Vector3d normal = eig.eigenvectors().col(0);  // smallest eigenvalue
-    energy += std::max(eig.eigenvalues()[0], 0.0);             // squared distances to the plane
-    p -= (p * normal) * normal.transpose();
+    const Eigen::Vector4d off = p * normal;  // distances to the plane (accurate near planarity,
+    energy += off.squaredNorm();             // unlike the eigenvalue itself)
+    p -= off * normal.transpose();
     for (int k = 0; k < 4; ++k) rhs_.row(q[k]) += p.row(k);
   }
   return energy;
@@ -97,6 +98,7 @@ void LocalGlobalPlanarizer::GlobalStep(Eigen::MatrixX3d* x) {
 void LocalGlobalPlanarizer::Iterate() {
   if (depth_ > 0) return IterateAnderson();
   GlobalStep(&v_);
+  if (!v_.allFinite()) throw std::runtime_error("LocalGlobalPlanarizer: a step is not finite");
   energy_ = LocalStep(v_);
 }
 
@@ -124,6 +126,7 @@ void LocalGlobalPlanarizer::IterateAnderson() {
     Eigen::Map<Eigen::VectorXd>(candidate.data(), candidate.size()) -=
         image_changes_.leftCols(history_) * theta;
   }
+  if (!image.allFinite()) throw std::runtime_error("LocalGlobalPlanarizer: a step is not finite");
   const double energy = candidate.allFinite() ? LocalStep(candidate) : HUGE_VAL;
   if (history_ == 0 || energy < energy_) {
     v_ = candidate;

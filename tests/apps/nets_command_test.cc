@@ -2,7 +2,6 @@
 // (`gproj grid --diagonal`), against the edge net's run on the same mesh.
 #include <gtest/gtest.h>
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -135,44 +134,33 @@ TEST_F(NetsCommandTest, ArchGeoSampleIsAnANetOnItsDiagonals) {
   }
 }
 
-// Quads of a written H-net file that are not convex: in the plane of their diagonals (a
-// corner turning against the normal (v2 − v0) × (v3 − v1)) and, measured independently of that
-// plane, seen along the normal of their least-squares plane.
-struct NonConvexCounts {
-  int diagonal_plane = 0, best_fit_plane = 0, either = 0;
-};
-NonConvexCounts CountNonConvex(const nlohmann::json& hnet) {
-  NonConvexCounts counts;
+// Quads of a written H-net file whose bilinear patch folds: its normal x_u × x_v, sampled on a
+// 9 × 9 grid, turns 90° or more away from the normal at the patch's centre somewhere.
+int CountFoldedPatches(const nlohmann::json& hnet) {
+  int folded = 0;
   for (const auto& face : hnet["faces"]) {
     Eigen::Vector3d p[4];
     for (int k = 0; k < 4; ++k)
       for (int c = 0; c < 3; ++c) p[k][c] = hnet["vertices"][face[k].get<int>()][c];
-    const Eigen::Vector3d centre = (p[0] + p[1] + p[2] + p[3]) / 4.0;
-    Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
-    for (const Eigen::Vector3d& q : p) scatter += (q - centre) * (q - centre).transpose();
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(scatter);
-    const Eigen::Vector3d fit = eigen.eigenvectors().col(0);
-    const Eigen::Vector3d normal = (p[2] - p[0]).cross(p[3] - p[1]);
-    int along_diagonals = 0, along_fit = 0;
-    for (int k = 0; k < 4; ++k) {
-      const Eigen::Vector3d turn = (p[k] - p[(k + 3) % 4]).cross(p[(k + 1) % 4] - p[k]);
-      along_diagonals += turn.dot(normal) > 0.0;
-      along_fit += turn.dot(fit) > 0.0 ? 1 : -1;
-    }
-    counts.diagonal_plane += along_diagonals != 4;
-    counts.best_fit_plane += std::abs(along_fit) != 4;
-    counts.either += along_diagonals != 4 || std::abs(along_fit) != 4;
+    auto normal = [&p](double u, double v) {
+      const Eigen::Vector3d xu = (1 - v) * (p[1] - p[0]) + v * (p[2] - p[3]);
+      const Eigen::Vector3d xv = (1 - u) * (p[3] - p[0]) + u * (p[2] - p[1]);
+      return Eigen::Vector3d(xu.cross(xv));
+    };
+    const Eigen::Vector3d centre = normal(0.5, 0.5);
+    bool folds = false;
+    for (int i = 0; i <= 8; ++i)
+      for (int j = 0; j <= 8; ++j) folds = folds || !(normal(i / 8.0, j / 8.0).dot(centre) > 0.0);
+    folded += folds;
   }
-  return counts;
+  return folded;
 }
 
 // ArchGeo's sample optimised as an H-net on its edges (its diagonals, not its edges, are the
 // asymptotic ones): no H-net exists near it, and the joint solve of vertices and weights pulls
 // quads towards folding. The vertex updates keep the A-net step's corner bounds: the run ends at
-// exit 3 with every quad convex in the plane of its diagonals, names the quads held at
-// the bound, and counts as non-convex exactly the quads an independent measure finds crossing
-// themselves along their best-fit plane (gproj's count is of quads not convex in either plane);
-// --allow-folds shows what the bound prevents.
+// exit 3 with no patch folded (counted here independently) and names the quads held at the
+// bound; with --allow-folds the same run folds hundreds and the log names them.
 TEST_F(NetsCommandTest, HNetJointSolveKeepsTheCornerBounds) {
   const std::string base = "hnet " + std::string(GPROJ_SOURCE_DIR) +
                            "/tests/data/archgeo_complete01.obj --allow-not-simply-connected";
@@ -180,26 +168,30 @@ TEST_F(NetsCommandTest, HNetJointSolveKeepsTheCornerBounds) {
       Gproj(base + " -o " + Path("b.json") + " --report " + Path("b_r.json"));
   ASSERT_EQ(bounded.exit_code, 3) << bounded.err;
   const nlohmann::json b = Json("b_r.json");
-  EXPECT_GT(b["faces_at_angle_bound"].size(), 10u);
-  EXPECT_NE(bounded.err.find("quads sit on their corner-angle bound (--min-angle 5)"),
+  const size_t at_bound = b["faces_at_angle_bound"].size();
+  EXPECT_GT(at_bound, 100u);
+  EXPECT_NE(bounded.err.find(std::to_string(at_bound) +
+                             " quads sit on their corner-angle bound (--min-angle 5)"),
             std::string::npos)
       << bounded.err;
-  const NonConvexCounts kept = CountNonConvex(Json("b.json"));
-  EXPECT_EQ(kept.diagonal_plane, 0);
-  EXPECT_EQ(b["final"]["non_convex_quads"].get<int>(), kept.either);
-  if (kept.best_fit_plane > 0)
-    EXPECT_NE(bounded.err.find(std::to_string(kept.best_fit_plane) + " quads are not convex"),
-              std::string::npos)
-        << bounded.err;
+  EXPECT_EQ(CountFoldedPatches(Json("b.json")), 0);
+  EXPECT_EQ(b["final"]["non_convex_quads"], 0);
+  EXPECT_GT(b["final"]["min_corner_angle_deg"].get<double>(), 4.5);
+  EXPECT_EQ(bounded.err.find("not convex"), std::string::npos) << bounded.err;
 
   const CommandRun folds =
       Gproj(base + " --allow-folds -o " + Path("f.json") + " --report " + Path("f_r.json"));
   ASSERT_EQ(folds.exit_code, 3) << folds.err;
-  const NonConvexCounts folded = CountNonConvex(Json("f.json"));
-  EXPECT_GT(folded.diagonal_plane, 100);
-  EXPECT_GT(folded.either, 10 * kept.either);
-  EXPECT_GT(Json("f_r.json")["final"]["non_convex_quads"].get<int>(), 10 * kept.either);
-  EXPECT_TRUE(Json("f_r.json")["faces_at_angle_bound"].empty());
+  const nlohmann::json f = Json("f_r.json");
+  const int folded = CountFoldedPatches(Json("f.json"));
+  EXPECT_GT(folded, 100);
+  // Folds squash some patches to slivers where the two counts part on rounding.
+  EXPECT_NEAR(f["final"]["non_convex_quads"].get<int>(), folded, 0.05 * folded);
+  EXPECT_NE(folds.err.find(std::to_string(f["final"]["non_convex_quads"].get<int>()) +
+                           " quads are not convex"),
+            std::string::npos)
+      << folds.err;
+  EXPECT_TRUE(f["faces_at_angle_bound"].empty());
 }
 
 TEST_F(NetsCommandTest, DiagonalGridNotForRevolution) {

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+
 #include "gproj/geometry/mesh/quad_grid.h"
 
 namespace gproj {
@@ -15,6 +17,24 @@ PolyMesh NoisyGrid(int n) {
   grid.noise = 0.05;
   grid.seed = 3;
   return MakeQuadGrid(grid);
+}
+
+// The objective recomputed here: closeness plus, per quad, the squared distances of its
+// mean-centred corners to their least-squares plane (the smallest eigenvalue of their scatter).
+double Energy(const PolyMesh& mesh, const Eigen::MatrixX3d& v, double closeness) {
+  double energy = 0.0;
+  for (const auto vh : mesh.vertices()) {
+    const auto& p = mesh.point(vh);
+    energy += closeness * (v.row(vh.idx()) - Eigen::RowVector3d(p[0], p[1], p[2])).squaredNorm();
+  }
+  for (const auto fh : mesh.faces()) {
+    Eigen::Matrix<double, 4, 3> q;
+    int k = 0;
+    for (const auto vh : mesh.fv_range(fh)) q.row(k++) = v.row(vh.idx());
+    q.rowwise() -= q.colwise().mean();
+    energy += Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(q.transpose() * q).eigenvalues()[0];
+  }
+  return energy;
 }
 
 // Iterations until the max planarity is ≤ tolerance (limit + 1 when not reached), checking that
@@ -40,6 +60,8 @@ TEST(LocalGlobalPlanarizerTest, AndersonReachesTheToleranceInFewerIterations) {
   ASSERT_LE(plain_iterations, 2000);
   EXPECT_LT(anderson_iterations, plain_iterations / 2) << plain_iterations << " plain iterations";
   EXPECT_GT(anderson.accepted(), 0);
+  EXPECT_NEAR(anderson.Energy(), Energy(mesh, anderson.vertices(), 1e-4), 1e-9 * anderson.Energy());
+  EXPECT_NEAR(plain.Energy(), Energy(mesh, plain.vertices(), 1e-4), 1e-9 * plain.Energy());
   // Run on, Anderson ends at an energy no higher than plain iterations 20 times as many.
   for (int k = 0; k < 10000; ++k) plain.Iterate();
   for (int k = 0; k < 500; ++k) anderson.Iterate();

@@ -1,6 +1,5 @@
 #include "gproj/geometry/mesh/quad_shape.h"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cstdio>
@@ -56,25 +55,6 @@ double UnitDiagonalDistance(const Eigen::Vector3d* v) {
   return std::abs((v[1] - v[0]).dot(n)) / length;
 }
 
-// Whether a quad at unit size, seen along the normal of its best-fit plane (least squares
-// through its corners), turns the same way at every corner: a skew quad can be convex in its
-// diagonals' plane and still cross itself when laid flat this way.
-bool ConvexInBestFitPlane(const Eigen::Vector3d* v) {
-  const Eigen::Vector3d centre = (v[0] + v[1] + v[2] + v[3]) / 4.0;
-  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
-  for (int i = 0; i < 4; ++i) scatter += (v[i] - centre) * (v[i] - centre).transpose();
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
-  eigen.computeDirect(scatter);
-  const Eigen::Vector3d normal = eigen.eigenvectors().col(0);  // smallest eigenvalue
-  int positive = 0, negative = 0;
-  for (int i = 0; i < 4; ++i) {
-    const double turn = (v[i] - v[(i + 3) % 4]).cross(v[(i + 1) % 4] - v[i]).dot(normal);
-    positive += turn > 0.0;
-    negative += turn < 0.0;
-  }
-  return positive == 4 || negative == 4;
-}
-
 }  // namespace
 
 std::array<double, 4> QuadCornerAngles(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
@@ -103,7 +83,6 @@ QuadShape MeasureQuadShape(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
   const std::array<double, 4> angles = CornerAngles(v, sines);
   s.min_angle_deg = *std::min_element(angles.begin(), angles.end());
   for (double sine : sines) s.convex = s.convex && sine > 0.0;
-  s.convex = s.convex && ConvexInBestFitPlane(v);
   // Split along v0–v2: triangles (v0, v1, v2) and (v0, v2, v3); along v1–v3 likewise.
   const double kink02 =
       AngleDeg((v[1] - v[0]).cross(v[2] - v[0]), (v[2] - v[0]).cross(v[3] - v[0]));

@@ -4,9 +4,14 @@
 // Corner i of quad (v0, v1, v2, v3) is measured in the plane of the diagonals' normal
 // N = (v2 − v0) × (v3 − v1): its signed sine
 //   sin∠_i = ((v_{i+1} − v_i) × (v_{i−1} − v_i)) · N / (|v_{i+1} − v_i| |v_{i−1} − v_i| |N|)
-// is negative at a reflex or folded corner. A quad is convex when all four are positive and it
-// also turns one way at every corner seen along its best-fit plane's normal (a thin skew quad
-// can pass the first test and still cross itself when laid flat).
+// is negative at a reflex or folded corner, so a quad is convex when all four are positive.
+// For a skew quad this says exactly that its bilinear patch has no fold: the patch's normal
+// x_u × x_v is the bilinear blend of the four corner normals (the corners' cross products), so
+// it is ¼ Σ of them = N/2 at the centre, and it stays within 90° of N over the whole patch if
+// and only if it does at the four corners. (Judging a skew quad by its projection onto its
+// least-squares plane is no such measure: for a thin twisted strip that plane's normal swaps
+// by 90° once the twist exceeds about half the width, and the projection then crosses itself
+// although the patch is smooth and unfolded.)
 
 #include <Eigen/Core>
 #include <array>
@@ -44,7 +49,7 @@ void QuadCornerSines(const T* v0, const T* v1, const T* v2, const T* v3, T* sine
 }
 
 struct QuadShape {
-  bool convex = true;              // all four corner sines > 0, and convex in the best-fit plane
+  bool convex = true;              // all four corner sines > 0
   double min_angle_deg = 0.0;      // smallest corner angle in the diagonals' plane (a reflex
                                    // corner counts as 360° minus its turn, so > 180°)
   double kink_deg = 0.0;           // angle between the normals of the two triangles (larger of

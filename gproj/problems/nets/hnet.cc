@@ -448,9 +448,11 @@ void StartFrameNormals(const std::vector<double>& w, VertexUpdate* u) {
   }
 }
 
-// The vertex update; with `free_weights` (their start values) the shape parameters are
-// unknowns too: frame rows with W, W near 1 (soft, 004 eq. 11) and W ≥ min (inequality).
-std::unique_ptr<VertexUpdate> BuildVertexUpdate(const PolyMesh& mesh,
+// The vertex update of `mesh`, whose panel bounds are measured on `input` (the same
+// connectivity) as the A-net step's are; with `free_weights` (their start values) the shape
+// parameters are unknowns too: frame rows with W, W near 1 (soft, 004 eq. 11) and W ≥ min
+// (inequality).
+std::unique_ptr<VertexUpdate> BuildVertexUpdate(const PolyMesh& mesh, const PolyMesh& input,
                                                 const std::vector<int>& colour,
                                                 const HNetOptions& options,
                                                 const PolyMesh& reference,
@@ -472,7 +474,13 @@ std::unique_ptr<VertexUpdate> BuildVertexUpdate(const PolyMesh& mesh,
   LoadVertices(mesh, u->norm, u->vertex_block, &problem);
   LoadANetNormals(mesh, u->vertex_block, anet, &problem);
   AddANetFamilies(mesh, options.anet, u->vertex_block, anet, &reference, u->norm, &problem);
-  u->bounds = AddPanelBounds(mesh, u->norm, u->vertex_block, options.anet.panels, &problem);
+  // Bounds from the input, not from this update's start: a bound relaxed to the input's value,
+  // or the default edge floor (a tenth of the input length), must not shrink with every update.
+  LoadVertices(input, u->norm, u->vertex_block, &problem);
+  u->bounds = AddPanelBounds(input, u->norm, u->vertex_block, options.anet.panels, &problem);
+  LoadVertices(mesh, u->norm, u->vertex_block, &problem);
+  for (int f = 0; f < problem.num_families(); ++f)
+    problem.family(f).Project(problem.layout(), &problem.x());  // slacks at the start
   u->control = ApplyVertexControl(mesh, u->norm, u->vertex_block, options.anet.vertices, &problem);
   u->start = mesh;
   for (auto e : inner_edges) u->stencils.push_back(EdgeStencilOf(mesh, colour, e));
@@ -711,7 +719,7 @@ bool HNet::SolveJointly(int round, double soft_scale, const PolyMesh& reference,
   std::vector<double> start = w_;
   for (double& w : start) w = std::isfinite(w) && w > 0.0 ? std::clamp(w, 0.1, 10.0) : 1.0;
   const std::unique_ptr<VertexUpdate> update =
-      BuildVertexUpdate(mesh_, colour_, options_, reference, &start);
+      BuildVertexUpdate(mesh_, input_, colour_, options_, reference, &start);
   report.variables = update->problem.layout().num_variables();
   SolverOptions solver_options = options_.anet.solver;
   solver_options.residual_tolerance = options_.residual_tolerance;
@@ -745,7 +753,7 @@ void HNet::RunRounds(const PolyMesh& reference, const RoundCallback& on_round, S
                      HNetSummary* summary) {
   RunReport& report = summary->report;
   const std::unique_ptr<VertexUpdate> update =
-      BuildVertexUpdate(mesh_, colour_, options_, reference);
+      BuildVertexUpdate(mesh_, input_, colour_, options_, reference);
   report.variables = update->problem.layout().num_variables();
   summary->equitwist_violations = EquitwistViolations(mesh_, colour_);
   SolverOptions solver_options = options_.anet.solver;
