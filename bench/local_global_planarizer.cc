@@ -59,7 +59,12 @@ LocalGlobalPlanarizer::LocalGlobalPlanarizer(const PolyMesh& mesh, double closen
       !factor_->cholesky->Factorize(m, closeness_weight_, &message))
     throw std::runtime_error("LocalGlobalPlanarizer: " + message);
   energy_ = LocalStep(v_);
-  if (depth_ > 0) {
+  if (depth_ > 0) {  // every buffer of an Anderson step, allocated once
+    image_.resize(n, 3);
+    candidate_.resize(n, 3);
+    residual_.resize(3 * n);
+    last_image_.resize(3 * n);
+    last_residual_.resize(3 * n);
     image_changes_.resize(3 * n, depth_);
     residual_changes_.resize(3 * n, depth_);
   }
@@ -103,43 +108,43 @@ void LocalGlobalPlanarizer::Iterate() {
 }
 
 void LocalGlobalPlanarizer::IterateAnderson() {
-  Eigen::MatrixX3d image(v_.rows(), 3);
-  GlobalStep(&image);  // G(v_): rhs_ holds v_'s local step
-  const Eigen::Map<const Eigen::VectorXd> g(image.data(), image.size());
+  GlobalStep(&image_);  // G(v_): rhs_ holds v_'s local step
+  if (!image_.allFinite()) throw std::runtime_error("LocalGlobalPlanarizer: a step is not finite");
+  const Eigen::Map<const Eigen::VectorXd> g(image_.data(), image_.size());
   const Eigen::Map<const Eigen::VectorXd> x(v_.data(), v_.size());
-  const Eigen::VectorXd residual = g - x;
-  if (last_image_.size() == g.size()) {
+  residual_ = g - x;
+  if (has_last_) {
     image_changes_.col(next_column_) = g - last_image_;
-    residual_changes_.col(next_column_) = residual - last_residual_;
+    residual_changes_.col(next_column_) = residual_ - last_residual_;
     next_column_ = (next_column_ + 1) % depth_;
     history_ = std::min(history_ + 1, depth_);
   }
   last_image_ = g;
-  last_residual_ = residual;
-  Eigen::MatrixX3d candidate = image;
+  last_residual_ = residual_;
+  has_last_ = true;
+  candidate_ = image_;
   if (history_ > 0) {
     // θ = argmin ‖f − ΔF θ‖ by the normal equations (m ≤ a few columns), lightly regularised.
     const auto df = residual_changes_.leftCols(history_);
     Eigen::MatrixXd normal = df.transpose() * df;
     normal.diagonal().array() += 1e-10 * normal.diagonal().maxCoeff() + 1e-300;
-    const Eigen::VectorXd theta = normal.ldlt().solve(df.transpose() * residual);
-    Eigen::Map<Eigen::VectorXd>(candidate.data(), candidate.size()) -=
+    const Eigen::VectorXd theta = normal.ldlt().solve(df.transpose() * residual_);
+    Eigen::Map<Eigen::VectorXd>(candidate_.data(), candidate_.size()).noalias() -=
         image_changes_.leftCols(history_) * theta;
   }
-  if (!image.allFinite()) throw std::runtime_error("LocalGlobalPlanarizer: a step is not finite");
-  const double energy = candidate.allFinite() ? LocalStep(candidate) : HUGE_VAL;
+  const double energy = candidate_.allFinite() ? LocalStep(candidate_) : HUGE_VAL;
   if (history_ == 0 || energy < energy_) {
-    v_ = candidate;
+    v_.swap(candidate_);
     energy_ = energy;
     accepted_ += history_ > 0;
     return;
   }
   ++rejected_;
-  v_ = image;  // the plain step: its energy is not above the last accepted one
+  v_.swap(image_);  // the plain step: its energy is not above the last accepted one
   energy_ = LocalStep(v_);
   history_ = 0;
   next_column_ = 0;
-  last_image_.resize(0);
+  has_last_ = false;
 }
 
 double LocalGlobalPlanarizer::MaxPlanarity() const {

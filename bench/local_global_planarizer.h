@@ -65,7 +65,9 @@ class LocalGlobalPlanarizer {
   // Anderson: depth, the last image and residual, and the differences of the last m of each
   // (columns, flattened vertices).
   int depth_ = 0, accepted_ = 0, rejected_ = 0, history_ = 0, next_column_ = 0;
-  Eigen::VectorXd last_image_, last_residual_;
+  bool has_last_ = false;               // last_image_ and last_residual_ hold a step
+  Eigen::MatrixX3d image_, candidate_;  // G(v_) and the accelerated point
+  Eigen::VectorXd residual_, last_image_, last_residual_;
   Eigen::MatrixXd image_changes_, residual_changes_;
 };
 

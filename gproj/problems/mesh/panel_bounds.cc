@@ -33,18 +33,24 @@ std::array<int, 4> QuadVertices(const PolyMesh& mesh, PolyMesh::FaceHandle f) {
   return v;
 }
 
-std::array<double, 4> CornerSinesAt(const Eigen::VectorXd& x, const VariableLayout& layout,
-                                    int vertex_block, const std::array<int, 4>& v) {
-  const double* p[4];
-  for (int j = 0; j < 4; ++j) p[j] = x.data() + layout.Index(vertex_block, v[j], 0);
+// Vertex v of `mesh` in problem units.
+Eigen::Vector3d PointAt(const PolyMesh& mesh, const MeshNormalization& norm, int v) {
+  return norm.ToProblem(ToEigen(mesh.point(mesh.vertex_handle(v))));
+}
+
+std::array<double, 4> CornerSinesAt(const PolyMesh& mesh, const MeshNormalization& norm,
+                                    const std::array<int, 4>& v) {
+  Eigen::Vector3d p[4];
+  for (int j = 0; j < 4; ++j) p[j] = PointAt(mesh, norm, v[j]);
   std::array<double, 4> sines{};
-  QuadCornerSines(p[0], p[1], p[2], p[3], sines.data());
+  QuadCornerSines(p[0].data(), p[1].data(), p[2].data(), p[3].data(), sines.data());
   return sines;
 }
 
 // Corner rows on the polygons of N corners (faces: face index, corner vertex ids).
 template <int N, size_t... I>
-void AddPolygonCorners(const std::vector<std::pair<int, std::vector<int>>>& faces, double min_sine,
+void AddPolygonCorners(const PolyMesh& mesh, const MeshNormalization& norm,
+                       const std::vector<std::pair<int, std::vector<int>>>& faces, double min_sine,
                        int vertex_block, const std::string& prefix, Problem* problem,
                        PanelBounds* out, std::index_sequence<I...>) {
   const VariableLayout& layout = problem->layout();
@@ -52,8 +58,12 @@ void AddPolygonCorners(const std::vector<std::pair<int, std::vector<int>>>& face
   std::vector<std::pair<std::array<int, N>, PolygonCornerBounds<N>>> elements;
   for (const auto& [face, v] : faces) {
     if (static_cast<int>(v.size()) != N) continue;
+    Eigen::Vector3d points[N];
     const double* p[N];
-    for (int j = 0; j < N; ++j) p[j] = problem->x().data() + layout.Index(vertex_block, v[j], 0);
+    for (int j = 0; j < N; ++j) {
+      points[j] = PointAt(mesh, norm, v[j]);
+      p[j] = points[j].data();
+    }
     double sines[N];
     PolygonCornerSines(p, N, sines);
     PolygonCornerBounds<N> bounds;
@@ -69,11 +79,12 @@ void AddPolygonCorners(const std::vector<std::pair<int, std::vector<int>>>& face
 }
 
 template <size_t... N>
-void AddAllPolygonCorners(const std::vector<std::pair<int, std::vector<int>>>& faces,
+void AddAllPolygonCorners(const PolyMesh& mesh, const MeshNormalization& norm,
+                          const std::vector<std::pair<int, std::vector<int>>>& faces,
                           double min_sine, int vertex_block, const std::string& prefix,
                           Problem* problem, PanelBounds* out, std::index_sequence<N...>) {
-  (AddPolygonCorners<static_cast<int>(N) + 5>(faces, min_sine, vertex_block, prefix, problem, out,
-                                              std::make_index_sequence<N + 5>()),
+  (AddPolygonCorners<static_cast<int>(N) + 5>(mesh, norm, faces, min_sine, vertex_block, prefix,
+                                              problem, out, std::make_index_sequence<N + 5>()),
    ...);
 }
 
@@ -91,7 +102,7 @@ PanelBounds AddPanelBounds(const PolyMesh& mesh, const MeshNormalization& norm, 
     for (auto f : mesh.faces()) {
       if (mesh.valence(f) != 4) continue;
       const std::array<int, 4> v = QuadVertices(mesh, f);
-      const std::array<double, 4> sines = CornerSinesAt(problem->x(), layout, vertex_block, v);
+      const std::array<double, 4> sines = CornerSinesAt(mesh, norm, v);
       QuadCornerBounds bounds;
       for (int i = 0; i < 4; ++i) bounds.min_sine[i] = std::min(min_sine, sines[i]);
       quads.push_back({{vertex[v[0]], vertex[v[1]], vertex[v[2]], vertex[v[3]]}, bounds});
@@ -112,7 +123,7 @@ PanelBounds AddPanelBounds(const PolyMesh& mesh, const MeshNormalization& norm, 
       for (auto fv : mesh.fv_range(f)) v.push_back(fv.idx());
       polygons.push_back({f.idx(), v});
     }
-    AddAllPolygonCorners(polygons, min_sine, vertex_block, prefix, problem, &out,
+    AddAllPolygonCorners(mesh, norm, polygons, min_sine, vertex_block, prefix, problem, &out,
                          std::make_index_sequence<kMaxBoundedCorners - 4>());
   }
   auto add_edges = [&](const std::string& name, bool lower, auto bound_of) {
@@ -121,8 +132,7 @@ PanelBounds AddPanelBounds(const PolyMesh& mesh, const MeshNormalization& norm, 
     for (auto e : mesh.edges()) {
       const auto h = mesh.halfedge_handle(e, 0);
       const int a = mesh.from_vertex_handle(h).idx(), b = mesh.to_vertex_handle(h).idx();
-      const Eigen::Vector3d edge = problem->x().segment<3>(layout.Index(vertex_block, b, 0)) -
-                                   problem->x().segment<3>(layout.Index(vertex_block, a, 0));
+      const Eigen::Vector3d edge = PointAt(mesh, norm, b) - PointAt(mesh, norm, a);
       const double length = edge.norm();
       EdgeLengthBound bound;
       bound.length = bound_of(length);

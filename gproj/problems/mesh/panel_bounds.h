@@ -57,9 +57,11 @@ struct PanelBounds {
 };
 
 // Adds the bounds over the quads (and polygons of 5 to kMaxBoundedCorners corners) and edges of
-// `mesh`, whose vertices are the items of
-// `vertex_block` in the normalisation `norm`; problem->x() must hold the start. The families'
-// names begin with `prefix` (a second set of faces on the same vertices needs its own).
+// `mesh`, whose vertices are the items of `vertex_block` in the normalisation `norm`. The
+// bounds are measured on `mesh` (relaxed to its corners, the default edge floor from its
+// lengths), which may be another state than the start in problem->x() (a later stage bounded
+// by its input); the slacks start from x. The families' names begin with `prefix` (a second
+// set of faces on the same vertices needs its own).
 PanelBounds AddPanelBounds(const PolyMesh& mesh, const MeshNormalization& norm, int vertex_block,
                            const PanelBoundsOptions& options, Problem* problem,
                            const std::string& prefix = "");

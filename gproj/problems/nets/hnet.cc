@@ -474,13 +474,10 @@ std::unique_ptr<VertexUpdate> BuildVertexUpdate(const PolyMesh& mesh, const Poly
   LoadVertices(mesh, u->norm, u->vertex_block, &problem);
   LoadANetNormals(mesh, u->vertex_block, anet, &problem);
   AddANetFamilies(mesh, options.anet, u->vertex_block, anet, &reference, u->norm, &problem);
-  // Bounds from the input, not from this update's start: a bound relaxed to the input's value,
-  // or the default edge floor (a tenth of the input length), must not shrink with every update.
-  LoadVertices(input, u->norm, u->vertex_block, &problem);
+  // Bounds measured on the input, not on this update's start: a bound relaxed to the input's
+  // value, or the default edge floor (a tenth of the input length), must not shrink with every
+  // update.
   u->bounds = AddPanelBounds(input, u->norm, u->vertex_block, options.anet.panels, &problem);
-  LoadVertices(mesh, u->norm, u->vertex_block, &problem);
-  for (int f = 0; f < problem.num_families(); ++f)
-    problem.family(f).Project(problem.layout(), &problem.x());  // slacks at the start
   u->control = ApplyVertexControl(mesh, u->norm, u->vertex_block, options.anet.vertices, &problem);
   u->start = mesh;
   for (auto e : inner_edges) u->stencils.push_back(EdgeStencilOf(mesh, colour, e));
